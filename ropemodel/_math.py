@@ -1,0 +1,54 @@
+"""Elementary functions that work on floats, numpy arrays and CasADi symbols alike.
+
+The equation functions in :mod:`ropemodel.papers` call these, so one function per
+published equation serves scalar checks, vectorised numpy evaluation and the
+symbolic CasADi model.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+_CASADI = (ca.SX, ca.MX, ca.DM)
+
+
+def _is_casadi(*args) -> bool:
+    return any(isinstance(a, _CASADI) for a in args)
+
+
+def _unary(np_fun, ca_fun):
+    def f(x):
+        return ca_fun(x) if _is_casadi(x) else np_fun(x)
+
+    f.__name__ = np_fun.__name__
+    f.__doc__ = f"{np_fun.__name__} of a float, numpy array or CasADi expression."
+    return f
+
+
+sin = _unary(np.sin, ca.sin)
+cos = _unary(np.cos, ca.cos)
+tan = _unary(np.tan, ca.tan)
+exp = _unary(np.exp, ca.exp)
+log = _unary(np.log, ca.log)
+log1p = _unary(np.log1p, ca.log1p)
+expm1 = _unary(np.expm1, ca.expm1)
+sqrt = _unary(np.sqrt, ca.sqrt)
+fabs = _unary(np.abs, ca.fabs)
+
+
+def if_else(cond, a, b):
+    """``a`` where ``cond`` else ``b``.  Both branches are evaluated: keep each safe."""
+    if _is_casadi(cond, a, b):
+        return ca.if_else(cond, a, b)
+    return np.where(cond, a, b)
+
+
+def fmax(a, b):
+    """Element-wise maximum."""
+    return ca.fmax(a, b) if _is_casadi(a, b) else np.maximum(a, b)
+
+
+def fmin(a, b):
+    """Element-wise minimum."""
+    return ca.fmin(a, b) if _is_casadi(a, b) else np.minimum(a, b)

@@ -1,0 +1,30 @@
+"""References of the published models; submodels cite them by key."""
+
+from __future__ import annotations
+
+CITATIONS: dict[str, str] = {
+    "krauze2025": (
+        "K. Krauze, K. Mucha, T. Wydro, R. Klempka (2025). Model and analysis of rope winch "
+        "operation in underground rail transport. Archives of Mining Sciences. CC-BY 4.0."
+    ),
+    "hajduk1992": (
+        "J. Hajduk (1992). Theoretical distribution of the tension in the rope encircling the "
+        "driving disc with the elastic lining (in Polish, English summary)."
+    ),
+    "li_capstan": (
+        "Li, Liang, Dong, Qiu. Analysis and experimental determination of cable-driven stiffness."
+    ),
+    "euler_eytelwein": (
+        "L. Euler (1762); J. A. Eytelwein (1808). Belt friction: T1/T2 = exp(mu*alpha)."
+    ),
+}
+
+
+def cite(keys) -> list[str]:
+    """Full references for the given keys, in order, without repeats."""
+    seen, out = set(), []
+    for k in keys:
+        if k not in seen:
+            seen.add(k)
+            out.append(CITATIONS[k])
+    return out

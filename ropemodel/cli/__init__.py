@@ -1,0 +1,77 @@
+"""Command line: ``ropemodel COMMAND ...``.
+
+Each module in this package defines one command: a ``NAME``, a ``HELP`` line,
+``add_arguments(parser)`` and ``main(args) -> int``.  They are discovered at
+start-up, so a new command is a new module.  Errors become one line on stderr:
+bad input exits 2, a failed solve or an infeasible design exits 1.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import pkgutil
+import sys
+import warnings
+
+from ropemodel.errors import InfeasibleError, InputError, RopeModelError, SolveError
+
+EXIT_OK, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with a one-line error and exit status 2."""
+
+    def error(self, message):
+        raise InputError(f"{self.prog}: {message}")
+
+
+def _commands():
+    mods = []
+    for info in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
+        if not info.name.startswith("_"):
+            mods.append(importlib.import_module(f"{__name__}.{info.name}"))
+    return {m.NAME: m for m in mods}
+
+
+def build_parser() -> argparse.ArgumentParser:
+    from ropemodel import __version__
+
+    parser = _Parser(prog="ropemodel", description="Rope and cable friction drives: forces, traction, stiffness.")
+    parser.add_argument("--version", action="version", version=f"ropemodel {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for name, mod in _commands().items():
+        p = sub.add_parser(name, help=mod.HELP, description=mod.HELP)
+        mod.add_arguments(p)
+        p.set_defaults(_main=mod.main)
+    return parser
+
+
+def _warning(message, category, filename, lineno, file=None, line=None):
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def main(argv=None) -> int:
+    """Entry point of the ``ropemodel`` console script."""
+    warnings.showwarning = _warning
+    try:
+        args = build_parser().parse_args(argv)
+        if not getattr(args, "_main", None):
+            raise InputError("no command given; try 'ropemodel run' or 'ropemodel --help'")
+        return args._main(args)
+    except InputError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_INPUT
+    except (SolveError, InfeasibleError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_FAIL
+    except RopeModelError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_FAIL
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+
+
+def run_console() -> None:
+    sys.exit(main())

@@ -1,0 +1,28 @@
+"""``ropemodel solve SCENE --given NAME=VALUE ... --find NAME ...``: the inverse problem."""
+
+from __future__ import annotations
+
+from ropemodel.cli._common import add_scene_arguments, assignments, scene_from_args
+from ropemodel.errors import InputError
+from ropemodel.problem import solve
+
+NAME = "solve"
+HELP = "solve a scene for parameters (--find) from given outputs (--given)"
+
+
+def add_arguments(parser) -> None:
+    add_scene_arguments(parser, optional=False)
+    parser.add_argument("--given", action="append", metavar="NAME=VALUE", default=[],
+                        help="an output with a known value, e.g. dF_up=1000mm")
+    parser.add_argument("--find", action="append", metavar="NAME", default=[],
+                        help="a parameter to solve for, freed by a --given value")
+
+
+def main(args) -> int:
+    given = assignments(args.given, "--given")
+    find = [n.strip() for item in args.find for n in item.split(",") if n.strip()]
+    if not given and not find:
+        raise InputError("solve needs --given NAME=VALUE and --find NAME (use 'run' for the forward problem)")
+    result = solve(scene_from_args(args), given, find)
+    print(result.to_json() if args.json else result.table())
+    return 0

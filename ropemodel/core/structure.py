@@ -1,0 +1,163 @@
+"""Structural analysis of a choice of unknowns (Dulmage–Mendelsohn).
+
+Given the equations of a :class:`~ropemodel.core.model.Model` and a set of
+unknowns, the incidence pattern (which unknown appears in which equation, the
+sparsity of the Jacobian) decides whether the problem is well-posed before any
+number is computed:
+
+* a maximum matching of equations to unknowns (scipy's bipartite matching)
+  shows the *under-determined* unknowns (reachable by alternating paths from an
+  unmatched unknown: no equation pins them) and the *over-determined* equations
+  (reachable from an unmatched equation: more equations than their unknowns);
+* when the matching is perfect, CasADi's ``Sparsity.btf`` gives the fine
+  block-triangular form: the irreducible blocks, each solved in turn.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import maximum_bipartite_matching
+
+from ropemodel.errors import IllPosedError
+
+
+@dataclass(frozen=True)
+class Block:
+    """An irreducible block: equations (indices into the model) solved together for ``unknowns``."""
+
+    equations: tuple[int, ...]
+    unknowns: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Structure:
+    """A well-posed choice of unknowns, with its blocks in solving order."""
+
+    unknowns: tuple[str, ...]
+    knowns: tuple[str, ...]
+    blocks: tuple[Block, ...]
+
+
+def incidence(model, unknowns) -> sp.csr_matrix:
+    """Equations × unknowns incidence matrix (the sparsity of ∂residual/∂unknowns)."""
+    res = ca.vertcat(*[eq.residual for eq in model.equations])
+    x = ca.vertcat(*[model.symbols[u] for u in unknowns])
+    J = ca.jacobian(res, x).sparsity()
+    rows, cols = J.get_triplet()
+    return sp.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(J.size1(), J.size2()))
+
+
+def _alternating_reach(start, neighbours, partner):
+    """Nodes reachable from ``start`` along edge → matched-edge alternating paths."""
+    seen_a, seen_b = set(start), set()
+    queue = deque(start)
+    while queue:
+        a = queue.popleft()
+        for b in neighbours(a):
+            if b in seen_b:
+                continue
+            seen_b.add(b)
+            nxt = partner(b)
+            if nxt >= 0 and nxt not in seen_a:
+                seen_a.add(nxt)
+                queue.append(nxt)
+    return seen_a, seen_b
+
+
+def analyse(model, unknowns, knowns) -> Structure:
+    """Check that ``unknowns`` are determined by the model's equations; return the blocks.
+
+    Raises :class:`~ropemodel.errors.IllPosedError` naming the under- and
+    over-determined variables otherwise.
+    """
+    unknowns, knowns = list(unknowns), list(knowns)
+    A = incidence(model, unknowns)
+    n_eq, n_x = A.shape
+    row_match = maximum_bipartite_matching(A, perm_type="column")  # eq -> unknown
+    col_match = maximum_bipartite_matching(A.T.tocsr(), perm_type="column")  # unknown -> eq
+    At = A.T.tocsr()
+    free_x = [j for j in range(n_x) if col_match[j] < 0]
+    free_eq = [i for i in range(n_eq) if row_match[i] < 0]
+    if free_x or free_eq:
+        # under-determined: unknowns reachable from unmatched unknowns (x -> eq -> its matched x)
+        under, _ = _alternating_reach(free_x, lambda j: At.indices[At.indptr[j]:At.indptr[j + 1]],
+                                      lambda i: row_match[i])
+        # over-determined: equations reachable from unmatched equations (eq -> x -> its matched eq)
+        over_eq, over_x = _alternating_reach(free_eq, lambda i: A.indices[A.indptr[i]:A.indptr[i + 1]],
+                                             lambda j: col_match[j])
+        raise IllPosedError(_message(model, unknowns, knowns, n_eq, n_x, under, over_eq, over_x))
+    return Structure(tuple(unknowns), tuple(knowns), tuple(_blocks(model, unknowns, A, row_match)))
+
+
+def _blocks(model, unknowns, A, row_match):
+    """Fine BTF blocks (CasADi) ordered so that each block only needs earlier ones."""
+    n = A.shape[0]
+    # permute columns so the matching lies on the diagonal, then take CasADi's BTF
+    perm = np.empty(n, dtype=int)
+    perm[np.arange(n)] = row_match
+    Ad = A[:, perm].tocoo()
+    S = ca.Sparsity.triplet(n, n, Ad.row.tolist(), Ad.col.tolist())
+    nb, rowperm, colperm, rowblock, colblock, _, _ = S.btf()
+    raw = []
+    for k in range(nb):
+        eqs = tuple(rowperm[rowblock[k]:rowblock[k + 1]])
+        cols = tuple(int(perm[c]) for c in colperm[colblock[k]:colblock[k + 1]])
+        raw.append((eqs, cols))
+    owner = {c: k for k, (_, cols) in enumerate(raw) for c in cols}
+    deps = []
+    for eqs, cols in raw:
+        needed = {owner[int(j)] for i in eqs for j in A.indices[A.indptr[i]:A.indptr[i + 1]]}
+        deps.append(needed - {owner[cols[0]]})
+    order, done = [], set()
+    while len(order) < nb:  # topological order; the BTF guarantees there is no cycle
+        for k in range(nb):
+            if k not in done and deps[k] <= done:
+                done.add(k)
+                order.append(k)
+    return [Block(tuple(int(i) for i in raw[k][0]), tuple(unknowns[c] for c in raw[k][1])) for k in order]
+
+
+def _message(model, unknowns, knowns, n_eq, n_x, under, over_eq, over_x):
+    parts = [f"ill-posed: {n_eq} equations for {n_x} unknowns"]
+    if under:
+        names = sorted(unknowns[j] for j in under)
+        found = [n for n in names if n in model.parameters]
+        shown = found or names
+        more = f" (and {len(names) - len(found)} quantities computed from them)" if found and len(names) > len(found) else ""
+        parts.append(f"under-determined (no equation pins them): {', '.join(shown)}{more}"
+                     " — give another --given value or --find fewer")
+    if over_eq:
+        eqs = sorted(model.equations[i].defines for i in over_eq)
+        givens = sorted(k for k in knowns if k in model.defined_by and k in eqs)
+        upstream = sorted(_upstream_knowns(model, [model.equations[i] for i in over_eq], set(knowns)))
+        if givens:
+            text = f"over-determined: {', '.join(givens)} given, but every input it depends on is known too"
+        else:
+            text = f"over-determined: the equations for {', '.join(eqs)} have no unknown left to satisfy"
+        if upstream:
+            text += f" — free one of {', '.join(upstream)} with --find"
+        parts.append(text)
+    return "; ".join(parts)
+
+
+def _upstream_knowns(model, equations, knowns):
+    """Known quantities the given equations depend on, directly or through defined ones."""
+    out, seen = set(), set()
+    stack = list(equations)
+    while stack:
+        eq = stack.pop()
+        for s in ca.symvar(eq.residual):
+            name = s.name()
+            if name in seen:
+                continue
+            seen.add(name)
+            if name in knowns and name in model.parameters:
+                out.add(name)
+            elif name in model.defined_by and model.equation_of(name) is not eq:
+                stack.append(model.equation_of(name))
+    return out

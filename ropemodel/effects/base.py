@@ -1,0 +1,200 @@
+"""Submodels, equations and the effect registry.
+
+A *model* (``winch``, ``sheave``, ``capstan``) is assembled from *effects*; each
+effect has named *variants*, and each variant is a :class:`Submodel` class
+registered with :func:`register`.  An "off" variant is a submodel too (one that
+builds no equations), so assembling a model never branches on whether an effect
+is present: it looks the variant up in :data:`REGISTRY` and asks it for its
+equations.
+
+A submodel contributes
+
+* ``quantities``: metadata (:class:`~ropemodel.quantity.Quantity`) of every
+  symbol it introduces, inputs and outputs alike;
+* ``equations(v)``: residuals ``r(v) = 0`` in CasADi SX, each naming the variable
+  it *defines* (the output it computes in the forward problem).  The residual is
+  acausal: the solver may use it for any of its variables;
+* ``citations``: keys into :data:`ropemodel.citations.CITATIONS`;
+* ``validate(values)``: cross-parameter checks (e.g. L_ul ≤ L_u) on SI values.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, ClassVar
+
+import casadi as ca
+
+from ropemodel.errors import InputError, suggest
+from ropemodel.quantity import Quantity
+
+
+@dataclass(frozen=True)
+class Equation:
+    """One residual equation ``residual == 0`` that defines ``defines`` in the forward problem."""
+
+    defines: str
+    residual: ca.SX
+    source: str
+
+
+class Symbols(dict):
+    """Name → scalar ``ca.SX`` symbol, created on first use."""
+
+    def __missing__(self, name: str) -> ca.SX:
+        sym = ca.SX.sym(name)
+        self[name] = sym
+        return sym
+
+
+class Submodel:
+    """Base class of every effect variant.  Subclasses set the class attributes and
+    override :meth:`equations` (and :meth:`validate` where needed)."""
+
+    model: ClassVar[str] = ""
+    effect: ClassVar[str] = ""
+    variant: ClassVar[str] = ""
+    description: ClassVar[str] = ""
+    citations: ClassVar[tuple[str, ...]] = ()
+    quantities: ClassVar[tuple[Quantity, ...]] = ()
+
+    def __init__(self, options: dict | None = None):
+        self.options = dict(options or {})
+
+    def equations(self, v: Symbols) -> list[Equation]:
+        """Residual equations of this submodel (none for an "off" variant)."""
+        return []
+
+    def validate(self, values: dict[str, float]) -> None:
+        """Raise :class:`InputError` on inconsistent SI parameter values."""
+
+    def frames(self, values: dict[str, float], scene) -> dict:
+        """Extra tables (title → pandas DataFrame with units in its columns) for a solved point."""
+        return {}
+
+
+@dataclass
+class EffectSpec:
+    """An effect of a model: its variants and which one a scene gets by default."""
+
+    name: str
+    default: str
+    doc: str
+    variants: dict[str, type[Submodel]]
+
+
+#: model name → effect name → :class:`EffectSpec`
+REGISTRY: dict[str, dict[str, EffectSpec]] = {}
+
+
+def define_effect(model: str, effect: str, default: str, doc: str) -> None:
+    """Declare an effect of ``model`` with its default variant and a one-line doc."""
+    effects = REGISTRY.setdefault(model, {})
+    if effect in effects:
+        raise RuntimeError(f"effect {model}.{effect} defined twice")
+    effects[effect] = EffectSpec(effect, default, doc, {})
+
+
+def register(model: str, effect: str, variant: str) -> Callable[[type[Submodel]], type[Submodel]]:
+    """Class decorator: register a submodel as ``variant`` of ``model``'s ``effect``."""
+
+    def deco(cls: type[Submodel]) -> type[Submodel]:
+        spec = REGISTRY[model][effect]
+        if variant in spec.variants:
+            raise RuntimeError(f"variant {model}.{effect}={variant} registered twice")
+        cls.model, cls.effect, cls.variant = model, effect, variant
+        spec.variants[variant] = cls
+        return cls
+
+    return deco
+
+
+def models() -> list[str]:
+    """Names of the registered models."""
+    return sorted(REGISTRY)
+
+
+def effects_of(model: str) -> dict[str, EffectSpec]:
+    """The effects of ``model``; :class:`InputError` for an unknown model."""
+    if model not in REGISTRY:
+        raise InputError(f"unknown model {model!r}; valid models: {', '.join(models())}{suggest(model, REGISTRY)}")
+    return REGISTRY[model]
+
+
+def resolve_effects(model: str, chosen: dict[str, str] | None) -> dict[str, str]:
+    """Fill in default variants and check every effect and variant name."""
+    specs = effects_of(model)
+    chosen = dict(chosen or {})
+    out = {}
+    for name in chosen:
+        if name not in specs:
+            raise InputError(
+                f"unknown effect {name!r} for model {model!r}; valid effects: "
+                f"{', '.join(sorted(specs))}{suggest(name, specs)}"
+            )
+    for name, spec in specs.items():
+        variant = chosen.get(name, spec.default)
+        if not isinstance(variant, str) or variant not in spec.variants:
+            raise InputError(
+                f"effect {name} = {variant!r} is not a variant; valid variants: "
+                f"{', '.join(sorted(spec.variants))}{suggest(str(variant), spec.variants)}"
+            )
+        out[name] = variant
+    return out
+
+
+def all_quantities(model: str) -> dict[str, Quantity]:
+    """Every quantity any variant of ``model`` knows (for name checks and suggestions)."""
+    out: dict[str, Quantity] = {}
+    for spec in effects_of(model).values():
+        for cls in spec.variants.values():
+            for q in cls.quantities:
+                out.setdefault(q.name, q)
+    return out
+
+
+@dataclass
+class NumericsOption:
+    """A ``[numerics]`` option of a model: default, doc, and ``check(key, value) -> value``."""
+
+    default: object
+    doc: str
+    check: Callable[[str, object], object]
+
+
+#: model name → option name → :class:`NumericsOption`
+NUMERICS: dict[str, dict[str, NumericsOption]] = {}
+
+
+def define_numerics(model: str, key: str, default, doc: str, check: Callable[[str, object], object]) -> None:
+    """Declare a ``[numerics]`` option of ``model``."""
+    NUMERICS.setdefault(model, {})[key] = NumericsOption(default, doc, check)
+
+
+def numerics_of(model: str) -> dict[str, NumericsOption]:
+    """The ``[numerics]`` options of ``model`` (possibly none)."""
+    effects_of(model)
+    return NUMERICS.get(model, {})
+
+
+def choice(*allowed):
+    """A ``check`` for :func:`define_numerics` that accepts one of ``allowed``."""
+
+    def check(key, value):
+        if value not in allowed:
+            raise InputError(f"numerics {key} = {value!r} is not one of {', '.join(map(repr, allowed))}"
+                             f"{suggest(str(value), [str(a) for a in allowed])}")
+        return value
+
+    return check
+
+
+def positive_number(low: float = 0.0, high: float = float("inf")):
+    """A ``check`` for :func:`define_numerics` accepting a number in (low, high]."""
+
+    def check(key, value):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not (low < value <= high):
+            raise InputError(f"numerics {key} = {value!r} must be a number in ({low:g}, {high:g}]")
+        return float(value)
+
+    return check
