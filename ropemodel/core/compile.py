@@ -6,16 +6,18 @@ knowns and of the blocks before it:
 * **explicit** blocks — the residuals are linear in the block's unknowns (every
   definition ``y - f(x) = 0`` of the forward problem, and inverse questions such
   as "G_m from F_C" that stay linear): solved symbolically, ``x = -J⁻¹ r(0)``,
-  so the forward model is a closed-form expression with no iteration at all;
+  so the forward model is a closed-form expression with no iteration at all.
+  A call equation (``y = fun(args)``, see :meth:`Equation.from_call`) solved
+  for ``y`` is explicit too: ``fun`` is simply called.
 * **implicit** blocks — nonlinear in their unknowns (the Voigt lining's implicit
-  tension, an inverse solve through a sine): CasADi's ``rootfinder`` (Newton)
-  from the quantities' guesses.  Strictly positive unknowns are solved for their
-  logarithm, which keeps Newton inside the domain and makes the lining's
-  ``ln s + c s = μα`` convex and monotone.
+  tension, an inverse solve through a sine or through an integrator): CasADi's
+  ``rootfinder`` (Newton) from the quantities' guesses.  Strictly positive
+  unknowns are solved for their logarithm, which keeps Newton inside the domain
+  and makes the lining's ``ln s + c s = μα`` convex and monotone.
 
-When no block is implicit the Function is expanded to SX (fast for sweeps).
-The rootfinder is differentiable (implicit function theorem), so sensitivities
-of inverse solves come out of the same Function.
+When no block is implicit and no call equation is used, the Function is expanded
+to SX (fastest for sweeps).  The rootfinder is differentiable (implicit function
+theorem), so sensitivities of inverse solves come out of the same Function.
 """
 
 from __future__ import annotations
@@ -34,36 +36,65 @@ def compile_solver(model, structure: Structure, guesses: dict[str, float] | None
     """Function with one named scalar input per known and one named output per unknown."""
     guesses = dict(guesses or {})
     value: dict[str, ca.MX] = {k: ca.MX.sym(k) for k in structure.knowns}
-    implicit = False
+    expandable = True
     for b, block in enumerate(structure.blocks):
-        res = ca.vertcat(*[model.equations[i].residual for i in block.equations])
-        x = ca.vertcat(*[model.symbols[u] for u in block.unknowns])
-        dep_syms = [s for s in ca.symvar(res) if s.name() not in block.unknowns]
-        dep_vals = [value[s.name()] for s in dep_syms]
-        p = ca.vertcat(*dep_syms) if dep_syms else ca.SX(0, 1)
-        J = ca.jacobian(res, x)
-        if not ca.depends_on(J, x):
-            r0 = ca.substitute(res, x, ca.DM.zeros(x.shape))
-            sol = -r0 / J if x.numel() == 1 else ca.solve(J, -r0)
-            f = ca.Function(f"block{b}", [p], [sol])
+        eqs = [model.equations[i] for i in block.equations]
+        deps = sorted({n for eq in eqs for n in eq.names()} - set(block.unknowns))
+        p_val = ca.vertcat(*[value[d] for d in deps]) if deps else ca.MX(0, 1)
+        if any(eq.call is not None for eq in eqs):
+            expandable = False
+            if len(eqs) == 1 and eqs[0].defines == block.unknowns[0]:
+                fun, args = eqs[0].call
+                out = fun(*[value[a] for a in args])
+            else:
+                out = _newton(model, block, _mx_residual(eqs, block.unknowns, deps), deps, guesses, b)(p_val)
         else:
-            implicit = True
-            f = _newton_block(model, block, res, x, p, guesses, b)
-        out = f(ca.vertcat(*dep_vals) if dep_vals else ca.MX(0, 1))
+            res = ca.vertcat(*[eq.residual for eq in eqs])
+            x = ca.vertcat(*[model.symbols[u] for u in block.unknowns])
+            p = ca.vertcat(*[model.symbols[d] for d in deps]) if deps else ca.SX(0, 1)
+            J = ca.jacobian(res, x)
+            if not ca.depends_on(J, x):
+                r0 = ca.substitute(res, x, ca.DM.zeros(x.shape))
+                sol = -r0 / J if x.numel() == 1 else ca.solve(J, -r0)
+                out = ca.Function(f"block{b}", [p], [sol])(p_val)
+            else:
+                expandable = False
+                out = _newton(model, block, ca.Function(f"res{b}", [x, p], [res]), deps, guesses, b)(p_val)
         for k, u in enumerate(block.unknowns):
             value[u] = out[k]
     fun = ca.Function(name, [value[k] for k in structure.knowns], [value[u] for u in structure.unknowns],
                       list(structure.knowns), list(structure.unknowns))
-    return fun if implicit else fun.expand()
+    return fun.expand() if expandable else fun
 
 
-def _newton_block(model, block, res, x, p, guesses, b):
-    """Newton on the block, in log variables for strictly positive unknowns."""
-    z = ca.SX.sym("z", x.numel())
-    x_of_z, z0 = [], []
+def _mx_residual(eqs, unknowns, deps) -> ca.Function:
+    """Residual Function (x, p) → r in MX for a block with call equations."""
+    x = ca.MX.sym("x", len(unknowns))
+    p = ca.MX.sym("p", len(deps))
+    env = {u: x[k] for k, u in enumerate(unknowns)}
+    env.update({d: p[j] for j, d in enumerate(deps)})
+    rows = []
+    for eq in eqs:
+        if eq.call is not None:
+            fun, args = eq.call
+            rows.append(env[eq.defines] - fun(*[env[a] for a in args]))
+        else:
+            syms = ca.symvar(eq.residual)
+            f = ca.Function("r", syms, [eq.residual])
+            rows.append(f(*[env[s.name()] for s in syms]))
+    return ca.Function("res", [x, p], [ca.vertcat(*rows)])
+
+
+def _newton(model, block, res: ca.Function, deps, guesses, b) -> ca.Function:
+    """Newton on ``res(x, p) = 0`` for the block, in log variables for strictly positive unknowns."""
+    n = len(block.unknowns)
+    z = ca.MX.sym("z", n)
+    p = ca.MX.sym("p", len(deps))
+    x_of_z, z0, scale = [], [], []
     for k, u in enumerate(block.unknowns):
         q = model.quantities[u]
         g = guesses.get(u, q.guess)
+        scale.append(max(1.0, abs(g)))
         if q.positive:
             x_of_z.append(ca.exp(z[k]))
             z0.append(math.log(g) if g > 0 else 0.0)
@@ -71,9 +102,7 @@ def _newton_block(model, block, res, x, p, guesses, b):
             x_of_z.append(z[k])
             z0.append(g)
     x_of_z = ca.vertcat(*x_of_z)
-    scale = ca.DM([max(1.0, abs(guesses.get(u, model.quantities[u].guess))) for u in block.unknowns])
-    g_res = ca.substitute(res, x, x_of_z) / scale
-    rf = ca.rootfinder(f"newton{b}", "newton", ca.Function(f"res{b}", [z, p], [g_res]), NEWTON_OPTIONS)
-    p_mx = ca.MX.sym("p", p.shape)
+    g_res = ca.Function(f"res{b}", [z, p], [res(x_of_z, p) / ca.DM(scale)])
+    rf = ca.rootfinder(f"newton{b}", "newton", g_res, NEWTON_OPTIONS)
     x_fun = ca.Function(f"x_of_z{b}", [z], [x_of_z])
-    return ca.Function(f"block{b}", [p_mx], [x_fun(rf(ca.DM(z0), p_mx))])
+    return ca.Function(f"block{b}", [p], [x_fun(rf(ca.DM(z0), p))])

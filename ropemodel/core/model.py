@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import casadi as ca
+
 from ropemodel.citations import cite
 from ropemodel.effects import Equation, Symbols, all_quantities, effects_of, resolve_effects
 from ropemodel.errors import InputError, suggest
@@ -32,6 +34,8 @@ class Model:
         defined: dict[str, str] = {}
         for sm in self.submodels:
             for eq in sm.equations(self.symbols):
+                for name in eq.names():
+                    self.symbols[name]  # a call equation's names become symbols too
                 if eq.defines in defined:
                     raise RuntimeError(f"{eq.defines} defined by both {defined[eq.defines]} and {sm.effect}")
                 defined[eq.defines] = sm.effect
@@ -49,6 +53,15 @@ class Model:
     def citations(self) -> list[str]:
         """Full references of every submodel in use."""
         return cite(k for sm in self.submodels for k in sm.citations)
+
+    def structural(self, i: int):
+        """An SX expression with the incidence of equation ``i`` (its residual, or a stand-in
+        for a call equation: used for structure only, never evaluated)."""
+        eq = self.equations[i]
+        if eq.call is None:
+            return eq.residual
+        args = ca.vertcat(*[self.symbols[a] for a in eq.call[1]])
+        return self.symbols[eq.defines] - ca.sum1(ca.sin(args))
 
     def equation_of(self, name: str) -> Equation:
         return self.equations[self.outputs.index(name)]

@@ -45,7 +45,7 @@ class Structure:
 
 def incidence(model, unknowns) -> sp.csr_matrix:
     """Equations × unknowns incidence matrix (the sparsity of ∂residual/∂unknowns)."""
-    res = ca.vertcat(*[eq.residual for eq in model.equations])
+    res = ca.vertcat(*[model.structural(i) for i in range(len(model.equations))])
     x = ca.vertcat(*[model.symbols[u] for u in unknowns])
     J = ca.jacobian(res, x).sparsity()
     rows, cols = J.get_triplet()
@@ -151,8 +151,7 @@ def _upstream_knowns(model, equations, knowns):
     stack = list(equations)
     while stack:
         eq = stack.pop()
-        for s in ca.symvar(eq.residual):
-            name = s.name()
+        for name in eq.names():
             if name in seen:
                 continue
             seen.add(name)

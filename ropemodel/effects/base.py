@@ -31,11 +31,36 @@ from ropemodel.quantity import Quantity
 
 @dataclass(frozen=True)
 class Equation:
-    """One residual equation ``residual == 0`` that defines ``defines`` in the forward problem."""
+    """One equation that defines ``defines`` in the forward problem.
+
+    Either a residual ``residual == 0`` in CasADi SX (the usual, fully symbolic
+    form), or — built with :meth:`from_call` — ``defines = fun(*args)`` for a
+    CasADi Function that cannot be written in SX (an integrator, a rootfinder).
+    """
 
     defines: str
-    residual: ca.SX
+    residual: ca.SX | None
     source: str
+    call: tuple[ca.Function, tuple[str, ...]] | None = None
+
+    @classmethod
+    def from_call(cls, defines: str, fun: ca.Function, args, source: str) -> "Equation":
+        """``defines = fun(*args)``: ``fun`` takes one scalar per name in ``args`` and returns one scalar.
+
+        The compiled solver calls ``fun`` directly when it solves for ``defines``,
+        and solves by Newton through ``fun``'s derivatives when an inverse
+        question frees one of ``args``.
+        """
+        args = tuple(args)
+        if fun.n_in() != len(args) or fun.n_out() != 1:
+            raise RuntimeError(f"{fun.name()}: expected {len(args)} inputs and one output for {defines}")
+        return cls(defines, None, source, (fun, args))
+
+    def names(self) -> list[str]:
+        """Every quantity the equation involves."""
+        if self.call is not None:
+            return [self.defines, *self.call[1]]
+        return [s.name() for s in ca.symvar(self.residual)]
 
 
 class Symbols(dict):
