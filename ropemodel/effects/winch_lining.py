@@ -1,0 +1,95 @@
+"""Traction of the winch drum (``model = "winch"``, effect ``lining``): does the rope slip?
+
+Per direction d in (up, down) the drum must carry the winding-rope force F_C_d
+with the unwinding-rope force F_S_d on its slack side:
+
+    F_C_d <= F_S_d · traction_d / n_slip,
+    slip_margin_d = F_S_d · traction_d / (n_slip · F_C_d) − 1   (>= 0: no slip)
+
+Variants
+--------
+``none``   (default) no traction equations.
+``rigid``  traction_d = e^{μ_d α_d} (Euler–Eytelwein).
+``voigt``  the drum is lined with a Voigt (visco-elastic) lining, Hajduk (1992):
+           traction_d = s(μ_d α_d, q = Q·F_S_d, k = λ·ω) from the exact implicit
+           solution ln s + q s (1 − e^{−α_d/k}) = μ_d α_d, with the drum's angular
+           speed ω = 2 v_pj / D.  The ratio depends on F_S_d itself, so the least
+           pretension for no slip is an implicit problem for the core.
+
+The least pretension F_nwl for no slip is the inverse question
+``ropemodel solve SCENE --given slip_margin_up=0 --find F_nwl``.
+
+``n_slip`` defaults to 1.0 (traction just sufficient, the onset of slip);
+set it to the safety factor your code of practice requires (>= 1).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ropemodel.effects.base import Equation, Submodel, define_effect, register
+from ropemodel.effects.winch import DIRECTIONS, DrivePower, MODEL, per_direction
+from ropemodel.papers import friction
+from ropemodel.quantity import Quantity
+
+V_PJ = next(q for q in DrivePower.quantities if q.name == "v_pj")
+
+#: drum diameter (the sizing helper imports this Quantity)
+D_DRUM = Quantity("D", "m", "diameter of the driving drum (at the rope centre line)", "mm",
+                  low=0.0, low_open=True, positive=True, guess=3.0)
+
+DRUM = (
+    Quantity("mu_d", "1", "friction coefficient of the rope on the drum", low=0.0, low_open=True,
+             warn_high=1.0, guess=0.2),
+    Quantity("alpha_d", "rad", "wrap angle of the rope on the drum", "deg", low=0.0, low_open=True,
+             warn_high=10 * math.pi, guess=math.pi),
+    Quantity("n_slip", "1", "required safety factor against slip of the rope on the drum", low=1.0,
+             guess=1.5, default=1.0),
+)
+
+define_effect(MODEL, "lining", "none", "traction of the drum and the no-slip check per direction")
+
+
+def _margin_equations(v, traction):
+    """slip_margin_d for each direction, written multiplied out so that it stays
+    linear in the forces: n·F_C·(m + 1) − F_S·traction = 0 (the same equation as
+    :func:`ropemodel.papers.friction.slip_margin`)."""
+    eqs = []
+    for d in DIRECTIONS:
+        m, t = v[f"slip_margin_{d}"], traction(d)
+        eqs.append(Equation(f"slip_margin_{d}",
+                            v["n_slip"] * v[f"F_C_{d}"] * (m + 1.0) - v[f"F_S_{d}"] * t,
+                            "slip_margin = F_S traction / (n_slip F_C) - 1"))
+    return eqs
+
+
+MARGINS = per_direction("slip_margin", "1", "margin against slip on the drum (>= 0: no slip)",
+                        equation="F_S traction / (n_slip F_C) - 1")
+
+
+@register(MODEL, "lining", "none")
+class NoLining(Submodel):
+    """Drum traction off: no slip check is built."""
+
+    description = "no traction check"
+
+
+@register(MODEL, "lining", "rigid")
+class RigidLining(Submodel):
+    """No-slip check with the Euler–Eytelwein ratio traction = e^{μ_d α_d} (rigid drum surface)."""
+
+    description = "no-slip check on a rigid drum, traction = exp(mu_d alpha_d)"
+    citations = ("euler_eytelwein",)
+    quantities = (
+        *DRUM,
+        *per_direction("traction", "1", "tension ratio the drum transmits at the onset of slip",
+                       equation="Euler-Eytelwein, exp(mu_d alpha_d)", positive=True, guess=2.0),
+        *MARGINS,
+    )
+
+    def equations(self, v):
+        eqs = [Equation(f"traction_{d}",
+                        v[f"traction_{d}"] - friction.euler_eytelwein_ratio(v["mu_d"], v["alpha_d"]),
+                        "Euler-Eytelwein, Hajduk 1992 eq. (8)")
+               for d in DIRECTIONS]
+        return eqs + _margin_equations(v, lambda d: v[f"traction_{d}"])
