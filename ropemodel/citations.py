@@ -17,6 +17,10 @@ CITATIONS: dict[str, str] = {
     "euler_eytelwein": (
         "L. Euler (1762); J. A. Eytelwein (1808). Belt friction: T1/T2 = exp(mu*alpha)."
     ),
+    "en12385_4": (
+        "EN 12385-4:2002+A1:2008. Steel wire ropes - Safety - Part 4: Stranded ropes for general lifting "
+        "applications (rope-class factors K, W, C; rope grades)."
+    ),
 }
 
 

@@ -1,0 +1,123 @@
+"""The whole sizing answer for a scene: continuous optimum, catalogue design, margins, power,
+sensitivities — or, when no design exists, which checks conflict and by how much."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from optimisation import discrete
+from optimisation.infeasibility import Diagnosis, diagnose
+from optimisation.ipopt import Solution, solve_continuous
+from optimisation.problem import VARIABLES, SizingProblem
+from optimisation.sensitivity import sensitivities
+from ropemodel import ropes
+from ropemodel.scene import Scene
+
+#: default way to pick a catalogue diameter (chosen on the evidence of studies/discrete_design.py)
+DEFAULT_DISCRETE = "next-size-up"
+FEAS_TOL = 1e-8
+
+
+@dataclass
+class Design:
+    """Result of :func:`size`.  Values SI; ``feasible`` False when no design exists."""
+
+    scene: Scene
+    feasible: bool
+    design: dict[str, float] | None = None          # recommended (catalogue) d, F_nwl, stroke
+    continuous: dict[str, float] | None = None
+    active: list[str] = field(default_factory=list)             # at the recommended design
+    active_continuous: list[str] = field(default_factory=list)
+    margins: dict[str, float] = field(default_factory=dict)     # at the recommended design
+    margins_continuous: dict[str, float] = field(default_factory=dict)
+    power: dict[str, float] = field(default_factory=dict)       # N_p_up, N_p_down at the recommended design
+    sensitivities: dict[str, dict[str, float]] = field(default_factory=dict)
+    method: str = DEFAULT_DISCRETE
+    diagnosis: Diagnosis | None = None
+    units: dict[str, str] = field(default_factory=dict)
+    message: str = ""
+    lexicographic_ok: bool | None = None
+
+    def to_dict(self) -> dict:
+        """The JSON contract of ``ropemodel size --json`` (SI numbers)."""
+        out = {"scene": self.scene.name, "feasible": self.feasible, "discrete_method": self.method}
+        if self.design:
+            out.update(self.design)
+        if self.continuous:
+            out["continuous"] = {**self.continuous, "active": self.active_continuous,
+                                 "margins": self.margins_continuous}
+        out["active"] = self.active
+        out["margins"] = self.margins
+        out.update(self.power)
+        out["sensitivities"] = self.sensitivities
+        if self.diagnosis is not None and not self.diagnosis.feasible:
+            out["infeasible"] = {"conflicting": self.diagnosis.conflicting,
+                                 "max_violation_scaled": self.diagnosis.max_violation,
+                                 "relax_alone": self.diagnosis.alone, "elastic": self.diagnosis.elastic,
+                                 "where": self.diagnosis.where.strip()}
+        out["message"] = self.message
+        return out
+
+
+def _margins_ok(sol: Solution) -> bool:
+    return sol.success and bool(np.all(sol.g >= -FEAS_TOL))
+
+
+def solve_best(problem: SizingProblem, p=None) -> Solution:
+    """IPOPT from the scene's design; if that fails, from a few other starts (mid-catalogue sizes)."""
+    sol = solve_continuous(problem, p=p)
+    if _margins_ok(sol):
+        return sol
+    for d0 in (0.02, 0.04, 0.06):
+        x0 = problem.x0()
+        x0[0] = d0 / problem.x_scale[0]
+        s = solve_continuous(problem, p=p, x0=x0)
+        if _margins_ok(s):
+            return s
+    return sol
+
+
+def size(scene: Scene, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
+    """Size the winch of ``scene`` (effects rope = "catalogue", checks = "design", a lining, power = "drive")."""
+    problem = SizingProblem(scene)
+    design = Design(scene, False, method=method, units=dict(problem.units))
+    sol = solve_best(problem)
+    if not _margins_ok(sol):
+        design.diagnosis = diagnose(problem)
+        if design.diagnosis.feasible:   # IPOPT failed on a feasible problem: say so, do not guess
+            design.message = f"IPOPT failed ({sol.status}) although a feasible design exists"
+        else:
+            design.message = design.diagnosis.text(problem.units)
+        return design
+    design.continuous = problem.to_si(sol.xs)
+    design.active_continuous = list(sol.active) + [f"{VARIABLES[i]} {side} bound" for i, side in sol.active_bounds]
+    design.margins_continuous = problem.margins(sol.xs)
+    design.lexicographic_ok = sol.lexicographic_ok
+    if with_sensitivities:
+        design.sensitivities = sensitivities(problem, sol)
+    d_star = design.continuous["d"]
+    disc = discrete.bonmin(problem, x0=sol.xs) if method == "bonmin" else discrete.next_size_up(problem, d_star)
+    if not disc.found:
+        cat = ropes.diameters()
+        above = [dk for dk in cat if dk >= d_star - 1e-9]
+        fix = above[0] if above else None
+        diag = diagnose(problem, fix_d=fix, x0=sol.xs) if fix is not None else None
+        design.diagnosis = diag
+        if fix is None:
+            design.message = (f"no catalogue diameter: the continuous optimum d = {d_star * 1e3:.4g} mm is above "
+                              f"the largest catalogue size {cat[-1] * 1e3:g} mm")
+        else:
+            design.message = "no catalogue diameter meets every check; " + diag.text(problem.units)
+        return design
+    dsol = disc.solution
+    design.feasible = True
+    design.design = problem.to_si(dsol.xs)
+    design.active = list(dsol.active) + [f"{VARIABLES[i]} {side} bound" for i, side in dsol.active_bounds
+                                         if i != 0] + ["d (catalogue size)"]
+    design.margins = problem.margins(dsol.xs)
+    values = problem.evaluate(dsol.xs)
+    design.power = {k: values[k] for k in ("N_p_up", "N_p_down")}
+    design.message = "design found"
+    return design

@@ -1,0 +1,123 @@
+"""Catalogue diameters: the continuous optimum rounded to a stocked size, two ways.
+
+``next_size_up``  the smallest catalogue diameter >= d* (continuous optimum) at which F_nwl
+                  and stroke, re-optimised by IPOPT with d fixed, satisfy every check; larger
+                  sizes are tried in turn if one is infeasible (e.g. a slip check that tightens
+                  with d), up to the catalogue's largest.
+``bonmin``        one mixed-integer NLP (B-BB of bonmin through ``ca.nlpsol``): binaries b_k
+                  select the diameter d = Σ b_k d_k, Σ b_k = 1, with F_nwl and stroke
+                  continuous and the same objective and constraints.
+
+Both give the lexicographic optimum over the catalogue when the feasible diameters form
+an interval [d_lo, D/D_ratio_min]; the study ``studies/discrete_design.py`` compares them
+on random scenes (agreement, time) and the default is chosen on that evidence.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+import time
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+
+from optimisation.ipopt import Solution, solve_continuous
+from optimisation.problem import SizingProblem
+from ropemodel import ropes
+
+FEAS_TOL = 1e-8
+
+
+@contextlib.contextmanager
+def _quiet():
+    """Silence bonmin's node log, which it writes to the C-level stdout whatever its log options say."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, 1)
+        yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(devnull)
+        os.close(saved)
+
+
+@dataclass
+class DiscreteDesign:
+    """A catalogue design: scaled x, the solution at that diameter, which method, how long."""
+
+    solution: Solution | None
+    method: str
+    seconds: float
+    tried: list[float]
+
+    @property
+    def found(self) -> bool:
+        return self.solution is not None
+
+
+def _feasible(problem, sol) -> bool:
+    return sol.success and bool(np.all(sol.g >= -FEAS_TOL))
+
+
+def next_size_up(problem: SizingProblem, d_star: float, p=None, catalogue=None) -> DiscreteDesign:
+    """Smallest catalogue size >= d* (minus 1e-9 m) with a feasible F_nwl, stroke (re-optimised)."""
+    catalogue = ropes.diameters() if catalogue is None else sorted(catalogue)
+    t0 = time.perf_counter()
+    tried = []
+    for dk in catalogue:
+        if dk < d_star - 1e-9:
+            continue
+        tried.append(dk)
+        x0 = problem.x0()
+        x0[0] = dk / problem.x_scale[0]
+        sol = solve_continuous(problem, p=p, x0=x0, fix_d=dk)
+        if _feasible(problem, sol):
+            return DiscreteDesign(sol, "next-size-up", time.perf_counter() - t0, tried)
+    return DiscreteDesign(None, "next-size-up", time.perf_counter() - t0, tried)
+
+
+def bonmin(problem: SizingProblem, p=None, catalogue=None, x0=None) -> DiscreteDesign:
+    """Mixed-integer solve with bonmin over every catalogue size."""
+    catalogue = np.array(ropes.diameters() if catalogue is None else sorted(catalogue))
+    p = problem.p0 if p is None else np.asarray(p, dtype=float)
+    nk = len(catalogue)
+    b = ca.MX.sym("b", nk)
+    y = ca.MX.sym("y", 2)           # scaled F_nwl, stroke
+    d_s = ca.dot(b, ca.DM(catalogue / problem.x_scale[0]))
+    xs = ca.vertcat(d_s, y)
+    sub = ca.Function("sub", [problem.xs, problem.p], [problem.f, problem.g])
+    f, g = sub(xs, problem.p)
+    z = ca.vertcat(b, y)
+    nlp = {"x": z, "p": problem.p, "f": f, "g": ca.vertcat(g, ca.sum1(b))}
+    opts = {"discrete": [True] * nk + [False, False], "print_time": False,
+            "bonmin.print_level": 0, "bonmin.bb_log_level": 0, "bonmin.nlp_log_level": 0,
+            "bonmin.lp_log_level": 0, "bonmin.milp_log_level": 0, "bonmin.fp_log_level": 0, "bonmin.oa_log_level": 0,
+            "bonmin.algorithm": "B-BB", "bonmin.integer_tolerance": 1e-9}
+    solver = ca.nlpsol("sizing_minlp", "bonmin", nlp, opts)
+    ng = problem.g.numel()
+    x_start = problem.x0() if x0 is None else np.asarray(x0)
+    k0 = int(np.argmin(np.abs(catalogue - x_start[0] * problem.x_scale[0])))
+    z0 = np.concatenate([np.eye(nk)[k0], x_start[1:]])
+    lbz = np.concatenate([np.zeros(nk), [0.0, 0.0]])
+    ubz = np.concatenate([np.ones(nk), [np.inf, np.inf]])
+    t0 = time.perf_counter()
+    with _quiet():
+            res = solver(x0=z0, p=p, lbx=lbz, ubx=ubz, lbg=np.concatenate([np.zeros(ng), [1.0]]),
+                     ubg=np.concatenate([np.full(ng, np.inf), [1.0]]))
+    seconds = time.perf_counter() - t0
+    stats = solver.stats()
+    zopt = np.asarray(res["x"]).ravel()
+    if not stats["success"]:
+        return DiscreteDesign(None, "bonmin", seconds, [])
+    dk = float(catalogue[int(np.argmax(zopt[:nk]))])
+    # the same lexicographic answer at that size, with multipliers and active set (for the report)
+    x0 = np.concatenate([[dk / problem.x_scale[0]], zopt[nk:]])
+    sol = solve_continuous(problem, p=p, x0=x0, fix_d=dk)
+    if not _feasible(problem, sol):
+        return DiscreteDesign(None, "bonmin", seconds, [dk])
+    return DiscreteDesign(sol, "bonmin", seconds, [dk])

@@ -1,0 +1,119 @@
+"""No feasible design: which checks conflict, and by how much.
+
+An IPOPT "local infeasibility" says nothing about why.  Three small NLPs on the
+same (scaled) margins g_i(x) >= 0 answer it:
+
+1. **least maximum violation**: min t s.t. g_i(x) + t >= 0 ∀i, t >= 0.  t* > 0
+   proves (locally) that no design meets every check; the checks with a nonzero
+   multiplier at this point are the ones that conflict (only they hold t* up).
+2. **one check relaxed at a time**: for each conflicting check i,
+   min s s.t. g_i + s >= 0, g_j >= 0 (j ≠ i): how far check i alone must give
+   (in the margin's own unit) for a design to exist — or "cannot" when relaxing it
+   alone does not help.
+3. **elastic L1**: min Σ s_i s.t. g_i + s_i >= 0, s >= 0: the least total relaxation;
+   its nonzero slacks are reported too.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import casadi as ca
+import numpy as np
+
+from optimisation.problem import SizingProblem
+
+OPTS = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes", "ipopt.max_iter": 1000}
+TOL = 1e-7
+
+
+@dataclass
+class Diagnosis:
+    """Why no design exists (margins in their own SI units; negative = short by)."""
+
+    feasible: bool
+    max_violation: float                     # t* (scaled)
+    conflicting: list[str] = field(default_factory=list)
+    alone: dict[str, float | None] = field(default_factory=dict)   # check -> relaxation needed (SI), None = cannot
+    elastic: dict[str, float] = field(default_factory=dict)        # nonzero L1 slacks (SI)
+    margins_at_least_violation: dict[str, float] = field(default_factory=dict)
+    where: str = ""
+
+    def text(self, units: dict[str, str]) -> str:
+        if self.feasible:
+            return "a design meeting every check exists"
+        lines = [f"no design meets every check{self.where}: these checks conflict: " + ", ".join(self.conflicting)]
+        for c in self.conflicting:
+            r = self.alone.get(c)
+            lines.append(f"  {c}: " + ("relaxing it alone is not enough" if r is None else
+                                      f"must give {_amount(r, units.get(c, '1'))} (alone) for a design to exist"))
+        if self.elastic:
+            lines.append("  least total relaxation: " + ", ".join(f"{k} by {_amount(v, units.get(k, '1'))}"
+                                                                 for k, v in self.elastic.items()))
+        return "\n".join(lines)
+
+
+def _amount(value: float, unit: str) -> str:
+    return f"{value:.6g}" if unit == "1" else f"{value:.6g} {unit}"
+
+
+def _bounds(problem, d_range, fix_d):
+    lbx, ubx = problem.bounds(d_range)
+    if fix_d is not None:
+        lbx[0] = ubx[0] = fix_d / problem.x_scale[0]
+    return lbx, ubx
+
+
+def diagnose(problem: SizingProblem, p=None, d_range=None, fix_d: float | None = None, x0=None) -> Diagnosis:
+    """Diagnose the checks of ``problem`` (at parameters ``p``; d within ``d_range`` or fixed at ``fix_d``)."""
+    p = problem.p0 if p is None else np.asarray(p, dtype=float)
+    lbx, ubx = _bounds(problem, d_range, fix_d)
+    x0 = problem.x0() if x0 is None else np.asarray(x0, dtype=float)
+    x0 = np.clip(x0, lbx, np.where(np.isfinite(ubx), ubx, x0))
+    ng = problem.g.numel()
+    gfun = ca.Function("g", [problem.xs, problem.p], [problem.g])
+    xs = ca.MX.sym("x", 3)
+    g = gfun(xs, problem.p)
+
+    # 1. least maximum violation
+    t = ca.MX.sym("t")
+    s1 = ca.nlpsol("minmax", "ipopt", {"x": ca.vertcat(xs, t), "p": problem.p, "f": t, "g": g + t}, OPTS)
+    g0 = np.asarray(gfun(x0, p)).ravel()
+    r1 = s1(x0=np.concatenate([x0, [max(0.0, -g0.min())]]), p=p, lbx=np.concatenate([lbx, [0.0]]),
+            ubx=np.concatenate([ubx, [np.inf]]), lbg=0.0, ubg=np.inf)
+    z1 = np.asarray(r1["x"]).ravel()
+    t_star = float(z1[3])
+    lam = np.abs(np.asarray(r1["lam_g"]).ravel())
+    gz = np.asarray(gfun(z1[:3], p)).ravel()
+    if t_star <= TOL:
+        return Diagnosis(True, t_star)
+    conflicting = [c for c, l in zip(problem.constraints, lam) if l > 1e-6]
+    margins = {c: float(v * s) for c, v, s in zip(problem.constraints, gz, problem.g_scale)}
+
+    # 2. one check relaxed at a time
+    alone = {}
+    s = ca.MX.sym("s")
+    for c in conflicting:
+        i = problem.constraints.index(c)
+        e = np.zeros(ng)
+        e[i] = 1.0
+        solver = ca.nlpsol("alone", "ipopt", {"x": ca.vertcat(xs, s), "p": problem.p, "f": s,
+                                              "g": g + s * ca.DM(e)}, OPTS)
+        r = solver(x0=z1, p=p, lbx=np.concatenate([lbx, [0.0]]), ubx=np.concatenate([ubx, [np.inf]]),
+                   lbg=0.0, ubg=np.inf)
+        z = np.asarray(r["x"]).ravel()
+        gg = np.asarray(gfun(z[:3], p)).ravel() + z[3] * e
+        ok = solver.stats()["success"] and np.all(gg >= -1e-7)
+        alone[c] = float(z[3] * problem.g_scale[i]) if ok else None
+
+    # 3. elastic L1 relaxation
+    sl = ca.MX.sym("sl", ng)
+    s3 = ca.nlpsol("elastic", "ipopt", {"x": ca.vertcat(xs, sl), "p": problem.p, "f": ca.sum1(sl),
+                                        "g": g + sl}, OPTS)
+    r3 = s3(x0=np.concatenate([z1[:3], np.maximum(0.0, -gz)]), p=p, lbx=np.concatenate([lbx, np.zeros(ng)]),
+            ubx=np.concatenate([ubx, np.full(ng, np.inf)]), lbg=0.0, ubg=np.inf)
+    z3 = np.asarray(r3["x"]).ravel()
+    elastic = {c: float(z3[3 + i] * problem.g_scale[i]) for i, c in enumerate(problem.constraints)
+               if z3[3 + i] > 1e-6}
+    where = f" at d = {fix_d * 1e3:g} mm" if fix_d is not None else ""
+    return Diagnosis(False, t_star, conflicting, alone, elastic, margins, where)

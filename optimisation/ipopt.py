@@ -1,0 +1,154 @@
+"""The continuous optimum with IPOPT through ``ca.nlpsol`` (exact first and second derivatives).
+
+After IPOPT converges, the active set (margins at zero with a nonzero multiplier,
+and active bounds) is identified; when it has as many members as variables and a
+regular Jacobian — the usual vertex design — the point is polished by Newton on
+the active constraints, so the design is exact to rounding (the weights of the
+objective then play no part in it, see :mod:`optimisation.problem`).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import casadi as ca
+import numpy as np
+
+from optimisation.problem import VARIABLES, SizingProblem
+
+IPOPT_OPTIONS = {"ipopt.tol": 1e-10, "ipopt.acceptable_tol": 1e-8, "ipopt.print_level": 0, "print_time": False,
+                 "ipopt.sb": "yes", "ipopt.max_iter": 500}
+ACTIVE_G = 1e-7      # scaled margin below which a constraint counts as active
+ACTIVE_LAM = 1e-9    # multiplier above which it counts as binding
+
+
+@dataclass
+class Solution:
+    """An IPOPT solution in scaled variables, with its active set."""
+
+    xs: np.ndarray
+    f: float
+    g: np.ndarray
+    lam_g: np.ndarray
+    lam_x: np.ndarray
+    success: bool
+    status: str
+    iterations: int
+    seconds: float
+    active: list[str] = field(default_factory=list)
+    active_bounds: list[tuple[int, str]] = field(default_factory=list)
+    polished: bool = False
+    lexicographic_ok: bool | None = None
+
+
+def _solver(problem: SizingProblem) -> ca.Function:
+    if not hasattr(problem, "_ipopt"):
+        problem._ipopt = ca.nlpsol("sizing", "ipopt", problem.nlp(), IPOPT_OPTIONS)
+    return problem._ipopt
+
+
+def solve_continuous(problem: SizingProblem, p=None, x0=None, d_range=None, fix_d: float | None = None,
+                     polish: bool = True) -> Solution:
+    """Least rope, then least pretension, then least stroke (see the objective in :mod:`optimisation.problem`).
+
+    p: parameter vector (default: the scene's); x0: scaled start (default: the scene's design);
+    d_range: (low, high) bounds of d [m]; fix_d: solve for F_nwl and stroke at this d [m].
+    """
+    p = problem.p0 if p is None else np.asarray(p, dtype=float)
+    lbx, ubx = problem.bounds(d_range)
+    if fix_d is not None:
+        lbx[0] = ubx[0] = fix_d / problem.x_scale[0]
+    x0 = problem.x0() if x0 is None else np.asarray(x0, dtype=float)
+    x0 = np.clip(x0, lbx, np.where(np.isfinite(ubx), ubx, x0))
+    solver = _solver(problem)
+    t0 = time.perf_counter()
+    res = solver(x0=x0, p=p, lbx=lbx, ubx=ubx, lbg=0.0, ubg=np.inf)
+    seconds = time.perf_counter() - t0
+    stats = solver.stats()
+    sol = Solution(np.asarray(res["x"]).ravel(), float(res["f"]), np.asarray(res["g"]).ravel(),
+                   np.asarray(res["lam_g"]).ravel(), np.asarray(res["lam_x"]).ravel(),
+                   bool(stats["success"]), str(stats["return_status"]), int(stats.get("iter_count", -1)), seconds)
+    _active_set(problem, sol, lbx, ubx)
+    if sol.success and polish:
+        _polish(problem, sol, p, lbx, ubx)
+    if sol.success:
+        sol.lexicographic_ok = _lexicographic_ok(problem, sol, p)
+    return sol
+
+
+def _active_set(problem, sol, lbx, ubx):
+    sol.active = [c for c, g, lam in zip(problem.constraints, sol.g, sol.lam_g)
+                  if g < ACTIVE_G and abs(lam) > ACTIVE_LAM]
+    sol.active_bounds = []
+    for i in range(3):
+        if abs(sol.xs[i] - lbx[i]) < 1e-9 * max(1.0, abs(lbx[i])):
+            sol.active_bounds.append((i, "lower"))
+        elif np.isfinite(ubx[i]) and abs(sol.xs[i] - ubx[i]) < 1e-9 * max(1.0, abs(ubx[i])):
+            sol.active_bounds.append((i, "upper"))
+
+
+def _jac_functions(problem):
+    if not hasattr(problem, "_jac_g"):
+        problem._jac_g = ca.Function("jac_g", [problem.xs, problem.p],
+                                     [problem.g, ca.jacobian(problem.g, problem.xs)])
+        problem._grad_f0 = ca.Function("grad_f0", [problem.xs, problem.p],
+                                       [ca.gradient(problem.f_primary, problem.xs)])
+    return problem._jac_g, problem._grad_f0
+
+
+def _polish(problem, sol, p, lbx, ubx):
+    """Newton on the active constraints when they fix x (vertex); keeps IPOPT's x otherwise."""
+    idx = [problem.constraints.index(c) for c in sol.active]
+    fixed = [i for i, _ in sol.active_bounds]
+    if len(idx) + len(fixed) != 3:
+        return
+    jac_g, _ = _jac_functions(problem)
+    x = sol.xs.copy()
+    for _ in range(20):
+        g, J = (np.asarray(a) for a in jac_g(x, p))
+        r = np.concatenate([g.ravel()[idx], np.zeros(len(fixed))])
+        A = np.vstack([J[idx, :], np.eye(3)[fixed, :]]) if fixed else J[idx, :]
+        if np.linalg.cond(A) > 1e12:
+            return
+        step = np.linalg.solve(A, -r)
+        x = x + step
+        if np.max(np.abs(step)) < 1e-15 * max(1.0, np.max(np.abs(x))):
+            break
+    g = np.asarray(jac_g(x, p)[0]).ravel()
+    if np.all(g > -1e-9) and np.all(x >= lbx - 1e-12) and np.all(x <= ubx + 1e-12):
+        sol.xs, sol.g, sol.polished = x, g, True
+
+
+def _lexicographic_ok(problem, sol, p) -> bool:
+    """True when the design is also a KKT point of the primary objective (rope mass) alone.
+
+    The primary gradient must be a nonnegative combination of the active constraint
+    normals (and active bound normals): then no feasible direction lowers the mass,
+    so the weighted optimum respects the lexicographic order.
+    """
+    jac_g, grad_f0 = _jac_functions(problem)
+    _, J = jac_g(sol.xs, p)
+    J = np.asarray(J)
+    gf = np.asarray(grad_f0(sol.xs, p)).ravel()
+    idx = [problem.constraints.index(c) for c in sol.active]
+    normals = [J[i, :] for i in idx]
+    for i, side in sol.active_bounds:
+        e = np.zeros(3)
+        e[i] = 1.0 if side == "lower" else -1.0
+        normals.append(e)
+    if not normals:
+        return bool(np.linalg.norm(gf) < 1e-8)
+    N = np.array(normals).T
+    from scipy.optimize import nnls
+
+    lam, resid = nnls(N, gf)
+    return bool(resid <= 1e-6 * max(1.0, np.linalg.norm(gf)))
+
+
+def design_of(problem: SizingProblem, sol: Solution) -> dict[str, float]:
+    """The SI design (d, F_nwl, stroke) of a solution."""
+    return problem.to_si(sol.xs)
+
+
+__all__ = ["IPOPT_OPTIONS", "Solution", "VARIABLES", "design_of", "solve_continuous"]

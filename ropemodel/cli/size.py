@@ -1,0 +1,69 @@
+"""``ropemodel size SCENE [--set NAME=VALUE ...] [--discrete next-size-up|bonmin] [--json]``.
+
+Chooses the rope diameter d, the pretension F_nwl and the tensioner stroke (see the
+``optimisation`` package): least rope mass per metre, then least pretension, then least
+stroke, with every design check met in both directions.  Exit 0 with a design, 1 when
+none exists (the report names the conflicting checks and by how much), 2 on bad input.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+from ropemodel.cli._common import add_scene_arguments, scene_from_args
+
+NAME = "size"
+HELP = "size the winch: least rope d, then least pretension F_nwl, then least stroke, every check met"
+
+
+def add_arguments(parser) -> None:
+    add_scene_arguments(parser, optional=False)
+    parser.add_argument("--discrete", choices=("next-size-up", "bonmin"), default=None,
+                        help="how to pick the catalogue diameter (default: next-size-up)")
+
+
+def _num(v):
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    if isinstance(v, dict):
+        return {k: _num(x) for k, x in v.items()}
+    if isinstance(v, list):
+        return [_num(x) for x in v]
+    return v
+
+
+def _text(design) -> str:
+    q = design.scene.built.quantities
+    lines = [f"{design.scene.name}: sizing"]
+    if design.continuous:
+        lines.append("")
+        lines.append(f"{'':<12}{'catalogue':>14}{'continuous':>14}")
+        for k in ("d", "F_nwl", "stroke"):
+            cat = f"{q[k].to_display(design.design[k]):>14.6g}" if design.design else f"{'-':>14}"
+            lines.append(f"{k:<12}{cat}{q[k].to_display(design.continuous[k]):>14.6g}  {q[k].display_unit}")
+    if design.feasible:
+        lines.append("")
+        lines.append("active constraints: " + ", ".join(design.active))
+        for k, v in design.power.items():
+            lines.append(f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}")
+        lines.append("")
+        lines.append(f"{'check margin':<22}{'value':>14}  unit")
+        for k, v in design.margins.items():
+            unit = "-" if q[k].display_unit == "1" else q[k].display_unit
+            lines.append(f"{k:<22}{q[k].to_display(v):>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS'}")
+    lines.append("")
+    lines.append(design.message)
+    return "\n".join(lines)
+
+
+def main(args) -> int:
+    from optimisation.design import DEFAULT_DISCRETE, size
+
+    scene = scene_from_args(args)
+    design = size(scene, method=args.discrete or DEFAULT_DISCRETE)
+    if args.json:
+        print(json.dumps(_num(design.to_dict()), indent=2, allow_nan=False))
+    else:
+        print(_text(design))
+    return 0 if design.feasible else 1

@@ -1,0 +1,102 @@
+"""The haulage rope of the winch model: effect ``rope``.
+
+``given`` (default)  the paper's mode (Krauze et al. 2025): q_l [N/m] and q_lw [m/N] are
+                     scene parameters; no equation is built.
+``catalogue``        q_l, q_lw, the minimum breaking force F_min, the metallic area A_m and the
+                     mass per metre m_l follow from the diameter ``d`` and the construction
+                     factors (EN 12385-4): they become OUTPUTS, and the acausal core wires them
+                     into the force and elongation equations.  The factors are the parameters
+                     ``rope_K``, ``rope_W``, ``rope_C`` — or, with ``[numerics] rope_construction =
+                     "6x36-IWRC"`` (see :mod:`ropemodel.ropes`), constants of the named class.
+                     ``rope_grade`` (R_r) and ``rope_E`` are always parameters.
+"""
+
+from __future__ import annotations
+
+from ropemodel import ropes
+from ropemodel.effects.base import Equation, Submodel, define_effect, define_numerics, register
+from ropemodel.effects.winch import MODEL, Q
+from ropemodel.errors import InputError
+
+_pos = dict(low=0.0, low_open=True, positive=True)
+SRC = "EN 12385-4"
+
+define_effect(MODEL, "rope", "given", "the rope: q_l, q_lw given (paper) or from a catalogue construction and d")
+
+
+def _check_construction(key, value):
+    if value == "":
+        return value
+    if not isinstance(value, str):
+        raise InputError(f"numerics {key} = {value!r} must be a construction name, e.g. \"6x36-IWRC\"")
+    ropes.construction(value)
+    return value
+
+
+define_numerics(MODEL, "rope_construction", "",
+                "named rope construction of ropemodel/data/ropes.toml (rope = \"catalogue\"); "
+                "\"\" = give rope_K, rope_W, rope_C as parameters", _check_construction)
+
+D_ROPE = Q("d", "m", "nominal rope diameter", "mm", guess=0.03, high=0.5, warn_low=0.008, warn_high=0.06, **_pos)
+F_MIN = Q("F_min", "N", "minimum breaking force of the rope", "kN", guess=1e6, **_pos)
+
+FACTORS = (
+    Q("rope_K", "1", "minimum breaking force factor K of the rope class", low=0.0, high=1.0, low_open=True,
+      guess=0.356),
+    Q("rope_W", "kg/m^3", "nominal length mass factor W of the rope class (catalogue kg/(100 m*mm^2) x 1e4)", "kg/m^3",
+      low=1000.0, high=10000.0, guess=4090.0),
+    Q("rope_C", "1", "metallic cross-section factor C of the rope class", low=0.0, high=0.7854, low_open=True,
+      guess=0.46),
+)
+
+
+@register(MODEL, "rope", "given")
+class RopeGiven(Submodel):
+    """The paper's rope: q_l and q_lw are given (Krauze et al. 2025, section 3)."""
+
+    description = "rope weight q_l and unit elongation q_lw given"
+    citations = ("krauze2025",)
+
+
+@register(MODEL, "rope", "catalogue")
+class RopeCatalogue(Submodel):
+    """Rope properties from the diameter and the EN 12385-4 construction factors.
+
+    F_min = K·d²·R_r, m_l = W·d², q_l = g·W·d², A_m = C·d², q_lw = L_u/(E·C·d²)
+    (see :mod:`ropemodel.ropes`).  Not in Krauze et al. (2025), who give q_l and q_lw;
+    "needed by a real sizing tool" (MODELS.md §1).
+    """
+
+    description = "q_l, q_lw, F_min, A_m, m_l from d and the construction (EN 12385-4)"
+    citations = ("krauze2025", "en12385_4")
+    quantities = (
+        D_ROPE,
+        F_MIN,
+        *FACTORS,
+        Q("rope_grade", "Pa", "rope grade R_r (EN 12385-4: 1570-2160 N/mm^2)", "N/mm^2", low=0.0, low_open=True,
+          warn_low=1570e6, warn_high=2160e6, guess=1770e6),
+        Q("rope_E", "Pa", "modulus of the rope referred to its metallic area", "kN/mm^2", low=0.0, low_open=True,
+          warn_low=5e10, warn_high=2.1e11, guess=1e11),
+        Q("A_m", "m^2", "metallic cross-section of the rope", "mm^2", equation=f"{SRC}: A = C d^2"),
+        Q("m_l", "kg/m", "mass of the rope per metre", "kg/m", equation=f"{SRC}: m = W d^2"),
+    )
+
+    def _factors(self, v):
+        name = self.options.get("rope_construction", "")
+        if name:
+            c = ropes.construction(name)
+            return c.K, c.W, c.C
+        return v["rope_K"], v["rope_W"], v["rope_C"]
+
+    def equations(self, v):
+        K, W, C = self._factors(v)
+        d = v["d"]
+        return [
+            Equation("F_min", v["F_min"] - ropes.minimum_breaking_force(K, d, v["rope_grade"]),
+                     f"{SRC}: F_min = K d^2 R_r"),
+            Equation("m_l", v["m_l"] - ropes.rope_mass_per_metre(W, d), f"{SRC}: m = W d^2"),
+            Equation("q_l", v["q_l"] - ropes.rope_weight_per_metre(W, d), "q_l = g W d^2"),
+            Equation("A_m", v["A_m"] - ropes.metallic_area(C, d), f"{SRC}: A = C d^2"),
+            Equation("q_lw", v["q_lw"] - ropes.unit_elongation(v["L_u"], v["rope_E"], C, d),
+                     "q_lw = L_u / (E C d^2)"),
+        ]
