@@ -1,0 +1,68 @@
+"""``ropemodel sweep SCENE --vary NAME=START:STOP:N ... -o FILE.csv|FILE.parquet``.
+
+The points are the product of the ``--vary`` grids (START and STOP may carry
+units: ``alpha_u=0deg:45deg:1000``; ``NAME=v1,v2,v3`` lists values), or the
+rows of ``--points FILE`` (CSV or Parquet; columns are names in SI or
+``"name [unit]"`` labels).  Results are written in chunks; rerunning an
+interrupted sweep with the same arguments resumes it.
+"""
+
+from __future__ import annotations
+
+from ropemodel.cli._common import add_scene_arguments, assignments, scene_from_args
+from ropemodel.errors import InputError
+from ropemodel.sweep import read_points, sweep
+from ropemodel.sweep.runner import CHUNK
+
+NAME = "sweep"
+HELP = "evaluate a scene over grids or a table of points; write CSV or Parquet (resumable)"
+
+
+def add_arguments(parser) -> None:
+    add_scene_arguments(parser, optional=False)
+    parser.add_argument("--vary", action="append", metavar="NAME=START:STOP:N", default=[],
+                        help="a grid axis, e.g. alpha_u=0deg:45deg:1000 or G_m=300kN,467kN; "
+                             "several --vary give their product")
+    parser.add_argument("--points", metavar="FILE", help="CSV or Parquet table of points instead of --vary")
+    parser.add_argument("--outputs", action="append", metavar="NAME[,NAME...]", default=[],
+                        help="outputs to compute (default: all)")
+    parser.add_argument("--given", action="append", metavar="NAME[=VALUE]", default=[],
+                        help="an output taken as known (inverse sweep); its values come from --vary or VALUE")
+    parser.add_argument("--find", action="append", metavar="NAME", default=[],
+                        help="a parameter to solve for at every point, freed by a --given")
+    parser.add_argument("-o", "--output", required=True, metavar="FILE", help="FILE.csv or FILE.parquet")
+    parser.add_argument("--chunk-size", type=int, default=CHUNK, help=f"points per chunk (default {CHUNK})")
+    parser.add_argument("--threads", type=int, default=None, help="threads (default: number of CPUs)")
+    parser.add_argument("--backend", default="auto", choices=["auto", "casadi", "compiled"],
+                        help="evaluation backend (default auto: compiled C if a compiler works)")
+    parser.add_argument("--si", action="store_true", help="SI units in the columns (default: display units)")
+    parser.add_argument("--mark-failures", action="store_true",
+                        help="keep points without a valid solution (solved = false) instead of stopping")
+    parser.add_argument("--restart", action="store_true", help="discard an unfinished sweep instead of resuming")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def _names(items):
+    return [n.strip() for item in items for n in item.split(",") if n.strip()]
+
+
+def main(args) -> int:
+    scene = scene_from_args(args)
+    vary = {}
+    for item in args.vary:
+        if "=" not in item:
+            raise InputError(f"--vary {item!r}: expected NAME=START:STOP:N, e.g. alpha_u=0deg:45deg:1000")
+        name, spec = (s.strip() for s in item.split("=", 1))
+        if name in vary:
+            raise InputError(f"--vary {name} given twice")
+        vary[name] = spec
+    points = read_points(args.points) if args.points else None
+    if points is not None and vary:
+        raise InputError("give either --vary grids or --points FILE, not both")
+    given = {g.strip(): None for g in args.given if "=" not in g}
+    given.update(assignments([g for g in args.given if "=" in g], "--given"))
+    sweep(scene, vary or None, _names(args.outputs) or None, points=points, given=given,
+          find=_names(args.find), out=args.output, chunk_size=args.chunk_size, threads=args.threads,
+          backend=args.backend, si=args.si, errors="mark" if args.mark_failures else "raise",
+          progress=False if args.no_progress else None, restart=args.restart, collect=False)
+    return 0

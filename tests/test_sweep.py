@@ -1,0 +1,143 @@
+"""Sweeps: grids and tables of points against closed forms and direct solves; validation; CLI."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import ropemodel as rm
+from ropemodel.cli import main as cli
+from ropemodel.sweep import parse_axis
+
+
+def f_c_up_closed_form(alpha, G_m, s):
+    """MODELS.md §1 (Krauze et al. 2025, eq. 13, upward, case 1), written out by hand in numpy."""
+    p = s.parameters
+    return (0.5 * p["F_nwl"] + (G_m + p["q_l"] * p["L_u"]) * np.sin(alpha)
+            + p["mu_pm"] * G_m * np.cos(alpha) + p["mu_pl"] * p["q_l"] * p["L_u"] * np.cos(alpha))
+
+
+@pytest.mark.parametrize("backend", ["casadi", "compiled"])
+def test_grid_is_the_product_and_matches_closed_form(fig9, backend):
+    df = rm.sweep(fig9, vary={"alpha_u": "0deg:40deg:9", "G_m": ["300 kN", "467 kN", 600e3]},
+                  outputs=["F_C_up", "dF_up"], backend=backend, chunk_size=5)
+    assert list(df.columns) == ["alpha_u [deg]", "G_m [kN]", "F_C_up [kN]", "dF_up [mm]"]
+    assert len(df) == 27
+    # first axis slowest, like itertools.product
+    np.testing.assert_allclose(df["alpha_u [deg]"], np.repeat(np.linspace(0, 40, 9), 3), rtol=1e-15, atol=1e-14)
+    assert df["G_m [kN]"].tolist()[:3] == [300.0, 467.0, 600.0]
+    alpha = np.radians(df["alpha_u [deg]"].to_numpy())
+    expected = f_c_up_closed_form(alpha, df["G_m [kN]"].to_numpy() * 1e3, fig9) / 1e3
+    np.testing.assert_allclose(df["F_C_up [kN]"], expected, rtol=1e-13)
+
+
+def test_spot_check_parquet_against_direct_solves(fig9, tmp_path):
+    out = tmp_path / "s.parquet"
+    rm.sweep(fig9, vary={"alpha_u": "1deg:44deg:200", "L_u": "500m:2000m:50"}, out=out, chunk_size=3000,
+             collect=False)
+    df = pd.read_parquet(out)
+    assert len(df) == 10000 and not (tmp_path / "s.parquet.parts").exists()
+    rng = np.random.default_rng(1)
+    for i in rng.choice(len(df), 12, replace=False):
+        row = df.iloc[i]
+        direct = rm.run(fig9.with_values({"alpha_u": f"{float(row['alpha_u [deg]'])!r} deg",
+                                          "L_u": float(row["L_u [m]"])})).to_series()
+        for col in df.columns[2:]:
+            assert row[col] == pytest.approx(direct[col], rel=1e-12, abs=1e-9), col
+
+
+def test_chunk_size_and_backend_do_not_change_results(fig9):
+    vary = {"alpha_u": np.linspace(-0.3, 0.6, 37), "mu_pm": (0.01, 0.2, 5)}
+    a = rm.sweep(fig9, vary, chunk_size=1000, backend="casadi")
+    b = rm.sweep(fig9, vary, chunk_size=7, backend="compiled", threads=2)
+    pd.testing.assert_frame_equal(a, b, check_exact=False, rtol=1e-14, atol=1e-12)
+
+
+def test_points_table_with_units_and_round_trip(fig9):
+    pts = pd.DataFrame({"alpha_u [deg]": [10.0, 16.0, 30.0], "G_m [N]": [300e3, 467e3, 200e3]})
+    df = rm.sweep(fig9, pts, outputs=["F_C_up"])
+    assert list(df.columns) == ["alpha_u [deg]", "G_m [kN]", "F_C_up [kN]"]
+    expected = f_c_up_closed_form(np.radians([10.0, 16.0, 30.0]), np.array([300e3, 467e3, 200e3]), fig9) / 1e3
+    np.testing.assert_allclose(df["F_C_up [kN]"], expected, rtol=1e-13)
+    again = rm.sweep(fig9, df[["alpha_u [deg]", "G_m [kN]"]], outputs=["F_C_up"])
+    pd.testing.assert_frame_equal(df, again, check_exact=True, check_dtype=False)
+    with pytest.raises(rm.InputError, match="unit 'kg' is not a unit of N"):
+        rm.sweep(fig9, pd.DataFrame({"G_m [kg]": [1.0]}))
+
+
+def test_si_columns(fig9):
+    df = rm.sweep(fig9, vary={"alpha_u": [0.1, 0.2]}, outputs=["F_C_up", "mu_pl1"], si=True)
+    assert list(df.columns) == ["alpha_u [rad]", "F_C_up [N]", "mu_pl1 [-]"]
+    assert df["alpha_u [rad]"].tolist() == [0.1, 0.2]
+
+
+def test_csv_and_parquet_hold_the_same_numbers(fig9, tmp_path):
+    vary = {"alpha_u": "0deg:30deg:101", "F_nwl": "10kN:50kN:3"}
+    rm.sweep(fig9, vary, out=tmp_path / "a.csv", collect=False, chunk_size=50)
+    rm.sweep(fig9, vary, out=tmp_path / "a.parquet", collect=False, chunk_size=50)
+    pd.testing.assert_frame_equal(pd.read_csv(tmp_path / "a.csv"), pd.read_parquet(tmp_path / "a.parquet"),
+                                  check_exact=True, check_dtype=False)
+
+
+def test_inverse_sweep_and_invalid_solutions(fig9):
+    strokes = np.array([1.2, 1.4, 1.6])
+    df = rm.sweep(fig9, vary={"dF_up": strokes}, given=["dF_up"], find=["G_m"], outputs=["G_m", "F_C_up"], si=True)
+    for s, g in zip(strokes, df["G_m [N]"]):
+        assert rm.solve(fig9, {"dF_up": s}, ["G_m"])["G_m"] == pytest.approx(g, rel=1e-12)
+    # a stroke too short for any load: G_m < 0 is outside its range
+    with pytest.raises(rm.SolveError, match=r"point 0 \(dF_up = 0\.1.*G_m found outside"):
+        rm.sweep(fig9, vary={"dF_up": [0.1, 1.4]}, given=["dF_up"], find=["G_m"])
+    marked = rm.sweep(fig9, vary={"dF_up": [0.1, 1.4]}, given=["dF_up"], find=["G_m"], errors="mark")
+    assert marked["solved"].tolist() == [False, True]
+
+
+@pytest.mark.parametrize("vary, match", [
+    ({"alpha_u": "0deg:100deg:11"}, r"alpha_u = 90 deg \(value 9 of its axis\) is outside the valid range"),
+    ({"mu_pm": [0.1, -0.2]}, r"mu_pm = -0\.2 .*point|mu_pm = -0\.2"),
+    ({"L_ul": "0m:2000m:3"}, r"L_ul = 2000 m is beyond L_u"),
+    ({"alpha_u": "0:1"}, r"START:STOP:N"),
+    ({"alpha_u": "0:1:0"}, r"positive integer"),
+    ({"alpha_u": "0 kN:1 kN:3"}, r"alpha_u: '0 kN' has dimension"),
+    ({"alpah_u": [0.1]}, r"alpah_u"),
+    ({"F_C_up": [1.0]}, r"F_C_up"),
+])
+def test_bad_points_are_refused_before_computing(fig9, vary, match):
+    with pytest.raises(rm.InputError, match=match):
+        rm.sweep(fig9, vary)
+
+
+def test_bad_point_in_a_table_is_named(fig9):
+    pts = pd.DataFrame({"L_u [m]": [1000.0, 400.0], "L_ul [m]": [500.0, 450.0]})
+    with pytest.raises(rm.InputError, match=r"point 1: L_ul = 450 m is beyond L_u = 400 m"):
+        rm.sweep(fig9, pts)
+
+
+def test_parse_axis_units():
+    np.testing.assert_allclose(parse_axis("alpha_u", "0deg:45deg:4", "rad"), np.radians([0, 15, 30, 45]))
+    np.testing.assert_allclose(parse_axis("G_m", "300kN,467 kN", "N"), [300e3, 467e3])
+    np.testing.assert_allclose(parse_axis("L_u", (1, 2, 3), "m"), [1, 1.5, 2])
+
+
+def test_cli_sweep_csv(tmp_path, capsys):
+    out = tmp_path / "cli.csv"
+    code = cli(["sweep", "example", "--vary", "alpha_u=0deg:45deg:4", "--vary", "G_m=300kN,467kN",
+                "--outputs", "F_C_up,dF_up", "-o", str(out), "--no-progress"])
+    assert code == 0
+    df = pd.read_csv(out)
+    assert list(df.columns) == ["alpha_u [deg]", "G_m [kN]", "F_C_up [kN]", "dF_up [mm]"]
+    api = rm.sweep(rm.load_scene(), {"alpha_u": "0deg:45deg:4", "G_m": "300kN,467kN"}, ["F_C_up", "dF_up"])
+    pd.testing.assert_frame_equal(df, api, check_exact=True, check_dtype=False)
+
+
+def test_cli_sweep_points_file_and_errors(tmp_path, capsys):
+    pts = tmp_path / "pts.csv"
+    pd.DataFrame({"alpha_u [deg]": [5.0, 16.0], "q_l [kN/m]": [0.08, 0.1]}).to_csv(pts, index=False)
+    out = tmp_path / "o.parquet"
+    assert cli(["sweep", "example", "--points", str(pts), "--outputs", "F_S_up", "-o", str(out)]) == 0
+    df = pd.read_parquet(out)
+    expected = rm.run(rm.load_scene().with_values({"alpha_u": "16 deg", "q_l": "0.1 kN/m"}))["F_S_up"] / 1e3
+    assert df["F_S_up [kN]"].iloc[1] == pytest.approx(expected, rel=1e-13)
+    assert cli(["sweep", "example", "--vary", "alpha_u=0deg:95deg:3", "-o", str(out)]) == 2
+    assert "alpha_u = 95 deg" in capsys.readouterr().err
+    assert cli(["sweep", "example", "--vary", "alpha_u=0:1:3", "-o", str(tmp_path / "x.xlsx")]) == 2
