@@ -1,0 +1,147 @@
+"""Assemble the transient of a winch scene from the effects it picks, and integrate it.
+
+Only the chosen variants are built: the ``rope_elasticity`` variant picks the chain
+builder (:data:`ropemodel.dynamics.chain.BUILDERS`), ``dynamics`` the drive profile
+(:data:`ropemodel.dynamics.profile.PROFILES`), ``tensioner`` the carriage's modes
+(:data:`INITIAL_TENSIONER`), ``lining`` the traction ratio (:data:`TRACTION`); the
+static model (:func:`ropemodel.problem.run`) gives the reference forces and the
+resistance coefficients of the scene's ``resistance`` case.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ropemodel.dynamics.chain import BUILDERS
+from ropemodel.dynamics.history import Simulation
+from ropemodel.dynamics.hybrid import HybridIntegrator
+from ropemodel.dynamics.profile import PROFILES
+from ropemodel.dynamics.system import LoopSystem, equilibrium, mode_functions, traction_ratio
+from ropemodel.errors import InputError
+from ropemodel.problem import run
+
+DIRECTION = {"up": +1, "down": -1}
+DRUM_TOL = 1e-9
+
+#: tensioner variant → mode of the carriage at the start
+INITIAL_TENSIONER = {"constant_force": "free", "fixed": "fixed"}
+
+
+def _traction_rigid(values, scene):
+    return traction_ratio(values)
+
+
+#: lining variant → traction ratio ρ of the drum (``none``: the dynamic model still needs
+#: mu_d and alpha_d, and uses the rigid-drum Euler–Eytelwein ratio)
+TRACTION = {"none": _traction_rigid, "rigid": _traction_rigid}
+
+
+def simulate(scene, values: dict | None = None) -> Simulation:
+    """Simulate the transient of a scene with ``dynamics = "start"`` or ``"stop"``.
+
+    ``values`` override scene parameters (SI numbers or unit strings).  Returns a
+    :class:`~ropemodel.dynamics.history.Simulation` (history DataFrame, summary, events).
+    """
+    if values:
+        scene = scene.with_values(values)
+    eff = scene.effects
+    if scene.model != "winch" or eff.get("dynamics", "none") not in PROFILES:
+        raise InputError(f"scene {scene.name!r} has no transient: set [effects] dynamics = \"start\" or \"stop\" "
+                         f"(model winch)")
+    lining = eff.get("lining", "none")
+    if lining not in TRACTION:
+        raise InputError(f"lining = {lining!r} is not supported by the transient yet; supported: "
+                         f"{', '.join(sorted(TRACTION))}")
+    if eff["rope_elasticity"] == "rigid" and eff["tensioner"] == "fixed":
+        raise InputError("rope_elasticity = \"rigid\" with tensioner = \"fixed\" is statically indeterminate "
+                         "(the loop tension is undefined); use tensioner = \"constant_force\" or an elastic rope")
+    static = run(scene)
+    vals = dict(static.values)
+    direction = eff["travel"]
+    sign = DIRECTION[direction]
+    num = scene.numerics
+    chain = BUILDERS[eff["rope_elasticity"]](vals, num["segments"])
+    ratio = TRACTION[lining](vals, scene)
+    sys = LoopSystem(chain, vals, ratio)
+    phases, v0 = PROFILES[eff["dynamics"]](vals["v_pj"], vals["t_ramp"], vals["t_end"], sign)
+    tens0 = INITIAL_TENSIONER[eff["tensioner"]] if not chain.rigid else "fixed"
+    # initial state: at rest (start) or steady motion (stop); the fixed take-up is set at rest
+    x_rest = equilibrium(sys, 0.0, z_free=not chain.rigid)
+    z_rest = x_rest[2 * chain.n]
+    x0 = equilibrium(sys, v0, z_free=(tens0 == "free"), z_fixed=z_rest)
+    if tens0 == "free":
+        for limit, mode in ((vals["stroke"], "at_end"), (0.0, "at_start")):
+            if (mode == "at_end" and x0[2 * chain.n] > limit) or (mode == "at_start" and x0[2 * chain.n] < limit):
+                x0 = equilibrium(sys, v0, z_free=False, z_fixed=limit)
+                tens0 = mode
+    T0 = float(np.array(mode_functions(sys, phases[0], "stick", tens0, 1.0, 1.0).out(x0, 0.0))[-1, 0])
+    if T0 < 0:
+        raise InputError(f"the rope is slack at the start (least tension {T0 / 1e3:.3g} kN): raise F_nwl "
+                         f"(now {vals['F_nwl'] / 1e3:g} kN) or check the stroke")
+    f_scale = max(abs(static[f"F_C_{direction}"]), 1.0)
+    v_scale = max(vals["v_pj"], 1e-6)
+    hyb = HybridIntegrator(sys, phases, num["sim_rtol"], num["sim_dt"], num["sim_integrator"], f_scale, v_scale,
+                           atol_u=num["sim_rtol"] * 1e-1 * max(vals["L_u"] * vals["q_lw"] * f_scale, 1e-9))
+
+    def stick_or_slip(x, t, k, tens):
+        """The drum mode that holds at (x, t) for a rope not sliding on the drum."""
+        g = np.array(hyb.mode(k, "stick", tens).fun.g(x, t)).ravel()
+        if g[0] < -DRUM_TOL:
+            return "slip_fwd"
+        if g[1] < -DRUM_TOL:
+            return "slip_back"
+        x[chain.n] = float(phases[k].v(t))
+        return "stick"
+
+    def choose(x, t, k, drum, tens):
+        """Consistent modes at the start and at a phase boundary (the drive's acceleration jumps)."""
+        if tens in ("at_end", "at_start"):
+            g = np.array(hyb.mode(k, "stick", tens).fun.g(x, t)).ravel()
+            if g[hyb.mode(k, "stick", tens).fun.g_names.index("release")] < -DRUM_TOL:
+                tens = "free"
+        if drum == "stick" or abs(x[chain.n] - float(phases[k].v(t))) <= DRUM_TOL * v_scale:
+            drum = stick_or_slip(x, t, k, tens)
+        return drum, tens
+
+    def transition(name, x, t, k, drum, tens):
+        if name in TERMINAL:
+            return None
+        x = TRANSITIONS[name](x.copy(), vals, chain.n)
+        drum = DRUM_EVENTS.get(name, drum)
+        if name == "stick":
+            drum = stick_or_slip(x, t, k, tens)
+        return x, drum, TENS_EVENTS.get(name, tens)
+
+    sim = Simulation(scene, static, chain, sign, ratio)
+    events = hyb.run(x0, "stick", tens0, choose, transition, sim.record)
+    sim.finish(events, sys)
+    return sim
+
+
+def _impact(x, vals, n, z):
+    """Carriage stopped on a stop of the stroke: its kinetic energy is dissipated."""
+    x[2 * n + 4] += vals["m_t"] * x[2 * n + 1] ** 2 / 8
+    x[2 * n + 1] = 0.0
+    x[2 * n] = z
+    return x
+
+
+def _keep(x, vals, n):
+    return x
+
+
+#: event → state reset (x, values, n) → x
+TRANSITIONS = {
+    "slip_fwd": _keep,
+    "slip_back": _keep,
+    "stick": _keep,
+    "stroke_end": lambda x, vals, n: _impact(x, vals, n, vals["stroke"]),
+    "stroke_start": lambda x, vals, n: _impact(x, vals, n, 0.0),
+    "release": _keep,
+}
+#: events that end the simulation: a slack rope element (the linear rope model no longer holds)
+TERMINAL = {"slack"}
+#: drum events → the drum mode that follows
+DRUM_EVENTS = {"slip_fwd": "slip_fwd", "slip_back": "slip_back", "stick": "stick"}
+#: tensioner events → the carriage mode that follows
+TENS_EVENTS = {"stroke_end": "at_end", "stroke_start": "at_start", "release": "free"}
