@@ -35,5 +35,18 @@ __all__ = [
     "from_toml",
     "load_scene",
     "run",
+    "sensitivity",
     "solve",
+    "sweep",
 ]
+
+_LAZY = ("sensitivity", "sweep")  # heavier imports (pyarrow, SALib): loaded on first use
+
+
+def __getattr__(name):
+    """``rm.sweep(scene, vary=...)`` (a callable module) and ``rm.sensitivity``, imported on first use."""
+    if name in _LAZY:
+        import importlib
+
+        return importlib.import_module(f"ropemodel.{name}")
+    raise AttributeError(f"module 'ropemodel' has no attribute {name!r}")

@@ -1,0 +1,85 @@
+"""``ropemodel sensitivity SCENE``: elasticities table (``--json``, ``--plot FILE.png``) or Sobol indices.
+
+Without ``--sobol``: the local elasticity ∂ln y/∂ln p of every output to every
+input at the scene's point, by automatic differentiation.  With ``--sobol
+NAME=LOW:HIGH ...``: global Sobol indices (first order S1, total ST) of the
+outputs over uniform ranges of the named inputs (SALib); ``--sizing`` takes
+the sizing optimum (d, F_nwl, stroke) as the outputs.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+from ropemodel.cli._common import add_scene_arguments, scene_from_args
+from ropemodel.errors import InputError
+from ropemodel.sensitivity import elasticities, sobol, sobol_indices, table, tornado
+from ropemodel.sensitivity.sobol import parse_range
+
+NAME = "sensitivity"
+HELP = "which inputs matter: elasticities d ln y / d ln p (AD), or Sobol indices over ranges"
+
+
+def add_arguments(parser) -> None:
+    add_scene_arguments(parser, optional=True)
+    parser.add_argument("--outputs", action="append", metavar="NAME[,NAME...]", default=[],
+                        help="outputs to analyse (default: all)")
+    parser.add_argument("--parameters", action="append", metavar="NAME[,NAME...]", default=[],
+                        help="inputs to differentiate by (default: all)")
+    parser.add_argument("--plot", metavar="FILE.png", help="tornado chart of the elasticities")
+    parser.add_argument("--sobol", action="append", metavar="NAME=LOW:HIGH", default=[],
+                        help="a uniform range for Sobol indices, e.g. alpha_u=10deg:20deg (repeat per input)")
+    parser.add_argument("--samples", type=int, default=1024,
+                        help="Sobol base samples N (power of two; N*(D+2) evaluations; default 1024)")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the Sobol sequence scrambling")
+    parser.add_argument("--sizing", action="store_true",
+                        help="Sobol indices of the sizing optimum (d, F_nwl, stroke) instead of the outputs")
+
+
+def _names(items):
+    return [n.strip() for item in items for n in item.split(",") if n.strip()]
+
+
+def _num(v):
+    return None if isinstance(v, float) and math.isnan(v) else v
+
+
+def main(args) -> int:
+    scene = scene_from_args(args)
+    outputs = _names(args.outputs) or None
+    if args.sobol:
+        ranges = {}
+        for item in args.sobol:
+            if "=" not in item:
+                raise InputError(f"--sobol {item!r}: expected NAME=LOW:HIGH")
+            name, spec = (s.strip() for s in item.split("=", 1))
+            ranges[name] = spec
+        if args.plot:
+            raise InputError("--plot draws elasticities; it does not combine with --sobol")
+        if args.sizing:
+            from ropemodel.sweep.sizing import sizing_function
+
+            scene.built.check_names(ranges)
+            q = scene.built.quantities
+            frame = sobol_indices(sizing_function(scene), {k: parse_range(k, v, q[k].unit) for k, v in ranges.items()},
+                                  args.samples, args.seed)
+        else:
+            frame = sobol(scene, ranges, outputs, args.samples, args.seed)
+        if args.json:
+            print(json.dumps([{k: _num(v) for k, v in r.items()} for r in frame.to_dict("records")], indent=1))
+        else:
+            print(f"Sobol indices, N = {args.samples} base samples (95 % bootstrap half-widths)")
+            print(frame.to_string(index=False, float_format=lambda x: f"{x:.3f}"))
+        return 0
+    if args.sizing:
+        raise InputError("--sizing needs --sobol ranges")
+    frame = elasticities(scene, outputs=outputs, parameters=_names(args.parameters) or None)
+    if args.plot:
+        tornado(frame, outputs, path=args.plot, title=scene.name)
+    if args.json:
+        print(json.dumps([{k: _num(v) for k, v in r.items()} for r in frame.to_dict("records")], indent=1,
+                         allow_nan=False))
+    else:
+        print(table(frame))
+    return 0

@@ -1,0 +1,101 @@
+"""Elasticities by AD against finite differences and closed forms; zero handling; CLI."""
+
+import json
+import math
+from importlib import resources
+
+import numpy as np
+import pytest
+
+import ropemodel as rm
+from ropemodel.cli import main as cli
+from ropemodel.sensitivity import elasticities, table
+
+SCENES = sorted(p.name for p in resources.files("ropemodel.data").iterdir() if p.name.endswith(".toml")
+                and p.name != "ropes.toml")
+
+
+def fd_elasticity(problem, x, out, par, h=1e-5):
+    """Central difference of ln y in ln p on single evaluations (no range check: eta = 1 may step past 1)."""
+    up = float(problem.function(**{**x, par: x[par] * (1 + h)})[out])
+    dn = float(problem.function(**{**x, par: x[par] * (1 - h)})[out])
+    return (math.log(abs(up)) - math.log(abs(dn))) / (math.log1p(h) - math.log1p(-h))
+
+
+def _scene(name):
+    return rm.load_scene(str(resources.files("ropemodel.data").joinpath(name)))
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_elasticities_match_finite_differences_on_every_builtin_scene(name):
+    scene = _scene(name)
+    problem = rm.Problem(scene)
+    x = problem.inputs()
+    frame = elasticities(scene)
+    checked = 0
+    for r in frame[frame["defined"]].itertuples():
+        y = problem.solve(x)[r.output]
+        if abs(y) < 1e-9 * max(1.0, abs(r.y)):
+            continue
+        fd = fd_elasticity(problem, x, r.output, r.parameter)
+        # FD error: truncation O(h^2) and rounding ~ 1e-16/h of ln y
+        assert r.elasticity == pytest.approx(fd, abs=2e-6), (r.output, r.parameter)
+        checked += 1
+    assert checked > 10
+
+
+def test_inverse_problem_elasticities_match_finite_differences(fig9):
+    problem = rm.Problem(fig9, given={"dF_up": "1000 mm"}, find=["G_m"])
+    x = problem.inputs()
+    frame = elasticities(fig9, given={"dF_up": "1000 mm"}, find=["G_m"], outputs=["G_m", "F_C_up"])
+    for r in frame[frame["defined"]].itertuples():
+        assert r.elasticity == pytest.approx(fd_elasticity(problem, x, r.output, r.parameter), abs=2e-6)
+    # the load is inversely proportional to nothing simple, but the stroke enters linearly: e(G_m, dF_up) > 1
+    e = frame.set_index(["output", "parameter"])["elasticity"]
+    assert e["G_m", "dF_up"] > 1.0
+
+
+def test_closed_form_elasticities(fig9):
+    e = elasticities(fig9).set_index(["output", "parameter"])["elasticity"]
+    assert e["N_p_up", "v_pj"] == pytest.approx(1.0, abs=1e-14)   # N_p = (F_C - F_S) v / eta
+    assert e["N_p_up", "eta"] == pytest.approx(-1.0, abs=1e-14)
+    assert e["dF_up", "q_lw"] == pytest.approx(1.0, abs=1e-14)    # every elongation is q_lw * force
+    p = fig9.parameters
+    # eq. (13) upward: d ln F_C / d ln G_m = G_m (sin a + mu_pm cos a) / F_C
+    F_C = rm.run(fig9)["F_C_up"]
+    a = p["alpha_u"]
+    assert e["F_C_up", "G_m"] == pytest.approx(p["G_m"] * (math.sin(a) + p["mu_pm"] * math.cos(a)) / F_C, rel=1e-13)
+    # the two ropes' resistances cancel exactly in the stroke: reported 0, not 1e-18
+    assert e["dF_up", "mu_pl"] == 0.0
+
+
+def test_zero_output_is_marked_not_nan(fig9):
+    scene = fig9.with_values({"L_ul": "1150 m"})   # point A at the drive: G_l1 = 0
+    frame = elasticities(scene, outputs=["G_l1", "F_C_up"])
+    g = frame[frame["output"] == "G_l1"]
+    assert not g["defined"].any() and (g["note"] == "undefined: y = 0").all()
+    assert g["elasticity"].isna().all()
+    d = g.set_index("parameter")["dy_dp"]
+    p = scene.parameters
+    assert d["L_u"] == pytest.approx(p["q_l"] * math.sin(p["alpha_u"]) / 1e3, rel=1e-13)  # kN per m
+    assert frame.loc[frame["defined"], "elasticity"].notna().all()
+    assert "dG_l1/dL_u = 0.022051 kN/m" in table(frame)
+
+
+def test_zero_parameter_is_marked(fig9):
+    frame = elasticities(fig9.with_values({"F_nwl": 0.0}), outputs=["F_C_up"])
+    r = frame.set_index("parameter").loc["F_nwl"]
+    assert not r["defined"] and r["note"] == "undefined: p = 0" and r["dy_dp"] == pytest.approx(0.5, rel=1e-14)
+
+
+def test_cli_table_json_and_plot(tmp_path, capsys):
+    png = tmp_path / "t.png"
+    assert cli(["sensitivity", "--outputs", "F_C_up,dF_up", "--plot", str(png)]) == 0
+    text = capsys.readouterr().out
+    assert text.splitlines()[0].startswith("d ln y / d ln p") and "F_C_up [kN]" in text
+    assert png.stat().st_size > 5000 and png.read_bytes()[:4] == b"\x89PNG"
+    assert cli(["sensitivity", "--set", "L_ul=1150m", "--outputs", "G_l1", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert all(r["elasticity"] is None and r["note"] == "undefined: y = 0" for r in rows)
+    assert cli(["sensitivity", "--outputs", "F_C_upp"]) == 2
+    assert "F_C_up" in capsys.readouterr().err
