@@ -151,7 +151,7 @@ def _slip_at(n, x):
 
 def _slip_interval(start, t_end, slip_end):
     t0, s0, kind = start
-    return {"t_start": t0, "t_end": t_end, "distance": abs(slip_end - s0),
+    return {"t_start": float(t0), "t_end": None if t_end is None else float(t_end), "distance": abs(slip_end - s0),
             "kind": "drum ahead of the rope" if kind == "slip_fwd" else "rope overruns the drum"}
 
 

@@ -1,0 +1,322 @@
+"""Transients of a winch scene (issue 6): each test against an independent truth.
+
+Truths used: the static model of Krauze et al. (2025) (settling), Newton's second law for an
+inextensible rope (rigid ramp, slip onset and slip distance by scipy), closed-form natural
+frequencies of one- and two-degree-of-freedom spring-mass systems, the continuum integral of
+the rope's elongation at rest, and the energy balance of the model's own states.
+"""
+
+from __future__ import annotations
+
+import math
+from importlib import resources
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq, curve_fit, least_squares
+
+import ropemodel as rm
+from ropemodel.dynamics import simulate
+from ropemodel.dynamics.chain import G_N
+
+DATA = resources.files("ropemodel.data")
+
+
+def scene(name="winch_start.toml", effects=None, params=None, numerics=None):
+    """A built-in dynamic scene with overrides."""
+    import tomllib
+
+    d = tomllib.loads(DATA.joinpath(name).read_text())
+    d["effects"].update(effects or {})
+    d["parameters"].update(params or {})
+    d.setdefault("numerics", {}).update(numerics or {})
+    return rm.from_dict(d)
+
+
+# --- settling on the static model -------------------------------------------------------------
+
+@pytest.mark.parametrize("travel", ["up", "down"])
+def test_start_settles_on_static_forces(travel):
+    """Ends at constant speed: F_C, F_S within 0.5 % of Krauze eq. (12)-(13), default damping."""
+    sc = scene(effects={"travel": travel}, params={"t_end": "100 s"})
+    assert sc.parameters["rope_damping"] == 0.05                      # the default
+    sim = simulate(sc)
+    static = rm.run(rm.load_scene())                                  # the paper's Fig. 9 scene
+    s = sim.summary
+    assert not s["slip"] and not s["slack"]
+    assert s["F_C_end"] == pytest.approx(static[f"F_C_{travel}"], rel=5e-3)
+    assert s["F_S_end"] == pytest.approx(static[f"F_S_{travel}"], rel=5e-3)
+    assert s["dynamic_factor"] == pytest.approx(s["F_C_max"] / static[f"F_C_{travel}"], rel=1e-12)
+
+
+# --- rigid rope: Newton's second law ------------------------------------------------------------
+
+@pytest.mark.parametrize("travel,sign", [("up", 1), ("down", -1)])
+def test_rigid_ramp_gives_static_plus_mass_times_acceleration(travel, sign):
+    """F_C = F_C,static + (G_m + q_l L_u)/g · a and F_S = F_S,static − q_l L_u/g · a (moving masses:
+    load and winding rope on the C side, unwinding rope on the S side), to 1e-6."""
+    sc = scene(effects={"travel": travel, "rope_elasticity": "rigid"}, params={"t_end": "8 s"})
+    sim = simulate(sc)
+    v = sc.parameters
+    st = rm.run(sc)
+    a = sign * v["v_pj"] / v["t_ramp"]
+    h = sim.history
+    ramp = h[(h["t [s]"] > 0.5) & (h["t [s]"] < v["t_ramp"] - 1e-9)]       # |v| >> v_eps: tanh = 1
+    assert len(ramp) > 100
+    F_C = st[f"F_C_{travel}"] + (v["G_m"] + v["q_l"] * v["L_u"]) / G_N * a
+    F_S = st[f"F_S_{travel}"] - v["q_l"] * v["L_u"] / G_N * a
+    np.testing.assert_allclose(ramp["F_C [N]"], F_C, rtol=1e-6)
+    np.testing.assert_allclose(ramp["F_S [N]"], F_S, rtol=1e-6)
+    after = h[h["t [s]"] > v["t_ramp"] + 1e-9]
+    np.testing.assert_allclose(after["F_C [N]"], st[f"F_C_{travel}"], rtol=1e-6)
+    assert sim.summary["moving_masses"]["load"] == pytest.approx(v["G_m"] / G_N)
+
+
+def _rigid_slip_truth(v, ratio):
+    """Slip onset and slip distance of an inextensible rope, from Newton's law solved by scipy."""
+    m_C = (v["G_m"] + v["q_l"] * v["L_u"]) / G_N
+    m_S = v["q_l"] * v["L_u"] / G_N
+    sa, ca = math.sin(v["alpha_u"]), math.cos(v["alpha_u"])
+    half = v["F_nwl"] / 2
+    G_C, G_S = (v["G_m"] + v["q_l"] * v["L_u"]) * sa, v["q_l"] * v["L_u"] * sa
+    R_C = (v["mu_pm"] * v["G_m"] + v["mu_pl"] * v["q_l"] * v["L_u"]) * ca
+    R_S = v["mu_pl"] * v["q_l"] * v["L_u"] * ca
+    acc = v["v_pj"] / v["t_ramp"]
+
+    def th(s):
+        return math.tanh(s / v["v_eps"])
+
+    def stick_margin(t):
+        s = acc * t
+        F_C = half + G_C + R_C * th(s) + m_C * acc
+        F_S = half + G_S - R_S * th(s) - m_S * acc
+        return ratio * F_S - F_C
+
+    t_slip = brentq(stick_margin, 0.0, v["t_ramp"], xtol=1e-14)
+
+    def rhs(t, y):
+        s = y[1]
+        a = (ratio * (half + G_S - R_S * th(s)) - half - G_C - R_C * th(s)) / (m_C + ratio * m_S)
+        return [min(acc * t, v["v_pj"]) - s, a]             # y = [slip, rope speed]
+
+    def caught_up(t, y):
+        return min(acc * t, v["v_pj"]) - y[1] if t > t_slip + 1e-9 else 1.0
+
+    caught_up.terminal, caught_up.direction = True, -1
+    opts = dict(method="LSODA", rtol=1e-12, atol=1e-12, events=caught_up)
+    sol = solve_ivp(rhs, (t_slip, v["t_ramp"]), [0.0, acc * t_slip], **opts)   # the ramp's kink: split
+    if not sol.t_events[0].size:
+        sol = solve_ivp(rhs, (v["t_ramp"], v["t_end"]), sol.y[:, -1], **opts)
+    return t_slip, sol.t_events[0][0], sol.y_events[0][0][0]
+
+
+def test_rigid_slip_onset_and_distance_match_newton():
+    """Too little traction: the slip is reported; its onset and its length match an independent solve."""
+    sc = scene("winch_start_slip.toml", effects={"rope_elasticity": "rigid"}, params={"t_end": "40 s"},
+               numerics={"sim_rtol": 1e-11})
+    sim = simulate(sc)
+    s = sim.summary
+    assert s["slip"]
+    t0, t1, dist = _rigid_slip_truth(sc.parameters, math.exp(sc.parameters["mu_d"] * sc.parameters["alpha_d"]))
+    (ev,) = s["slip_events"]
+    assert ev["t_start"] == pytest.approx(t0, rel=1e-8)
+    assert ev["t_end"] == pytest.approx(t1, rel=1e-7)
+    assert ev["distance"] == pytest.approx(dist, rel=1e-7)
+    assert "SLIP on the drum from t = " in sim.report()
+
+
+def test_elastic_slip_is_reported_with_time_and_distance():
+    sim = simulate(scene("winch_start_slip.toml", params={"t_end": "30 s"}))
+    s = sim.summary
+    assert s["slip"] and s["slip_events"][0]["t_start"] > 0 and s["slip_events"][0]["distance"] > 0
+    h = sim.history
+    # while stuck the rope on the drum moves with the drum; while slipping the drum runs ahead
+    stuck = h[h["drum"] == "stick"]
+    assert np.abs(stuck["slip_speed [m/s]"]).max() < 1e-9
+    assert (h.loc[h["drum"] == "slip_fwd", "slip_speed [m/s]"] >= -1e-9).all()
+    assert s["slip_distance"] == pytest.approx(sum(e["distance"] for e in s["slip_events"]), rel=1e-9)
+
+
+# --- natural frequencies ------------------------------------------------------------------------
+
+def test_single_spring_natural_frequency():
+    """One mass between two springs to the (held) drum: ω_d = sqrt(2k/m − (c/m)²), from a fit."""
+    from ropemodel.dynamics.chain import Chain
+    from ropemodel.dynamics.hybrid import HybridIntegrator
+    from ropemodel.dynamics.profile import start_profile
+    from ropemodel.dynamics.system import LoopSystem, equilibrium
+
+    m, k, c = 5000.0, 2.0e5, 800.0
+    chain = Chain(np.array([10.0, m]), np.array([0.0, -1.0e4]), np.array([0.0, 0.0]), (5.0, 0.0, 0.0),
+                  (5.0, 0.0, 0.0), [(0, 1, k, c, True), (1, 0, k, c, True)], load=1, sheave=1)
+    values = {"v_eps": 0.01, "F_nwl": 2e4, "m_t": 1.0, "stroke": 1.0}
+    sys = LoopSystem(chain, values, ratio=1e6)
+    phases, _ = start_profile(1.0, 2.0, 12.0, +1)
+    x0 = equilibrium(sys, 0.0, z_free=False, z_fixed=1.0)   # a locked take-up pretensions both springs
+    rows = []
+    HybridIntegrator(sys, phases, 1e-11, 0.005, "cvodes", 1e4, 1.0, atol_u=1e-12).run(
+        x0, "stick", "fixed", lambda x, t, k_, d, te: (d, te), None,
+        lambda t, X, out, d, te: rows.append(np.vstack([t, X[3]])))
+    t, v = np.hstack(rows)
+    sel = t > 2.0 + 1e-9
+    w_d = math.sqrt(2 * k / m - (c / m) ** 2)
+
+    def model(t, A, B, w, sigma):
+        return 1.0 + np.exp(-sigma * (t - 2)) * (A * np.cos(w * (t - 2)) + B * np.sin(w * (t - 2)))
+
+    p, _ = curve_fit(model, t[sel], v[sel], p0=[-0.1, 0.0, w_d * 1.01, c / m], xtol=1e-14, ftol=1e-14)
+    assert p[2] == pytest.approx(w_d, rel=1e-6)
+    assert p[3] == pytest.approx(c / m, rel=1e-5)
+
+
+def test_spring_scene_two_mode_frequencies():
+    """rope_elasticity = spring, fixed tensioner, no damping: the load's motion after the ramp is the sum
+    of two modes; their frequencies, fitted to the simulated history, are the roots of
+    det(K − ω² M) = 0 (closed form, 2 degrees of freedom: the rope on the return sheave and the load)."""
+    sc = scene(effects={"rope_elasticity": "spring", "tensioner": "fixed"},
+               params={"rope_damping": 0.0, "t_end": "25 s", "t_ramp": "5 s", "x_m": "700 m", "F_nwl": "80 kN"},
+               numerics={"sim_rtol": 1e-11, "sim_dt": 0.01})
+    v = sc.parameters
+    sim = simulate(sc)
+    assert not sim.summary["slack"]
+    EA = v["L_u"] / v["q_lw"]
+    k_S, k_2, k_1 = EA / v["L_u"], EA / (v["L_u"] - v["x_m"]), EA / v["x_m"]
+    m_rope = v["q_l"] / G_N
+    m_R = m_rope * (v["L_u"] + (v["L_u"] - v["x_m"])) / 2
+    m_L = v["G_m"] / G_N + m_rope * (v["L_u"] - v["x_m"] + v["x_m"]) / 2
+    K = np.array([[k_S + k_2, -k_2], [-k_2, k_1 + k_2]])
+    # closed form of the 2x2 generalised eigenproblem
+    a_, b_, c_ = m_R * m_L, -(K[0, 0] * m_L + K[1, 1] * m_R), K[0, 0] * K[1, 1] - K[0, 1] ** 2
+    w2 = [(-b_ - s * math.sqrt(b_ * b_ - 4 * a_ * c_)) / (2 * a_) for s in (1, -1)]
+    w = np.sqrt(w2)
+    h = sim.history
+    sel = h["t [s]"] > v["t_ramp"] + 1e-9
+    t = h.loc[sel, "t [s]"].to_numpy() - v["t_ramp"]
+    y = h.loc[sel, "v_load [m/s]"].to_numpy() - v["v_pj"]
+
+    def residual(freq):
+        A = np.column_stack([np.cos(freq[0] * t), np.sin(freq[0] * t), np.cos(freq[1] * t), np.sin(freq[1] * t)])
+        coef, *_ = np.linalg.lstsq(A, y, rcond=None)
+        return A @ coef - y, coef
+
+    fit = least_squares(lambda f: residual(f)[0], w * (1 + 1e-3), xtol=1e-15, ftol=1e-15, gtol=1e-15)
+    res, coef = residual(fit.x)
+    assert np.max(np.abs(res)) < 1e-5 * np.max(np.abs(y))          # two modes explain the motion
+    assert min(np.hypot(coef[0], coef[1]), np.hypot(coef[2], coef[3])) > 1e-4   # both are excited
+    assert fit.x[0] == pytest.approx(w[0], rel=1e-7)                # the load's mode (large amplitude)
+    assert fit.x[1] == pytest.approx(w[1], rel=1e-5)                # the sheave's mode (small amplitude)
+
+
+# --- energy ---------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("name", ["winch_start.toml", "winch_start_slip.toml", "winch_start_stroke.toml",
+                                  "winch_start_brake.toml"])
+def test_energy_balance_to_integrator_tolerance(name):
+    """Drum work = Δ(kinetic + potential) + dissipated (damping, resistance, slip, stop impacts)."""
+    res = {}
+    for rtol in (1e-6, 1e-9):
+        sim = simulate(scene(name, params={"t_end": "20 s"}, numerics={"sim_rtol": rtol}))
+        res[rtol] = sim.summary["energy_residual"]
+        assert res[rtol] < 100 * rtol
+    assert res[1e-9] < res[1e-6]
+
+
+# --- convergence ----------------------------------------------------------------------------------
+
+def test_rest_take_up_converges_to_the_continuum_integral():
+    """Take-up at rest = loop elongation = ∫T dx / EA of the continuum (no resistance at rest): the
+    lumped value converges at first order as segments are added."""
+    errs = []
+    for n in (2, 4, 8, 16, 32):
+        sc = scene(params={"t_end": "1 s", "t_ramp": "1 s"}, numerics={"segments": n})
+        sim = simulate(sc)
+        v = sc.parameters
+        z0 = sim.history["take_up [m]"].iloc[0]
+        s, L, x, h = math.sin(v["alpha_u"]), v["L_u"], v["x_m"], v["F_nwl"] / 2
+        EA = L / v["q_lw"]
+        w = v["q_l"] * s
+        C2 = L - x
+        exact = (h * L + w * L ** 2 / 2                                 # unwinding rope
+                 + h * C2 + w * C2 ** 2 / 2                             # sheave → load
+                 + (h + w * C2 + v["G_m"] * s) * x + w * x ** 2 / 2) / EA  # load → drum
+        errs.append(abs(z0 - exact) / exact)
+    assert errs[-1] < 2e-3
+    for e0, e1 in zip(errs, errs[1:]):
+        assert e1 < 0.6 * e0
+
+
+@pytest.mark.slow
+def test_peak_force_converges_with_segments():
+    peaks = [simulate(scene(params={"t_end": "15 s"}, numerics={"segments": n})).summary["F_C_max"]
+             for n in (2, 4, 8, 16, 32)]
+    d = np.abs(np.diff(peaks))
+    assert all(d1 < d0 for d0, d1 in zip(d, d[1:]))
+    assert d[-1] / peaks[-1] < 5e-4
+
+
+def test_peak_force_converges_with_segments_fast():
+    peaks = [simulate(scene(params={"t_end": "8 s"}, numerics={"segments": n})).summary["F_C_max"]
+             for n in (2, 4, 8)]
+    assert abs(peaks[2] - peaks[1]) < abs(peaks[1] - peaks[0])
+
+
+# --- stroke ---------------------------------------------------------------------------------------
+
+def test_tensioner_out_of_stroke_is_reported():
+    sim = simulate(scene("winch_start_stroke.toml", params={"t_end": "20 s"}))
+    s = sim.summary
+    assert s["stroke_exhausted"]
+    ev = s["stroke_events"][0]
+    assert ev["event"] == "stroke_end"
+    h = sim.history
+    at_end = h[h["tensioner"] == "at_end"]
+    assert len(at_end) > 0
+    np.testing.assert_allclose(at_end["take_up [m]"], sim.scene.parameters["stroke"], rtol=1e-12)
+    # before the event the take-up stays within the stroke
+    assert h.loc[h["t [s]"] < ev["t"], "take_up [m]"].max() <= sim.scene.parameters["stroke"] + 1e-12
+    assert s["stroke_used"] == pytest.approx(sim.scene.parameters["stroke"], rel=1e-12)
+    assert "RAN OUT OF STROKE" in sim.report()
+
+
+def test_enough_stroke_is_not_reported():
+    s = simulate(scene(params={"t_end": "20 s"})).summary
+    assert not s["stroke_exhausted"] and s["stroke_used"] < s["stroke"]
+
+
+# --- structure and input ------------------------------------------------------------------------
+
+@pytest.mark.parametrize("elasticity,n_nodes", [("rigid", 1), ("spring", 3), ("segments", 24)])
+def test_only_the_chosen_rope_model_is_built(elasticity, n_nodes):
+    sim = simulate(scene(effects={"rope_elasticity": elasticity}, params={"t_end": "6 s"}))
+    assert sim.summary["n_nodes"] == n_nodes
+
+
+def test_dynamic_effects_leave_the_static_model_alone():
+    """The dynamic effects add parameters, no equation: the static answers are the paper's Fig. 9."""
+    from ropemodel.core.model import Model
+
+    dyn, fig9 = scene(), rm.load_scene()
+    static = Model("winch", {**dyn.effects, "dynamics": "none"})
+    assert [str(e.residual) for e in dyn.built.equations] == [str(e.residual) for e in static.equations]
+    r_dyn, r_st = rm.run(dyn), rm.run(fig9)
+    for k in ("F_C_up", "F_C_down", "F_S_up", "F_S_down", "dF_up"):
+        assert r_dyn[k] == r_st[k]
+
+
+@pytest.mark.parametrize("change,match", [
+    (dict(effects={"rope_elasticity": "rigid", "tensioner": "fixed"}), "statically indeterminate"),
+    (dict(params={"x_m": "1150 m"}), "x_m"),
+    (dict(params={"t_end": "2 s"}), "t_end"),
+    (dict(params={"rope_damping": -0.1}), "rope_damping"),
+    (dict(params={"F_nwl": "0 kN", "x_m": "100 m"}), "slack"),
+    (dict(numerics={"segments": 0}), "segments"),
+])
+def test_bad_input_is_refused(change, match):
+    with pytest.raises(rm.InputError, match=match):
+        simulate(scene(**change))
+
+
+def test_static_scene_has_no_transient(fig9):
+    with pytest.raises(rm.InputError, match="dynamics"):
+        simulate(fig9)
