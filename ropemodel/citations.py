@@ -21,6 +21,10 @@ CITATIONS: dict[str, str] = {
         "EN 12385-4:2002+A1:2008. Steel wire ropes - Safety - Part 4: Stranded ropes for general lifting "
         "applications (rope-class factors K, W, C; rope grades)."
     ),
+    "thirion1946": (
+        "P. Thirion (1946). Les coefficients d'adhérence du caoutchouc. Revue Générale du Caoutchouc "
+        "23, 101-106 (friction of rubber falling with contact pressure, 1/mu = a + b p)."
+    ),
 }
 
 

@@ -1,0 +1,289 @@
+"""Rope on a friction sheave (``model = "sheave"``): tension along the arc of contact.
+
+Hajduk (1992), :mod:`ropemodel.papers.hajduk1992`; MODELS.md §2.  Outputs: ``S``
+(tension where the rope leaves the sheave, after the wrap ``alpha``) and
+``S_ratio`` = S/S_0; the distribution S(α) along the arc is the table
+"tension along the arc" (``Result.frames``, and :func:`ropemodel.lining.distribution`).
+
+Effects and variants
+--------------------
+``lining``    ``voigt`` (default) — isotropic Voigt lining, ``Q`` [1/N] and ``lambda`` [s]
+                (eq. (6), (19)); ``voigt_anisotropic`` — ``Q_R``, ``Q_T``, ``lambda_R``,
+                ``lambda_T`` (eq. (5), (19) generalised); ``voigt_physical`` — from the
+                lining's data ``h``, ``E``, ``G``, ``a``, ``R``, ``eta_R``, ``eta_T``
+                (Q_R = h/(E R² a), Q_T = μ/(G R a), λ_R = η_R/E, λ_T = η_T/G);
+                ``rigid`` — Euler–Eytelwein, S = S_0 e^{μα} (eq. (8)).
+``friction``  ``constant`` (default) — μ constant; ``thirion`` — μ(p) = μ/(1 + p/p_c) with the
+                contact pressure p = S/(R a) (Thirion 1946; ``mu`` is then the
+                low-pressure limit): no closed form, needs ``[numerics] method = "ode"``.
+
+Numerics
+--------
+``method``      ``"closed"`` (default): the exact implicit solution by Newton in ln s;
+                ``"ode"``: integrate the ODE (the only way for ``friction = "thirion"``).
+``integrator``  ``"rk4"`` (default), ``"rk"``, ``"cvodes"``, ``"idas"``, ``"collocation"``
+                (:mod:`ropemodel.lining.integrators`).
+``rtol``        target relative error of S for the ODE (default 1e-7).
+``state``       ``"log"`` (default: ln S in a stretched angle) or ``"invariant"``.
+``points``      number of angles in the distribution table (default 37).
+
+Limits: ``omega = 0`` (slow sheave) and ``lambda = 0`` (elastic lining) are the
+limit k = λω → 0, handled exactly (see :mod:`ropemodel.papers.hajduk1992`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import casadi as ca
+import numpy as np
+import pandas as pd
+
+from ropemodel.effects.base import (Equation, Submodel, choice, define_effect, define_numerics,
+                                    positive_number, register)
+from ropemodel.errors import InputError
+from ropemodel.lining.integrators import INTEGRATORS, log_ratio_function, segment_function
+from ropemodel.papers import friction as fr
+from ropemodel.papers import hajduk1992 as hj
+from ropemodel.quantity import Quantity
+
+MODEL = "sheave"
+SRC = "Hajduk 1992"
+
+_pos = dict(low=0.0, low_open=True, positive=True)
+_nonneg = dict(low=0.0)
+
+S_0 = Quantity("S_0", "N", "tension of the rope entering the arc (slack side)", "kN", guess=1e4, **_pos)
+MU = Quantity("mu", "1", "friction coefficient of the rope on the lining (low-pressure limit with "
+              "friction = thirion)", warn_high=1.0, guess=0.2, **_pos)
+ALPHA = Quantity("alpha", "rad", "wrap angle (arc of contact)", "deg", warn_high=10 * math.pi, guess=math.pi,
+                 **_pos)
+OMEGA = Quantity("omega", "rad/s", "angular speed of the sheave (0: the slow-sheave limit)", guess=1.0, **_nonneg)
+S_OUT = Quantity("S", "N", "tension of the rope leaving the arc", "kN", equation=f"{SRC}, eq. (19)", **_pos)
+S_RATIO = Quantity("S_ratio", "1", "tension ratio S/S_0 over the arc", equation="S/S_0", **_pos)
+C_MU = Quantity("c_mu", "1/N", "pressure sensitivity of friction, mu(S) = mu/(1 + c_mu S) (0: constant)",
+                equation="1/(p_c R a)", **_nonneg)
+R_SHEAVE = Quantity("R", "m", "sheave radius to the rope centre", "mm", guess=1.0, **_pos)
+A_WIDTH = Quantity("a", "m", "width of the lining in contact with the rope", "mm", guess=0.03, **_pos)
+
+
+def _compliance(name, what):
+    return Quantity(name, "1/N", f"{what} compliance of the lining", guess=1e-5, **_nonneg)
+
+
+def _retardation(name, what):
+    return Quantity(name, "s", f"{what} retardation time of the lining (eta/modulus)", guess=0.01, **_nonneg)
+
+
+define_effect(MODEL, "lining", "voigt", "the sheave's lining: Voigt bodies (visco-elastic) or rigid")
+define_effect(MODEL, "friction", "constant", "rope-lining friction law")
+define_numerics(MODEL, "method", "closed", "closed: exact implicit solution; ode: integrate the ODE",
+                choice("closed", "ode"))
+define_numerics(MODEL, "integrator", "rk4", "ODE integrator", choice(*INTEGRATORS))
+define_numerics(MODEL, "rtol", 1e-7, "target relative error of S for the ODE", positive_number(1e-14, 1e-2))
+define_numerics(MODEL, "state", "log", "ODE state: log (ln S, stretched angle) or invariant",
+                choice("log", "invariant"))
+define_numerics(MODEL, "points", 37, "angles in the distribution table",
+                lambda key, value: int(positive_number(1.0, 10000)(key, value)))
+
+
+class _Lining(Submodel):
+    """Common part of the lining variants: S from (q_R, k_R, q_T, k_T) by the closed form or the ODE.
+
+    Subclasses give ``args`` (the quantities the lining data come from) and
+    ``data(S_0, omega, *args)`` → (Q_R, k_R, Q_T, k_T) as expressions (SX, MX or float).
+    """
+
+    citations = ("hajduk1992",)
+    args: tuple[str, ...] = ()
+
+    def data(self, S_0, omega, *args):
+        raise NotImplementedError
+
+    def _log_ratio_closed(self, v):
+        Q_R, k_R, Q_T, k_T = self.data(v["S_0"], v["omega"], *[v[a] for a in self.args])
+        return hj.log_tension_ratio(v["mu"], v["alpha"], Q_R * v["S_0"], k_R, Q_T * v["S_0"], k_T)
+
+    def _call(self):
+        """MX Function (S_0, mu, alpha, omega, c_mu, *args) → S through the integrator."""
+        names = ("S_0", "mu", "alpha", "omega", "c_mu", *self.args)
+        syms = [ca.MX.sym(n) for n in names]
+        env = dict(zip(names, syms))
+        Q_R, k_R, Q_T, k_T = self.data(env["S_0"], env["omega"], *[env[a] for a in self.args])
+        o = self.options
+        f = log_ratio_function(o.get("integrator", "rk4"), o.get("state", "log"), float(o.get("rtol", 1e-7)))
+        S0 = env["S_0"]
+        y = f(mu=env["mu"], alpha=env["alpha"], q_R=Q_R * S0, k_R=k_R, q_T=Q_T * S0, k_T=k_T,
+              beta=env["c_mu"] * S0)["y"]
+        return ca.Function(f"S_{self.variant}_ode", syms, [S0 * ca.exp(y)], list(names), ["S"]), names
+
+    def equations(self, v):
+        eqs = [Equation("S_ratio", v["S_ratio"] * v["S_0"] - v["S"], "S_ratio = S/S_0")]
+        if self.options.get("method", "closed") == "ode":
+            fun, names = self._call()
+            eqs.append(Equation.from_call("S", fun, names, f"{SRC}, eq. (5)-(6) integrated"))
+        else:
+            eqs.append(Equation("S", v["S"] - v["S_0"] * ca.exp(self._log_ratio_closed(v)),
+                                f"{SRC}, eq. (19)"))
+        return eqs
+
+    def numeric_data(self, values):
+        """(q_R, k_R, q_T, k_T) as floats for the SI ``values`` of a solved point."""
+        Q_R, k_R, Q_T, k_T = self.data(values["S_0"], values["omega"], *[values[a] for a in self.args])
+        return Q_R * values["S_0"], k_R, Q_T * values["S_0"], k_T
+
+    def frames(self, values, scene):
+        return {"tension along the arc": distribution_frame(values, scene)}
+
+
+@register(MODEL, "lining", "rigid")
+class RigidLining(_Lining):
+    """Rigid lining: Euler–Eytelwein, S = S_0 e^{μα}; Hajduk (1992) eq. (8), the Q = 0 case."""
+
+    description = "rigid lining (Euler-Eytelwein)"
+    citations = ("euler_eytelwein", "hajduk1992")
+    quantities = (S_0, MU, ALPHA, S_OUT, S_RATIO)
+
+    def data(self, S_0, omega, *args):
+        return 0.0, 1.0, 0.0, 1.0
+
+    def _call(self):
+        fun, names = super()._call()
+        # a rigid lining has no omega: bind it to 1 (unused: q = 0)
+        syms = [ca.MX.sym(n) for n in ("S_0", "mu", "alpha", "c_mu")]
+        out = fun(syms[0], syms[1], syms[2], 1.0, syms[3])
+        return ca.Function("S_rigid_ode", syms, [out], ["S_0", "mu", "alpha", "c_mu"], ["S"]), \
+            ("S_0", "mu", "alpha", "c_mu")
+
+    def equations(self, v):
+        if self.options.get("method", "closed") == "ode":
+            return super().equations(v)
+        return [Equation("S_ratio", v["S_ratio"] * v["S_0"] - v["S"], "S_ratio = S/S_0"),
+                Equation("S", v["S"] - v["S_0"] * fr.euler_eytelwein_ratio(v["mu"], v["alpha"]),
+                         "Euler-Eytelwein, Hajduk 1992 eq. (8)")]
+
+    def numeric_data(self, values):
+        return 0.0, 1.0, 0.0, 1.0
+
+
+@register(MODEL, "lining", "voigt")
+class VoigtLining(_Lining):
+    """Isotropic Voigt lining (λ_R = λ_T = λ, Q = Q_R + Q_T): Hajduk (1992) eq. (6), (19)."""
+
+    description = "isotropic Voigt lining: compliance Q, retardation time lambda"
+    quantities = (S_0, MU, ALPHA, OMEGA, _compliance("Q", "total (radial + tangential)"),
+                  _retardation("lambda", "the"), S_OUT, S_RATIO)
+    args = ("Q", "lambda")
+
+    def data(self, S_0, omega, Q, lam):
+        return Q, lam * omega, 0.0, 1.0
+
+
+@register(MODEL, "lining", "voigt_anisotropic")
+class AnisotropicVoigtLining(_Lining):
+    """Voigt lining with separate radial and tangential bodies: Hajduk (1992) eq. (5), (19) generalised."""
+
+    description = "anisotropic Voigt lining: Q_R, Q_T, lambda_R, lambda_T"
+    quantities = (S_0, MU, ALPHA, OMEGA, _compliance("Q_R", "radial"), _compliance("Q_T", "tangential"),
+                  _retardation("lambda_R", "radial"), _retardation("lambda_T", "tangential"), S_OUT, S_RATIO)
+    args = ("Q_R", "Q_T", "lambda_R", "lambda_T")
+
+    def data(self, S_0, omega, Q_R, Q_T, lam_R, lam_T):
+        return Q_R, lam_R * omega, Q_T, lam_T * omega
+
+
+@register(MODEL, "lining", "voigt_physical")
+class PhysicalVoigtLining(AnisotropicVoigtLining):
+    """Voigt lining from its physical data: Hajduk (1992) eq. (1), (3): Q_R = h/(E R² a),
+    Q_T = μ/(G R a), λ_R = η_R/E, λ_T = η_T/G; then as ``voigt_anisotropic``."""
+
+    description = "Voigt lining from thickness, moduli, viscosities and the contact geometry"
+    quantities = (
+        *AnisotropicVoigtLining.quantities[:4], R_SHEAVE, A_WIDTH,
+        Quantity("h", "m", "thickness of the lining", "mm", guess=0.02, **_pos),
+        Quantity("E", "Pa", "Young's modulus of the lining", "MPa", guess=5e7, **_pos),
+        Quantity("G", "Pa", "shear modulus of the lining", "MPa", guess=2e7, **_pos),
+        Quantity("eta_R", "Pa*s", "viscosity of the lining in compression", "MPa*s", guess=1e5, **_nonneg),
+        Quantity("eta_T", "Pa*s", "viscosity of the lining in shear", "MPa*s", guess=1e5, **_nonneg),
+        *(Quantity(q.name, q.unit, q.description, q.display, low=0.0, equation=eq)
+          for q, eq in zip(AnisotropicVoigtLining.quantities[4:8],
+                           (f"{SRC}, eq. (6): h/(E R^2 a)", f"{SRC}, eq. (6): mu/(G R a)",
+                            f"{SRC}, eq. (1): eta_R/E", f"{SRC}, eq. (1): eta_T/G"))),
+        S_OUT, S_RATIO,
+    )
+
+    def equations(self, v):
+        return super().equations(v) + [
+            Equation("Q_R", v["Q_R"] - hj.radial_compliance(v["h"], v["E"], v["R"], v["a"]), f"{SRC}, eq. (6)"),
+            Equation("Q_T", v["Q_T"] - hj.tangential_compliance(v["mu"], v["G"], v["R"], v["a"]), f"{SRC}, eq. (6)"),
+            Equation("lambda_R", v["lambda_R"] - hj.retardation_time(v["eta_R"], v["E"]), f"{SRC}, eq. (1)"),
+            Equation("lambda_T", v["lambda_T"] - hj.retardation_time(v["eta_T"], v["G"]), f"{SRC}, eq. (1)"),
+        ]
+
+
+@register(MODEL, "friction", "constant")
+class ConstantFriction(Submodel):
+    """Constant friction coefficient μ (c_mu = 0)."""
+
+    description = "constant friction coefficient"
+    quantities = (C_MU,)
+
+    def equations(self, v):
+        return [Equation("c_mu", v["c_mu"], "constant friction: c_mu = 0")]
+
+
+@register(MODEL, "friction", "thirion")
+class ThirionFriction(Submodel):
+    """Pressure-dependent friction, Thirion's law 1/μ = 1/μ_0 + p/(μ_0 p_c), i.e. μ = μ_0/(1 + p/p_c).
+
+    Thirion (1946) measured that the friction coefficient of rubber falls with the
+    contact pressure as 1/μ = a + b p; Hajduk (1992) notes (footnote, refs [1]-[4])
+    that the friction of elastic linings depends on pressure.  The contact
+    pressure of a rope on a lining of width a at radius R is p = S/(R a) (the
+    radial load per unit arc length S/R spread over the width; Hajduk eq. (3)).
+    So μ(S) = μ/(1 + c_mu S) with c_mu = 1/(p_c R a) [1/N]; ``mu`` is the
+    low-pressure limit μ_0.  p_c → ∞ is constant friction.  The tangential
+    compliance Q_T (∝ μ) is kept at its given value.
+
+    No closed form: needs ``[numerics] method = "ode"``.
+    """
+
+    description = "friction falling with contact pressure (Thirion's law)"
+    citations = ("thirion1946",)
+    quantities = (C_MU, R_SHEAVE, A_WIDTH,
+                  Quantity("p_c", "Pa", "pressure at which friction halves (Thirion's law)", "MPa", guess=1e6,
+                           **_pos))
+
+    def equations(self, v):
+        return [Equation("c_mu", v["c_mu"] - 1.0 / (v["p_c"] * v["R"] * v["a"]), "c_mu = 1/(p_c R a)")]
+
+    def validate(self, values):
+        if self.options.get("method", "closed") != "ode":
+            raise InputError("friction = 'thirion' (pressure-dependent) has no closed form: "
+                             "set [numerics] method = \"ode\"")
+
+
+def _lining_of(scene) -> _Lining:
+    return next(sm for sm in scene.built.submodels if isinstance(sm, _Lining))
+
+
+def distribution_frame(values: dict, scene, points: int | None = None) -> pd.DataFrame:
+    """S along the arc at ``points`` equally spaced angles 0 … alpha for the SI ``values`` of a
+    solved sheave point (columns with units); by the scene's method."""
+    sm = _lining_of(scene)
+    n = int(points or scene.numerics.get("points", 37))
+    alpha = np.linspace(0.0, values["alpha"], max(n, 2))
+    q_R, k_R, q_T, k_T = sm.numeric_data(values)
+    o = scene.numerics
+    if o.get("method", "closed") == "ode":
+        seg = segment_function(o.get("integrator", "rk4"), o.get("state", "log"), float(o.get("rtol", 1e-7)))
+        y = [0.0]
+        for a0, a1 in zip(alpha[:-1], alpha[1:]):
+            y.append(float(seg(y_a=y[-1], alpha_a=a0, alpha_b=a1, mu=values["mu"], q_R=q_R, k_R=k_R, q_T=q_T,
+                               k_T=k_T, beta=values.get("c_mu", 0.0) * values["S_0"])["y_b"]))
+        y = np.array(y)
+    else:
+        y = np.asarray(hj.log_tension_ratio(values["mu"], alpha, q_R, k_R, q_T, k_T), float)
+    s = np.exp(y)
+    return pd.DataFrame({"alpha [deg]": np.degrees(alpha), "S [kN]": values["S_0"] * s / 1e3, "S/S_0 [-]": s,
+                         "e^(mu alpha) [-]": np.exp(values["mu"] * alpha)})
