@@ -10,7 +10,8 @@ Variants
 --------
 ``none``   (default) no traction equations.
 ``rigid``  traction_d = e^{μ_d α_d} (Euler–Eytelwein).
-``voigt``  the drum is lined with a Voigt (visco-elastic) lining, Hajduk (1992):
+``voigt``  (isotropic lining data ``Q`` [1/N], ``lambda`` [s], drum diameter ``D`` [m]
+           and haulage speed ``v_pj`` [m/s]) the drum is lined with a Voigt (visco-elastic) lining, Hajduk (1992):
            traction_d = s(μ_d α_d, q = Q·F_S_d, k = λ·ω) from the exact implicit
            solution ln s + q s (1 − e^{−α_d/k}) = μ_d α_d, with the drum's angular
            speed ω = 2 v_pj / D.  The ratio depends on F_S_d itself, so the least
@@ -28,8 +29,10 @@ from __future__ import annotations
 import math
 
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
+from ropemodel.errors import InputError
 from ropemodel.effects.winch import DIRECTIONS, DrivePower, MODEL, per_direction
 from ropemodel.papers import friction
+from ropemodel.papers import hajduk1992 as hj
 from ropemodel.quantity import Quantity
 
 V_PJ = next(q for q in DrivePower.quantities if q.name == "v_pj")
@@ -63,6 +66,10 @@ def _margin_equations(v, traction):
     return eqs
 
 
+TRACTION = per_direction("traction", "1", "tension ratio the drum transmits at the onset of slip",
+                         equation="rigid: exp(mu_d alpha_d); voigt: Hajduk 1992 eq. (19) with S_0 = F_S",
+                         positive=True, guess=2.0)
+
 MARGINS = per_direction("slip_margin", "1", "margin against slip on the drum (>= 0: no slip)",
                         equation="F_S traction / (n_slip F_C) - 1")
 
@@ -82,8 +89,7 @@ class RigidLining(Submodel):
     citations = ("euler_eytelwein",)
     quantities = (
         *DRUM,
-        *per_direction("traction", "1", "tension ratio the drum transmits at the onset of slip",
-                       equation="Euler-Eytelwein, exp(mu_d alpha_d)", positive=True, guess=2.0),
+        *TRACTION,
         *MARGINS,
     )
 
@@ -93,3 +99,44 @@ class RigidLining(Submodel):
                         "Euler-Eytelwein, Hajduk 1992 eq. (8)")
                for d in DIRECTIONS]
         return eqs + _margin_equations(v, lambda d: v[f"traction_{d}"])
+
+
+@register(MODEL, "lining", "voigt")
+class VoigtDrumLining(Submodel):
+    """No-slip check on a drum with an isotropic Voigt lining, Hajduk (1992) eq. (19).
+
+    traction_d = s with ln s + q s (1 − e^{−α_d/k}) = μ_d α_d, q = Q·F_S_d (the slack
+    side enters the arc: S_0 = F_S_d), k = λω, ω = 2 v_pj/D (the drum's rim moves
+    with the rope).  The closed form is Newton in ln s
+    (:func:`ropemodel.papers.hajduk1992.tension_ratio`).  q > 0 lowers the
+    traction below Euler–Eytelwein, more so at high F_S: the least F_nwl for no
+    slip solves an implicit equation (the acausal core's Newton).
+    """
+
+    description = "no-slip check on a drum with an isotropic Voigt lining (Hajduk 1992)"
+    citations = ("hajduk1992",)
+    quantities = (
+        *DRUM,
+        Quantity("Q", "1/N", "compliance of the drum lining (radial + tangential), Hajduk 1992",
+                 low=0.0, guess=1e-6),
+        Quantity("lambda", "s", "retardation time of the drum lining (eta/E)", low=0.0, guess=0.01),
+        D_DRUM,
+        V_PJ,
+        *TRACTION,
+        *MARGINS,
+    )
+
+    def equations(self, v):
+        k = v["lambda"] * 2.0 * v["v_pj"] / v["D"]
+        eqs = [Equation(f"traction_{d}",
+                        v[f"traction_{d}"] - hj.tension_ratio(v["mu_d"], v["alpha_d"], v["Q"] * v[f"F_S_{d}"], k),
+                        "Hajduk 1992, eq. (19), S_0 = F_S, omega = 2 v_pj / D")
+               for d in DIRECTIONS]
+        return eqs + _margin_equations(v, lambda d: v[f"traction_{d}"])
+
+    def validate(self, values):
+        for d in DIRECTIONS:
+            F_S = values.get(f"F_S_{d}")
+            if F_S is not None and F_S <= 0:
+                raise InputError(f"F_S_{d} = {F_S:g} N: the Voigt lining needs a positive slack-side force "
+                                 f"(S_0 = F_S > 0)")
