@@ -126,6 +126,60 @@ def test_rigid_slip_onset_and_distance_match_newton():
     assert "SLIP on the drum from t = " in sim.report()
 
 
+VOIGT = {"Q": "2e-6 1/N", "lambda": "0.05 s", "D": "2.5 m"}
+
+
+def test_voigt_lining_without_compliance_is_the_rigid_drum():
+    """Q = 0: Hajduk's eq. (19) is Euler–Eytelwein, so the transient is the rigid drum's."""
+    rigid = simulate(scene("winch_start_slip.toml", effects={"lining": "rigid"}, params={"t_end": "12 s"}))
+    voigt = simulate(scene("winch_start_slip.toml", effects={"lining": "voigt"},
+                           params={**VOIGT, "Q": "0 1/N", "t_end": "12 s"}))
+    assert voigt.summary["slip_events"][0]["t_start"] == pytest.approx(rigid.summary["slip_events"][0]["t_start"],
+                                                                       rel=1e-12)
+    np.testing.assert_allclose(voigt.history["F_C [N]"], rigid.history["F_C [N]"], rtol=1e-9)
+
+
+def test_voigt_lining_slip_onset_matches_an_independent_solve():
+    """Rigid rope on a Voigt-lined drum: the drum slips when F_C = s·F_S, s from ln s + q s c = μα
+    (Hajduk 1992 eq. (19), q = Q F_S, c = 1 − e^{−α/(λω)}, ω = 2v/D) solved here by brentq."""
+    sc = scene("winch_start.toml", effects={"lining": "voigt", "rope_elasticity": "rigid"},
+               params={**VOIGT, "mu_d": 0.25, "alpha_d": "540 deg", "t_end": "6 s"})
+    v = sc.parameters
+    s = simulate(sc).summary
+    assert s["slip"]
+    m_C = (v["G_m"] + v["q_l"] * v["L_u"]) / G_N
+    m_S = v["q_l"] * v["L_u"] / G_N
+    sa, ca_ = math.sin(v["alpha_u"]), math.cos(v["alpha_u"])
+    acc = v["v_pj"] / v["t_ramp"]
+
+    def ratio(F_S, speed):
+        k = v["lambda"] * 2 * speed / v["D"]
+        c = 1 - math.exp(-v["alpha_d"] / k) if k > 0 else 1.0
+        mua = v["mu_d"] * v["alpha_d"]
+        return brentq(lambda x: math.log(x) + v["Q"] * F_S * x * c - mua, 1e-12, math.exp(mua) * 1.0000001,
+                      xtol=1e-15, rtol=1e-15)
+
+    def margin(t):
+        th = math.tanh(acc * t / v["v_eps"])
+        F_C = v["F_nwl"] / 2 + (v["G_m"] + v["q_l"] * v["L_u"]) * sa + (
+            v["mu_pm"] * v["G_m"] + v["mu_pl"] * v["q_l"] * v["L_u"]) * ca_ * th + m_C * acc
+        F_S = v["F_nwl"] / 2 + v["q_l"] * v["L_u"] * sa - v["mu_pl"] * v["q_l"] * v["L_u"] * ca_ * th - m_S * acc
+        return ratio(F_S, acc * t) * F_S - F_C
+
+    t_slip = brentq(margin, 1e-9, v["t_ramp"], xtol=1e-14)
+    assert s["slip_events"][0]["t_start"] == pytest.approx(t_slip, rel=1e-8)
+    assert s["traction_ratio"] < math.exp(v["mu_d"] * v["alpha_d"])    # the lining costs traction
+
+
+def test_slip_from_rest_is_reported():
+    """A lining so compliant that the drum cannot hold the load at rest: slip from t = 0."""
+    sim = simulate(scene("winch_start.toml", effects={"lining": "voigt", "rope_elasticity": "rigid"},
+                         params={**VOIGT, "Q": "2e-5 1/N", "t_end": "5 s"}))
+    s = sim.summary
+    assert s["slip"] and s["slip_events"][0]["t_start"] == 0.0
+    assert (sim.history["v_load [m/s]"].iloc[1:] < 0).all()          # the load runs back down
+
+
 def test_elastic_slip_is_reported_with_time_and_distance():
     sim = simulate(scene("winch_start_slip.toml", params={"t_end": "30 s"}))
     s = sim.summary
@@ -151,7 +205,7 @@ def test_single_spring_natural_frequency():
     chain = Chain(np.array([10.0, m]), np.array([0.0, -1.0e4]), np.array([0.0, 0.0]), (5.0, 0.0, 0.0),
                   (5.0, 0.0, 0.0), [(0, 1, k, c, True), (1, 0, k, c, True)], load=1, sheave=1)
     values = {"v_eps": 0.01, "F_nwl": 2e4, "m_t": 1.0, "stroke": 1.0}
-    sys = LoopSystem(chain, values, ratio=1e6)
+    sys = LoopSystem(chain, values, ratio=lambda F_slack, v_drum: 1e6 + 0 * F_slack)   # never slips
     phases, _ = start_profile(1.0, 2.0, 12.0, +1)
     x0 = equilibrium(sys, 0.0, z_free=False, z_fixed=1.0)   # a locked take-up pretensions both springs
     rows = []

@@ -64,6 +64,9 @@ class Simulation:
         d = "up" if self.sign > 0 else "down"
         F_C_static, F_S_static = vals[f"F_C_{d}"], vals[f"F_S_{d}"]
         slips, start = [], None
+        first = h["drum"].iloc[0]
+        if first in ("slip_fwd", "slip_back"):                 # slipping from the start
+            start = (0.0, float(h["slip [m]"].iloc[0]), first)
         for ev in events:
             if ev.name in ("slip_fwd", "slip_back") and start is None:
                 start = (ev.t, _slip_at(self.chain.n, ev.state), ev.name)
@@ -122,7 +125,7 @@ class Simulation:
                  f"dynamic factor {s['dynamic_factor']:.4f}",
                  f"  F_C end {s['F_C_end'] / 1e3:10.2f} kN   F_S end {s['F_S_end'] / 1e3:8.2f} kN   "
                  f"(static {s['F_S_static'] / 1e3:.2f} kN)",
-                 f"  F_S min {s['F_S_min'] / 1e3:10.2f} kN   traction ratio e^(mu alpha) = {s['traction_ratio']:.4g}"]
+                 f"  F_S min {s['F_S_min'] / 1e3:10.2f} kN   traction ratio {s['traction_ratio']:.4g} (at F_S static, v_pj)"]
         if s["slip"]:
             for sl in s["slip_events"]:
                 end = f"{sl['t_end']:.3f} s" if sl["t_end"] is not None else "the end (still slipping)"

@@ -16,7 +16,7 @@ from ropemodel.dynamics.chain import BUILDERS
 from ropemodel.dynamics.history import Simulation
 from ropemodel.dynamics.hybrid import HybridIntegrator
 from ropemodel.dynamics.profile import PROFILES
-from ropemodel.dynamics.system import LoopSystem, equilibrium, mode_functions, traction_ratio
+from ropemodel.dynamics.system import LoopSystem, equilibrium, mode_functions, rigid_traction, voigt_traction
 from ropemodel.errors import InputError
 from ropemodel.problem import run
 
@@ -27,13 +27,9 @@ DRUM_TOL = 1e-9
 INITIAL_TENSIONER = {"constant_force": "free", "fixed": "fixed"}
 
 
-def _traction_rigid(values, scene):
-    return traction_ratio(values)
-
-
-#: lining variant → traction ratio ρ of the drum (``none``: the dynamic model still needs
-#: mu_d and alpha_d, and uses the rigid-drum Euler–Eytelwein ratio)
-TRACTION = {"none": _traction_rigid, "rigid": _traction_rigid}
+#: lining variant → traction ratio ρ(F_slack, v_drum) of the drum (``none``: the dynamic model
+#: still needs mu_d and alpha_d, and uses the rigid-drum Euler–Eytelwein ratio)
+TRACTION = {"none": rigid_traction, "rigid": rigid_traction, "voigt": voigt_traction}
 
 
 def simulate(scene, values: dict | None = None) -> Simulation:
@@ -61,7 +57,7 @@ def simulate(scene, values: dict | None = None) -> Simulation:
     sign = DIRECTION[direction]
     num = scene.numerics
     chain = BUILDERS[eff["rope_elasticity"]](vals, num["segments"])
-    ratio = TRACTION[lining](vals, scene)
+    ratio = TRACTION[lining](vals)
     sys = LoopSystem(chain, vals, ratio)
     phases, v0 = PROFILES[eff["dynamics"]](vals["v_pj"], vals["t_ramp"], vals["t_end"], sign)
     tens0 = INITIAL_TENSIONER[eff["tensioner"]] if not chain.rigid else "fixed"
@@ -112,7 +108,9 @@ def simulate(scene, values: dict | None = None) -> Simulation:
             drum = stick_or_slip(x, t, k, tens)
         return x, drum, TENS_EVENTS.get(name, tens)
 
-    sim = Simulation(scene, static, chain, sign, ratio)
+    # the ratio reported: at the static slack-side force of this direction, at full speed
+    F_slack = static[f"F_S_{direction}"]
+    sim = Simulation(scene, static, chain, sign, float(ratio(F_slack, vals["v_pj"])))
     events = hyb.run(x0, "stick", tens0, choose, transition, sim.record)
     sim.finish(events, sys)
     return sim

@@ -53,8 +53,11 @@ class Layout:
 class LoopSystem:
     """Symbolic forces of a :class:`Chain` with the scene's values (SI)."""
 
-    def __init__(self, chain: Chain, values: dict, ratio: float):
-        self.chain, self.values, self.ratio = chain, values, float(ratio)
+    def __init__(self, chain: Chain, values: dict, ratio):
+        """``ratio(F_slack, v_drum)``: the traction ratio ρ the drum transmits at the onset of slip,
+        as a function of the slack-side force [N] and the drum's surface speed [m/s] (a constant
+        e^{μα} for a rigid drum, Hajduk's eq. (19) for a Voigt lining); works on CasADi symbols."""
+        self.chain, self.values, self.ratio = chain, values, ratio
         self.layout = Layout(chain.n)
         self.x = ca.SX.sym("x", self.layout.nx)
         self.t = ca.SX.sym("t")
@@ -115,23 +118,44 @@ class LoopSystem:
 
 
 def _drum_stick(sys: LoopSystem, v_d, a_d):
-    return a_d, v_d, {"slip_fwd": sys.ratio * sys.F_S(a_d) - sys.F_C(a_d),
-                      "slip_back": sys.ratio * sys.F_C(a_d) - sys.F_S(a_d)}
+    F_C, F_S = sys.F_C(a_d), sys.F_S(a_d)
+    return a_d, v_d, {"slip_fwd": sys.ratio(F_S, v_d) * F_S - F_C,
+                      "slip_back": sys.ratio(F_C, v_d) * F_C - F_S}
+
+
+NEWTON_STEPS = 4
+
+
+def _slip_acceleration(sys: LoopSystem, tight, slack, v_d):
+    """Drum-node acceleration a with tight(a) = ρ(slack(a))·slack(a), Euler–Eytelwein at slip.
+
+    tight and slack are linear in a; with a constant ρ one step of Newton from any start is exact,
+    with a force-dependent ρ (Voigt lining) the unrolled Newton steps converge quadratically from
+    the constant-ρ solution (ρ changes little with the half-element inertia in slack(a)).
+    """
+    a = ca.SX.sym("a")
+    t0, t1 = tight(0.0), tight(1.0) - tight(0.0)
+    s0, s1 = slack(0.0), slack(1.0) - slack(0.0)
+    rho0 = sys.ratio(s0, v_d)
+    x = (rho0 * s0 - t0) / (t1 - rho0 * s1)
+    if not ca.depends_on(sys.ratio(a, v_d), a):
+        return x                                   # constant ratio: the linear solution is exact
+    r = tight(a) - sys.ratio(slack(a), v_d) * slack(a)
+    dr = ca.jacobian(r, a)
+    for _ in range(NEWTON_STEPS):
+        x = x - ca.substitute(r, a, x) / ca.substitute(dr, a, x)
+    return x
 
 
 def _drum_slip_fwd(sys: LoopSystem, v_d, a_d):
-    mC, wC, rC = sys.chain.drum_C
-    mS, wS, rS = sys.chain.drum_S
-    th, rho = sys.th[0], sys.ratio
-    a = (rho * (sys.T_S_out + wS - rS * th) - sys.T_C_in + wC - rC * th) / (mC + rho * mS)
+    """The drum runs ahead of the rope: the winding side is tight, F_C = ρ(F_S)·F_S."""
+    a = _slip_acceleration(sys, sys.F_C, sys.F_S, v_d)
     return a, sys.v[0], {"stick": v_d - sys.v[0]}
 
 
 def _drum_slip_back(sys: LoopSystem, v_d, a_d):
-    mC, wC, rC = sys.chain.drum_C
-    mS, wS, rS = sys.chain.drum_S
-    th, rho = sys.th[0], sys.ratio
-    a = (sys.T_S_out + wS - rS * th - rho * (sys.T_C_in - wC + rC * th)) / (mS + rho * mC)
+    """The rope overruns the drum: the unwinding side is tight, F_S = ρ(F_C)·F_C."""
+    a = _slip_acceleration(sys, sys.F_S, sys.F_C, v_d)
     return a, sys.v[0], {"stick": sys.v[0] - v_d}
 
 
@@ -204,9 +228,28 @@ def mode_functions(sys: LoopSystem, phase, drum: str, tens: str, f_scale: float,
     )
 
 
-def traction_ratio(values: dict) -> float:
-    """Euler–Eytelwein ratio e^{μ_d α_d} of a rigid drum surface [-]."""
-    return math.exp(values["mu_d"] * values["alpha_d"])
+def rigid_traction(values: dict):
+    """Euler–Eytelwein ratio e^{μ_d α_d} of a rigid drum surface [-], whatever the forces."""
+    rho = math.exp(values["mu_d"] * values["alpha_d"])
+    return lambda F_slack, v_drum: rho + 0 * F_slack
+
+
+def voigt_traction(values: dict):
+    """Traction ratio of a drum with an isotropic Voigt lining, Hajduk (1992) eq. (19) [-].
+
+    ln s + q s (1 − e^{−α_d/k}) = μ_d α_d with q = Q·F_slack (the slack side enters the arc)
+    and k = λω, ω = 2|v_drum|/D the drum's angular speed (ω → 0 is the limit of a slow drum,
+    handled by :func:`ropemodel.papers.hajduk1992.tension_ratio`).
+    """
+    from ropemodel.papers import hajduk1992 as hj
+
+    mu, alpha, Q, lam, D = (values[k] for k in ("mu_d", "alpha_d", "Q", "lambda", "D"))
+
+    def rho(F_slack, v_drum):
+        omega = 2.0 * ca.fabs(v_drum) / D if isinstance(v_drum, (ca.SX, ca.MX)) else 2.0 * abs(v_drum) / D
+        return hj.tension_ratio(mu, alpha, Q * F_slack, lam * omega)
+
+    return rho
 
 
 def equilibrium(sys: LoopSystem, v0: float, z_free: bool, z_fixed: float = 0.0) -> np.ndarray:

@@ -31,6 +31,17 @@ circular frequency ω has the damping ratio ζ = τω/2 (for the Fig. 9 load on 
 rope, ω ≈ 1.9 rad/s: τ = 0.05 s gives ζ ≈ 0.05).  The default 0.05 s is an assumption,
 not a measured value (wire-rope loss factors of a few per cent at the load mode): set it
 for your rope.
+
+``v_eps`` smooths the paper's Coulomb resistances (eq. (7)-(11)) as R·tanh(v/v_eps): R in motion
+(tanh(2.5/0.01) = 1 to machine precision, so the steady state is the paper's exactly), zero at
+rest.  Near rest it acts as a viscous damper R/v_eps: a smaller v_eps is closer to Coulomb but
+stiffer for the integrator (BDF copes), and a load brought to rest creeps towards the
+frictionless holding force with time constant ≈ R/(v_eps·k) (12 s for the Fig. 9 load on its
+rope), where real friction would stick anywhere within ±R of it.
+
+Moving masses: the load G_m/g, the rope q_l·L_u/g of each side (lumped on the nodes), the
+return sheave's carriage m_t (constant-force tensioner).  The drum's speed is prescribed (its
+inertia and the motor do not enter; no torque limit is modelled).
 """
 
 from __future__ import annotations
@@ -205,6 +216,7 @@ class ConstantForceTensioner(Submodel):
     quantities = (
         Quantity("m_t", "kg", "mass of the return sheave and its carriage", "kg", low=0.0, low_open=True,
                  default=1000.0, guess=1000.0),
+        # default 100 m: no limit in practice; give the installed stroke to have it checked
         Quantity("stroke", "m", "rope take-up the tensioner allows (the paper's stroke)", "mm",
                  default=100.0, guess=1.0, **_pos),
     )

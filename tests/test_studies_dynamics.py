@@ -1,0 +1,38 @@
+"""The transient studies run in --fast mode and their results hold their physics."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import pytest
+
+STUDIES = Path(__file__).resolve().parent.parent / "studies"
+
+
+def _load(name):
+    spec = importlib.util.spec_from_file_location(name, STUDIES / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_dynamic_factor_study_fast(tmp_path):
+    df = _load("dynamic_factor").main(tmp_path, fast=True)
+    assert (tmp_path / "dynamic_factor.csv").exists() and (tmp_path / "dynamic_factor.png").exists()
+    assert (tmp_path / "dynamic_start.png").exists()
+    for case, d in df.groupby("case"):
+        d = d.sort_values("t_ramp [s]")
+        # the peak falls as the ramp gets longer, and never below the inextensible rope's value
+        assert d["dynamic_factor [-]"].iloc[0] > d["dynamic_factor [-]"].iloc[-1]
+        assert (d["dynamic_factor [-]"] >= d["rigid_factor [-]"] - 1e-9).all()
+        assert d["dynamic_factor [-]"].iloc[-1] == pytest.approx(d["rigid_factor [-]"].iloc[-1], rel=0.25)
+
+
+def test_dynamics_accuracy_study_fast(tmp_path):
+    df = _load("dynamics_accuracy").main(tmp_path, fast=True)
+    assert (tmp_path / "dynamics_accuracy.csv").exists() and (tmp_path / "dynamic_accuracy.png").exists()
+    cv = df[(df["integrator"] == "cvodes") & (df["rtol"] == df["rtol"].min())].sort_values("segments")
+    assert cv["err_F_C_max [-]"].iloc[-1] < cv["err_F_C_max [-]"].iloc[0]     # converges with segments
+    loose = df[(df["integrator"] == "cvodes") & (df["rtol"] == df["rtol"].max())]
+    assert (loose["energy_residual [-]"].to_numpy() > cv["energy_residual [-]"].to_numpy()).all()
