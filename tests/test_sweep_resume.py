@@ -11,6 +11,7 @@ import pytest
 
 import ropemodel as rm
 import ropemodel.sweep.runner as runner
+from ropemodel.cli import main as cli
 from ropemodel.sweep.store import KILL_HOOK
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -29,7 +30,7 @@ def _cli(args, env_extra=None):
 @pytest.mark.parametrize("suffix", [".parquet", ".csv"])
 def test_killed_sweep_resumes_to_the_same_file(tmp_path, suffix, monkeypatch):
     whole = tmp_path / f"whole{suffix}"
-    assert _cli(ARGS + ["-o", str(whole)]).returncode == 0
+    assert cli(ARGS + ["-o", str(whole)]) == 0  # uninterrupted, in this process
 
     cut = tmp_path / f"cut{suffix}"
     killed = _cli(ARGS + ["-o", str(cut)], {KILL_HOOK: "4"})
@@ -53,12 +54,14 @@ def test_killed_sweep_resumes_to_the_same_file(tmp_path, suffix, monkeypatch):
     assert n == 1500
 
 
-def test_resume_refuses_other_settings(tmp_path):
+def test_resume_refuses_other_settings(tmp_path, capsys, monkeypatch):
     out = tmp_path / "x.parquet"
-    assert _cli(ARGS + ["-o", str(out)], {KILL_HOOK: "2"}).returncode == -signal.SIGKILL
-    other = _cli(["sweep", "example", "--vary", "alpha_u=0deg:40deg:61", "--chunk-size", "100", "-o", str(out)])
-    assert other.returncode == 2 and "unfinished sweep with other settings" in other.stderr
-    assert "points" in other.stderr
-    again = _cli(["sweep", "example", "--vary", "alpha_u=0deg:40deg:61", "--chunk-size", "100", "-o", str(out),
-                  "--restart"])
-    assert again.returncode == 0 and len(pd.read_parquet(out)) == 61
+    monkeypatch.setenv(KILL_HOOK, "2")
+    monkeypatch.setattr("os.kill", lambda pid, sig: (_ for _ in ()).throw(KeyboardInterrupt()))
+    assert cli(ARGS + ["-o", str(out)]) == 130  # stopped (here by an interrupt) after 2 chunks
+    monkeypatch.delenv(KILL_HOOK)
+    other = ["sweep", "example", "--vary", "alpha_u=0deg:40deg:61", "--chunk-size", "100", "-o", str(out)]
+    assert cli(other) == 2
+    err = capsys.readouterr().err
+    assert "unfinished sweep with other settings" in err and "points" in err
+    assert cli(other + ["--restart"]) == 0 and len(pd.read_parquet(out)) == 61

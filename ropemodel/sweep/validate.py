@@ -77,7 +77,7 @@ def check_rules(model, points, base: dict) -> None:
     varied = [n for n in points.names if n in params]
     for sm in model.submodels:
         probe = _Recorder({**base, **{n: float(points.values_of(n)[0]) for n in varied}})
-        _call(sm, probe, points, None)
+        _call(sm, probe, points, "at the first point")
         reads = [n for n in varied if n in probe.seen]
         if not reads:
             continue
