@@ -141,3 +141,27 @@ def test_cli_sweep_points_file_and_errors(tmp_path, capsys):
     assert cli(["sweep", "example", "--vary", "alpha_u=0deg:95deg:3", "-o", str(out)]) == 2
     assert "alpha_u = 95 deg" in capsys.readouterr().err
     assert cli(["sweep", "example", "--vary", "alpha_u=0:1:3", "-o", str(tmp_path / "x.xlsx")]) == 2
+
+
+def _voigt_winch():
+    base = rm.load_scene()
+    p = dict(base.parameters)
+    p.update({"mu_d": 0.25, "alpha_d": "200 deg", "Q": 5e-7, "lambda": 0.05, "D": "3000 mm"})
+    return rm.from_dict({"scene": {"model": "winch"}, "effects": {"lining": "voigt", "power": "drive"},
+                         "parameters": p})
+
+
+def test_inverse_sweep_through_newton_catches_non_convergence():
+    """Least pretension for no slip on a Voigt-lined drum (a Newton block).  For Q = 2e-6 1/N no
+    pretension prevents slip (tests/test_winch_lining.py shows it by bracketing): the sweep
+    must refuse that point, not return Newton's last iterate; the other points equal single solves."""
+    scene = _voigt_winch()
+    qs = [3e-7, 5e-7, 2e-6]
+    kwargs = dict(given={"slip_margin_up": 0.0}, find=["F_nwl"], outputs=["F_nwl"], si=True)
+    with pytest.raises(rm.SolveError, match=r"point 2 \(Q = 2e-06.*does not reproduce the given slip_margin_up"):
+        rm.sweep(scene, {"Q": qs}, **kwargs)
+    marked = rm.sweep(scene, {"Q": qs}, errors="mark", **kwargs)
+    assert marked["solved"].tolist() == [True, True, False]
+    for q, f in zip(qs[:2], marked["F_nwl [N]"][:2]):
+        direct = rm.solve(scene.with_values({"Q": q}), {"slip_margin_up": 0.0}, ["F_nwl"])["F_nwl"]
+        assert f == pytest.approx(direct, rel=1e-9)

@@ -55,6 +55,7 @@ class ChunkJob:
     constants: SI values of the inputs that do not vary.
     columns: (label, name, factor) of every column written: the varied inputs, then the outputs.
     checks: output name → (low, high, low_open, high_open, description) ranges a solution must meet.
+    roundtrip: extra output → given output it must reproduce (the forward model at the solution).
     errors: ``"raise"`` (SolveError naming the first bad point) or ``"mark"`` (a ``solved`` column).
     """
 
@@ -67,6 +68,7 @@ class ChunkJob:
     errors: str = "raise"
     backend: str = "auto"
     threads: int = 1
+    roundtrip: dict[str, str] = field(default_factory=dict)
 
     @property
     def key(self) -> str:
@@ -99,6 +101,14 @@ def run_chunk(job: ChunkJob, start: int, inputs: dict[str, np.ndarray]) -> pa.Ta
     failures = {}
     if not ok.all():
         failures["no finite solution (an implicit block did not converge or a division by zero)"] = ~ok
+    for extra, given in job.roundtrip.items():
+        want = np.broadcast_to(inputs[given] if given in inputs else job.constants[given], (n,))
+        with np.errstate(invalid="ignore"):
+            bad = ok & ~(np.abs(outs[extra] - want) <= 1e-6 * np.maximum(1.0, np.abs(want)))
+        if bad.any():
+            failures[f"the solution does not reproduce the given {given} (no such solution, or the "
+                     f"Newton iteration did not converge)"] = bad
+            ok &= ~bad
     for name, (lo, hi, lo_open, hi_open, desc) in job.checks.items():
         y = outs[name]
         with np.errstate(invalid="ignore"):

@@ -133,12 +133,28 @@ def _outputs(problem, outputs, varied):
 
 
 def _job(problem, varied, base, outputs, si, errors, backend, threads) -> ChunkJob:
-    """The problem's Function restricted to ``outputs``, inputs ordered varied first."""
+    """The problem's Function restricted to ``outputs``, inputs ordered varied first.
+
+    For an inverse problem the forward model is also evaluated at each solution, so that a
+    Newton iteration that stopped without converging (no such parameter value) is caught
+    per point: the given outputs must be reproduced (relative 1e-6, as ``Problem.solve``).
+    """
     fun = problem.function
     order = list(varied) + [k for k in problem.knowns if k not in varied]
     syms = {k: ca.MX.sym(k) for k in problem.knowns}
     res = fun.call(syms)
-    sel = ca.Function("sweep_point", [syms[k] for k in order], [res[o] for o in outputs], order, outputs)
+    outs = [res[o] for o in outputs]
+    names = list(outputs)
+    roundtrip = {}
+    if problem.given:
+        forward = Problem(problem.scene).function
+        params = {k: syms[k] if k in syms else res[k] for k in problem.model.parameters}
+        back = forward.call(params)
+        for g in problem.given:
+            roundtrip[f"roundtrip_{g}"] = g
+            names.append(f"roundtrip_{g}")
+            outs.append(back[g])
+    sel = ca.Function("sweep_point", [syms[k] for k in order], outs, order, names)
     if fun.is_a("SXFunction"):
         sel = sel.expand()
     q = problem.model.quantities
@@ -149,7 +165,7 @@ def _job(problem, varied, base, outputs, si, errors, backend, threads) -> ChunkJ
     checks = {n: (q[n].low, q[n].high, q[n].low_open, q[n].high_open,
                   f"{q[n].range_text()}, {q[n].description}") for n in problem.find if n in outputs}
     constants = {k: float(base[k]) for k in order[len(varied):]}
-    return ChunkJob(sel, list(varied), constants, outputs, columns, checks, errors, backend, threads)
+    return ChunkJob(sel, list(varied), constants, outputs, columns, checks, errors, backend, threads, roundtrip)
 
 
 def _signature(scene, problem, pts, base, outputs, chunk_size, si, errors) -> dict:
