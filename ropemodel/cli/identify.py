@@ -1,0 +1,49 @@
+"""``ropemodel identify SCENE DATA.csv [--fit mu,EA] [--sigma 0.01deg] [--json]``: fit μ, EA to test data."""
+
+from __future__ import annotations
+
+import json
+
+from ropemodel.cli._common import add_scene_arguments, scene_from_args
+from ropemodel.errors import SolveError
+from ropemodel.units import to_si
+
+NAME = "identify"
+HELP = ("fit mu and EA (optionally F_p, L) of a capstan scene to measured loads and rotations "
+        "(CSV columns 'F_T [N]' or 'T [N*m]', and 'delta_alpha [deg]')")
+
+
+def add_arguments(parser) -> None:
+    add_scene_arguments(parser, optional=False)
+    parser.add_argument("data", help="CSV file with columns F_T (or T) and delta_alpha, units in brackets")
+    parser.add_argument("--fit", default="mu,EA", help="parameters to fit, comma-separated (default mu,EA)")
+    parser.add_argument("--sigma", help="known noise of delta_alpha, e.g. 0.01deg (default: from the residuals)")
+
+
+def main(args) -> int:
+    from ropemodel.capstan.identify import identify
+
+    scene = scene_from_args(args)
+    fit = [n.strip() for n in args.fit.split(",") if n.strip()]
+    sigma = to_si("--sigma", args.sigma if not _is_number(args.sigma) else float(args.sigma), "rad") \
+        if args.sigma else None
+    res = identify(scene, args.data, fit, sigma=sigma)
+    if args.json:
+        print(json.dumps(res.to_dict(), indent=2, allow_nan=False))
+    else:
+        print(res.table().to_string(index=False))
+        print(f"\n{res.n_points} points, residual sum of squares {res.rss:.4g} rad^2, IPOPT {res.status} "
+              f"after {res.iterations} iterations")
+        for m in res.messages:
+            print(f"warning: {m}")
+    if res.status not in ("Solve_Succeeded", "Solved_To_Acceptable_Level"):
+        raise SolveError(f"identification did not converge: {res.status}")
+    return 0
+
+
+def _is_number(text) -> bool:
+    try:
+        float(text)
+        return True
+    except (TypeError, ValueError):
+        return False
