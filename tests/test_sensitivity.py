@@ -4,7 +4,6 @@ import json
 import math
 from importlib import resources
 
-import numpy as np
 import pytest
 
 import ropemodel as rm

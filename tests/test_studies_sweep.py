@@ -1,7 +1,6 @@
 """The sweep and sensitivity studies run in fast mode; the runner finds every study."""
 
 import importlib.util
-import sys
 from pathlib import Path
 
 import pandas as pd

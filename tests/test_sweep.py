@@ -1,6 +1,5 @@
 """Sweeps: grids and tables of points against closed forms and direct solves; validation; CLI."""
 
-import math
 
 import numpy as np
 import pandas as pd
@@ -165,3 +164,20 @@ def test_inverse_sweep_through_newton_catches_non_convergence():
     for q, f in zip(qs[:2], marked["F_nwl [N]"][:2]):
         direct = rm.solve(scene.with_values({"Q": q}), {"slip_margin_up": 0.0}, ["F_nwl"])["F_nwl"]
         assert f == pytest.approx(direct, rel=1e-9)
+
+
+@pytest.mark.parametrize("scene", ["fig9", "voigt"])
+def test_evaluate_columns_equals_problem_evaluate(fig9, scene):
+    """The chunked engine offered as the body of Problem.evaluate gives Problem.evaluate's numbers."""
+    from ropemodel.sweep.evaluate import evaluate_columns
+
+    s = fig9 if scene == "fig9" else _voigt_winch()
+    problem = rm.Problem(s)
+    alpha = np.linspace(0.05, 0.5, 301)
+    ref = problem.evaluate({"alpha_u": alpha})
+    x = problem.inputs()
+    got = evaluate_columns(problem.function, {"alpha_u": alpha}, {k: v for k, v in x.items() if k != "alpha_u"},
+                           threads=2, chunk=64)
+    assert set(got) == set(ref)
+    for k in ref:
+        np.testing.assert_allclose(got[k], ref[k], rtol=1e-13, atol=1e-12)

@@ -256,3 +256,44 @@ def _build(code: str) -> Path:
                        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
         os.replace(out, lib)  # atomic: concurrent builders agree
     return lib
+
+
+def reordered(function: ca.Function, order, outputs=None) -> ca.Function:
+    """``function`` with its inputs in ``order`` (names) and only ``outputs`` (default all); SX stays SX."""
+    syms = {k: ca.MX.sym(k) for k in function.name_in()}
+    res = function.call(syms)
+    outputs = list(function.name_out()) if outputs is None else list(outputs)
+    out = ca.Function(function.name(), [syms[k] for k in order], [res[o] for o in outputs], list(order), outputs)
+    return out.expand() if function.is_a("SXFunction") else out
+
+
+def evaluate_columns(function: ca.Function, columns: dict, constants: dict, threads: int = 1,
+                     backend: str = "auto", chunk: int = 65536) -> dict[str, np.ndarray]:
+    """Every output of ``function`` at many points, in chunks: ``columns`` name → SI array (all one
+    length) vary, ``constants`` name → SI float do not; together they name every input.
+
+    The same engine as a sweep (compiled once per process, threads, bounded memory), without
+    validation or files: a drop-in body for ``Problem.evaluate``.
+    """
+    columns = {k: np.ascontiguousarray(v, dtype=float).ravel() for k, v in columns.items()}
+    constants = {k: float(v) for k, v in constants.items()}
+    if not columns:  # one point: vary any input over a single value
+        k = next(iter(constants))
+        columns = {k: np.array([constants.pop(k)])}
+    n = len(next(iter(columns.values())))
+    if any(len(v) != n for v in columns.values()):
+        raise InputError(f"input arrays of different lengths: {sorted({len(v) for v in columns.values()})}")
+    order = list(columns) + list(constants)
+    missing = [k for k in function.name_in() if k not in order]
+    if missing:
+        raise InputError(f"no value for {', '.join(missing)}")
+    fun = reordered(function, order)
+    job = ChunkJob(fun, list(columns), constants, list(fun.name_out()), [], backend=backend, threads=threads)
+    ev = evaluator(job)
+    out = {o: np.empty(n) for o in fun.name_out()}
+    for s in range(0, n, chunk):
+        e = min(n, s + chunk)
+        res = ev([columns[k][s:e] for k in columns], e - s)
+        for o, v in res.items():
+            out[o][s:e] = v
+    return out
