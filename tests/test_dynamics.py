@@ -270,7 +270,7 @@ def test_energy_balance_to_integrator_tolerance(name):
     """Drum work = Δ(kinetic + potential) + dissipated (damping, resistance, slip, stop impacts)."""
     res = {}
     for rtol in (1e-6, 1e-9):
-        sim = simulate(scene(name, params={"t_end": "20 s"}, numerics={"sim_rtol": rtol}))
+        sim = simulate(scene(name, params={"t_end": "10 s"}, numerics={"sim_rtol": rtol}))
         res[rtol] = sim.summary["energy_residual"]
         assert res[rtol] < 100 * rtol
     assert res[1e-9] < res[1e-6]
@@ -282,7 +282,7 @@ def test_rest_take_up_converges_to_the_continuum_integral():
     """Take-up at rest = loop elongation = ∫T dx / EA of the continuum (no resistance at rest): the
     lumped value converges at first order as segments are added."""
     errs = []
-    for n in (2, 4, 8, 16, 32):
+    for n in (2, 4, 8, 16):
         sc = scene(params={"t_end": "1 s", "t_ramp": "1 s"}, numerics={"segments": n})
         sim = simulate(sc)
         v = sc.parameters
@@ -295,7 +295,7 @@ def test_rest_take_up_converges_to_the_continuum_integral():
                  + h * C2 + w * C2 ** 2 / 2                             # sheave → load
                  + (h + w * C2 + v["G_m"] * s) * x + w * x ** 2 / 2) / EA  # load → drum
         errs.append(abs(z0 - exact) / exact)
-    assert errs[-1] < 2e-3
+    assert errs[-1] < 4e-3
     for e0, e1 in zip(errs, errs[1:]):
         assert e1 < 0.6 * e0
 
