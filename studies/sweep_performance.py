@@ -11,9 +11,10 @@
 2. **Cost vs number of points**: in-process sweeps to Parquet of 10^3 … 10^6
    points against the numpy peer; the fitted exponent of time ∝ N^k (k = 1 is
    linear).
-3. **Peak memory** (full mode): the maximum resident set size of a process
-   sweeping 10^6 and 10^7 points to Parquet (chunks of 65536 points): the
-   chunking keeps it flat; the goal is < 2 GB at 10^7.
+3. **Peak memory** (full mode): the peak resident set (VmHWM) of a fresh
+   process sweeping 10^6 and 10^7 points to Parquet (chunks of 65536 points),
+   and of one that only imports and compiles: the chunking keeps it flat; the
+   goal is < 2 GB at 10^7.
 
 Only ratios to the peer measured in the same run are meaningful; absolute
 times depend on the machine.  ``python studies/sweep_performance.py [--fast]``.
@@ -172,21 +173,35 @@ def scaling(tmp: Path, sizes, repeat: int) -> list[dict]:
     return rows
 
 
-MEMORY = r'''
-import resource, sys, time
+PEAK = r'''
+def peak_rss():
+    """Peak resident set of this process [bytes]: VmHWM (Linux; reset by exec, unlike ru_maxrss,
+    which a child inherits from the parent it was forked from)."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    import resource, sys
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024)
+'''
+
+MEMORY = PEAK + r'''
+import sys, time
 import ropemodel as rm
 n_alpha, n_load, path = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
 t = time.perf_counter()
 rm.sweep(rm.load_scene(), {"alpha_u": f"0deg:45deg:{n_alpha}", "G_m": f"300kN:500kN:{n_load}"}, out=path,
          collect=False, progress=False, restart=True)
-print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024, time.perf_counter() - t)
+print(peak_rss(), time.perf_counter() - t)
 '''
 
-BASELINE = r'''
-import resource
+BASELINE = PEAK + r'''
 import ropemodel as rm, ropemodel.sweep, pyarrow.parquet
-rm.Problem(rm.load_scene())
-print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024)
+rm.sweep(rm.load_scene(), {"alpha_u": [0.1, 0.2]}, progress=False)
+print(peak_rss())
 '''
 
 
@@ -242,13 +257,13 @@ def main(out_dir=None, fast: bool = False) -> dict:
     with tempfile.TemporaryDirectory() as td:
         tmp = Path(td)
         if fast:
+            mem = []
             head = cli_vs_numpy(tmp, 100, 100, repeat=1)
             scale = scaling(tmp, [2_000, 20_000], repeat=1)
-            mem = []
-        else:
+        else:  # memory first: fresh processes, measured before this one grows
+            mem = memory(tmp, [1_000_000, 10_000_000])
             head = cli_vs_numpy(tmp, 1000, 1000, repeat=3)
             scale = scaling(tmp, [1_000, 10_000, 100_000, 1_000_000, 3_000_000], repeat=2)
-            mem = memory(tmp, [1_000_000, 10_000_000])
     sizes = np.array([r["points"] for r in scale], float)
     times = np.array([r["ropemodel_s"] for r in scale])
     big = sizes >= 1e4  # fixed start-up costs dominate the smallest sweeps

@@ -1,0 +1,47 @@
+"""Sizing sweeps: each point equals a single sizing; warm starts change cost, never the answer."""
+
+from importlib import resources
+
+import numpy as np
+import pytest
+
+import ropemodel as rm
+
+optimisation = pytest.importorskip("optimisation")
+
+
+@pytest.fixture(scope="module")
+def sizing_scene():
+    return rm.load_scene(str(resources.files("ropemodel.data").joinpath("winch_sizing_fig9.toml")))
+
+
+def test_points_equal_single_sizings_and_warm_equals_cold(sizing_scene):
+    from ropemodel.sweep.sizing import sizing_sweep
+
+    vary = {"alpha_u": "10deg:20deg:3", "G_m": ["400 kN", "467 kN"]}
+    warm = sizing_sweep(sizing_scene, vary, warm=True, progress=False)
+    cold = sizing_sweep(sizing_scene, vary, warm=False, progress=False)
+    assert warm["feasible"].all() and cold["feasible"].all()
+    for col in ("d [mm]", "F_nwl [kN]", "stroke [mm]"):
+        np.testing.assert_allclose(warm[col], cold[col], rtol=1e-7)
+    # the Fig. 9 point itself: the package's own size() (continuous optimum)
+    row = warm[np.isclose(warm["alpha_u [deg]"], 15.0) & np.isclose(warm["G_m [kN]"], 467.0)].iloc[0]
+    ref = optimisation.size(sizing_scene.with_values({"alpha_u": "15 deg"}), with_sensitivities=False).continuous
+    assert row["d [mm]"] == pytest.approx(ref["d"] * 1e3, rel=1e-7)
+    assert row["F_nwl [kN]"] == pytest.approx(ref["F_nwl"] / 1e3, rel=1e-6)
+
+
+def test_infeasible_points_are_kept_and_marked(sizing_scene):
+    from ropemodel.sweep.sizing import sizing_sweep
+
+    frame = sizing_sweep(sizing_scene, {"alpha_u": ["16 deg", "40 deg"]}, progress=False)
+    assert frame["feasible"].tolist() == [True, False]
+    assert np.isnan(frame["d [mm]"].iloc[1])
+    assert not optimisation.size(sizing_scene.with_values({"alpha_u": "40 deg"}), with_sensitivities=False).feasible
+
+
+def test_design_variables_cannot_be_swept(sizing_scene):
+    from ropemodel.sweep.sizing import sizing_sweep
+
+    with pytest.raises(rm.InputError, match="design variable"):
+        sizing_sweep(sizing_scene, {"d": [0.03]})
