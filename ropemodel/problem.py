@@ -82,6 +82,7 @@ class Problem:
                              f"(an implicit block did not converge or a division by zero)")
         self._check_found(sol)
         values_all = {**x, **sol}
+        self._check_round_trip(values_all)
         self.model.validate({k: values_all[k] for k in self.model.parameters})
         return Result(self.scene, self.model, values_all, self.given, self.find)
 
@@ -101,6 +102,25 @@ class Problem:
         res = fmap(*args)
         res = res if isinstance(res, (list, tuple)) else [res]
         return {u: np.asarray(r).ravel() for u, r in zip(self.unknowns, res)}
+
+    def _check_round_trip(self, values_all):
+        """The forward model at the solution must reproduce every given output: an implicit
+        block whose Newton stopped without converging (e.g. a no-slip pretension that does
+        not exist) is a :class:`SolveError`, never a silently wrong answer."""
+        if not self.given:
+            return
+        params = tuple(self.model.parameters)
+        fwd = _compiled(self.scene, tuple(self.model.outputs), params, ())
+        out = fwd(**{k: values_all[k] for k in params})
+        for n in self.given:
+            got, want = float(out[n]), values_all[n]
+            if not abs(got - want) <= 1e-6 * max(1.0, abs(want)):
+                q = self.model.quantities[n]
+                u = "" if q.display_unit == "1" else f" {q.display_unit}"
+                raise SolveError(
+                    f"no solution with {n} = {q.to_display(want):.6g}{u}: the solver stopped "
+                    f"where {n} = {q.to_display(got):.6g}{u} (no such {', '.join(self.find)} "
+                    f"or the Newton iteration did not converge)")
 
     def _check_found(self, sol):
         for n in self.find:

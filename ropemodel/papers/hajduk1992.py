@@ -26,7 +26,7 @@ Limits handled as limits, not errors
 
 from __future__ import annotations
 
-from ropemodel._math import exp, expm1, fmax, log, log1p
+from ropemodel._math import exp, expm1, fmax, if_else, log, log1p
 
 #: exponent beyond which e^{-x} is treated as 0 (e^{-700} ≈ 1e-304)
 _XMAX = 700.0
@@ -146,6 +146,9 @@ def _log_ratio(mu_alpha, c):
     fixed number of Newton steps (unrolled: the result is one smooth expression
     that CasADi differentiates).  c = 0 gives u = μα exactly after one step.
     """
+    # c < 0 is unphysical (a Newton iterate of an outer solve may visit it): treated as 0 so
+    # every value and derivative stays finite; c >= 0 is untouched (derivative 1 at c = 0)
+    c = if_else(c < 0, 0.0 * c, c)
     ln_x = log(fmax(c, 1e-300)) + mu_alpha
     # softplus(ln x) = ln(1 + x), stable for any ln x
     pos, neg = fmax(ln_x, 0.0), fmax(-ln_x, 0.0)
