@@ -45,3 +45,18 @@ def test_design_variables_cannot_be_swept(sizing_scene):
 
     with pytest.raises(rm.InputError, match="design variable"):
         sizing_sweep(sizing_scene, {"d": [0.03]})
+
+
+def test_cli_sizing_sweep(sizing_scene, tmp_path):
+    import pandas as pd
+
+    from ropemodel.cli import main as cli
+    from ropemodel.sweep.sizing import sizing_sweep
+
+    path = str(resources.files("ropemodel.data").joinpath("winch_sizing_fig9.toml"))
+    out = tmp_path / "s.csv"
+    assert cli(["sweep", path, "--sizing", "--vary", "L_u=800m:1600m:3", "-o", str(out), "--no-progress"]) == 0
+    frame = pd.read_csv(out)
+    api = sizing_sweep(sizing_scene, {"L_u": "800m:1600m:3"}, progress=False)
+    np.testing.assert_allclose(frame["d [mm]"], api["d [mm]"], rtol=1e-12)
+    assert cli(["sweep", path, "--sizing", "--vary", "L_u=800m:1600m:3", "--outputs", "F_C_up", "-o", str(out)]) == 2

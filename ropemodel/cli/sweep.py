@@ -39,6 +39,10 @@ def add_arguments(parser) -> None:
     parser.add_argument("--mark-failures", action="store_true",
                         help="keep points without a valid solution (solved = false) instead of stopping")
     parser.add_argument("--restart", action="store_true", help="discard an unfinished sweep instead of resuming")
+    parser.add_argument("--sizing", action="store_true",
+                        help="at every point, the sizing optimum (d, F_nwl, stroke) instead of the outputs; "
+                             "each optimisation warm-starts from its neighbour (not resumable)")
+    parser.add_argument("--cold", action="store_true", help="with --sizing: no warm start")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -59,10 +63,31 @@ def main(args) -> int:
     points = read_points(args.points) if args.points else None
     if points is not None and vary:
         raise InputError("give either --vary grids or --points FILE, not both")
+    if args.sizing:
+        return _sizing(scene, vary, points, args)
     given = {g.strip(): None for g in args.given if "=" not in g}
     given.update(assignments([g for g in args.given if "=" in g], "--given"))
     sweep(scene, vary or None, _names(args.outputs) or None, points=points, given=given,
           find=_names(args.find), out=args.output, chunk_size=args.chunk_size, threads=args.threads,
           backend=args.backend, si=args.si, errors="mark" if args.mark_failures else "raise",
           progress=False if args.no_progress else None, restart=args.restart, collect=False)
+    return 0
+
+
+def _sizing(scene, vary, points, args) -> int:
+    from pathlib import Path
+
+    from ropemodel.sweep.sizing import sizing_sweep
+    from ropemodel.sweep.store import check_format
+
+    if args.given or args.find or args.outputs:
+        raise InputError("--sizing computes d, F_nwl and stroke; it takes no --given, --find or --outputs")
+    out = Path(args.output)
+    check_format(out)
+    frame = sizing_sweep(scene, vary or None, points=points, warm=not args.cold,
+                         progress=False if args.no_progress else None)
+    if out.suffix.lower() == ".csv":
+        frame.to_csv(out, index=False)
+    else:
+        frame.to_parquet(out, index=False)
     return 0
