@@ -1,0 +1,74 @@
+"""Self-consistent rotation δ(F_T) = ∫dF/K: against a closed form, brute force and its own convergence order."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad, solve_ivp
+
+from ropemodel.capstan.rotation import regime1_rotation, rotation, unwrap_load
+from ropemodel.papers import li_capstan as li
+
+P = dict(mu=0.25, EA=5e4, R=0.075, L=0.36, alpha_0=math.radians(64.0), F_p=60.0)
+
+
+def brute_force(F_T, continuous=False, **kw):
+    """Reference: DOP853 at rtol 1e-12 with steps of at most 0.05 N, K re-evaluated (regime included) at
+    every stage; it steps over the switches blindly, so its error is bounded by the step, not by luck."""
+    p = {**P, **kw}
+
+    def rate(F, d):
+        if F == 0.0:
+            return [p["L"] / (2 * p["EA"])]  # the limit of 1/K at zero load (also for L = 0)
+        a1, a2 = li.wrap_angles(p["alpha_0"], d[0], p["R"])
+        return [1.0 / li.drive_stiffness(F, p["F_p"], p["mu"], p["EA"], p["R"], p["L"], a1, a2, continuous)]
+
+    sol = solve_ivp(rate, (0.0, F_T), [0.0], method="DOP853", rtol=1e-12, atol=1e-16, max_step=0.05)
+    return sol.y[0, -1]
+
+
+def test_closed_form_of_regime_one_matches_quadrature():
+    # the derivation in regime1_rotation, checked against adaptive quadrature of 1/K(row 1)
+    mu, EA, R, L, F_p = (P[k] for k in ("mu", "EA", "R", "L", "F_p"))
+    for F in (1.0, 8.0, 14.0):
+        ref, _ = quad(lambda x: 1.0 / li.drive_stiffness(x, F_p, mu, EA, R, L, 1e3, 1e3), 0.0, F, epsabs=0,
+                      epsrel=1e-13)
+        assert regime1_rotation(F, mu, EA, R, L, F_p) == pytest.approx(ref, rel=1e-11)
+
+
+def test_rotation_in_regime_one_equals_the_closed_form():
+    F_sw = li.slack_switch_load(P["F_p"], P["mu"], P["alpha_0"])
+    F = np.linspace(0.0, 0.99 * F_sw, 7)
+    exact = regime1_rotation(F, P["mu"], P["EA"], P["R"], P["L"], P["F_p"])
+    np.testing.assert_allclose(rotation(F, **P), exact, rtol=1e-9, atol=0)
+
+
+@pytest.mark.parametrize("variant", ["li", "continuous"])
+def test_rotation_across_switches_matches_brute_force(variant):
+    # 20 N: past the slack and tight switches; 100 N: past the preload as well (regimes 1, 2, 3, 4)
+    for F in (20.0, 100.0):
+        ref = brute_force(F, continuous=variant == "continuous")
+        assert rotation(F, **P, variant=variant) == pytest.approx(ref, rel=1e-8)
+
+
+def test_fourth_order_across_switches():
+    # located switches keep RK4's order: halving the step divides the error by ~16 (a stepped-over
+    # jump would leave first order, a factor 2)
+    ref = rotation(100.0, **P, steps=512)
+    e = [abs(rotation(100.0, **P, steps=n) - ref) for n in (8, 16, 32)]
+    assert e[0] / e[1] > 10 and e[1] / e[2] > 10
+
+
+def test_rotation_with_a_large_wrap_and_small_free_length():
+    # a completed case on the way (F_T >= F_p with the tight side not saturated) and L = 0
+    kw = dict(alpha_0=4.0, L=0.0)
+    assert rotation(150.0, **{**P, **kw}) == pytest.approx(brute_force(150.0, **kw), rel=1e-8)
+
+
+def test_unwrap_load_is_where_the_rotation_reaches_the_wrap():
+    F_u = unwrap_load(**P)
+    assert rotation(F_u, **P) / P["R"] == pytest.approx(P["alpha_0"], rel=1e-9)
+
+
+def test_zero_load_gives_zero_rotation():
+    assert rotation(0.0, **P) == 0.0
