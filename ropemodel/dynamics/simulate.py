@@ -72,7 +72,8 @@ def simulate(scene, values: dict | None = None) -> Simulation:
                 tens0 = mode
     T0 = float(np.array(mode_functions(sys, phases[0], "stick", tens0, 1.0, 1.0).out(x0, 0.0))[-1, 0])
     if T0 < 0:
-        raise InputError(f"the rope is slack at the start (least tension {T0 / 1e3:.3g} kN): raise F_nwl "
+        fixed = " (tensioner = \"fixed\" locks the take-up where F_nwl set it at rest)" if tens0 == "fixed" else ""
+        raise InputError(f"the rope is slack at the start (least tension {T0 / 1e3:.3g} kN){fixed}: raise F_nwl "
                          f"(now {vals['F_nwl'] / 1e3:g} kN) or check the stroke")
     f_scale = max(abs(static[f"F_C_{direction}"]), 1.0)
     v_scale = max(vals["v_pj"], 1e-6)
