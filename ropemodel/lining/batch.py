@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ropemodel.lining.integrators import RATIO_INPUTS, log_ratio_function
+from ropemodel.lining.integrators import RATIO_INPUTS, mapped_log_ratio_function
 from ropemodel.papers import hajduk1992 as hj
 
 
@@ -24,8 +24,7 @@ def ode_log_ratio(mu, alpha, q_R, k_R, q_T=0.0, k_T=1.0, beta=0.0, plugin="rk4",
     cols = np.broadcast_arrays(*(np.asarray(a, float) for a in (mu, alpha, q_R, k_R, q_T, k_T, beta)))
     shape = cols[0].shape
     n = max(cols[0].size, 1)
-    f = log_ratio_function(plugin, state, float(rtol))
-    fm = f.map(n, "thread", parallel) if parallel > 1 else f.map(n)
+    fm = mapped_log_ratio_function(plugin, state, float(rtol), n, int(parallel))
     out = fm(*[c.reshape(1, n) for c in cols])
     return np.asarray(out).reshape(shape)
 

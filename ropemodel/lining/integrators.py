@@ -117,8 +117,9 @@ def segment_function(plugin: str = "rk4", state: str = "log", rtol: float = 1e-7
     x0 = ode.state_of(state, syms["y_a"], syms["alpha_a"], *g, syms["alpha_b"])
     xf = F(x0=x0, p=pv)["xf"]
     y_b = ode.log_ratio_of(state, xf, syms["alpha_b"], *g, syms["alpha_b"])
-    return ca.Function(f"lining_segment_{plugin}_{state}", [syms[n] for n in SEGMENT_INPUTS], [y_b],
-                       list(SEGMENT_INPUTS), ["y_b"])
+    f = ca.Function(f"lining_segment_{plugin}_{state}", [syms[n] for n in SEGMENT_INPUTS], [y_b],
+                    list(SEGMENT_INPUTS), ["y_b"])
+    return f.expand() if plugin == "rk4" else f
 
 
 @lru_cache(maxsize=32)
@@ -128,5 +129,13 @@ def log_ratio_function(plugin: str = "rk4", state: str = "log", rtol: float = 1e
     seg = segment_function(plugin, state, rtol)
     y = seg(y_a=0.0, alpha_a=0.0, alpha_b=syms["alpha"],
             **{n: syms[n] for n in ("mu", "q_R", "k_R", "q_T", "k_T", "beta")})["y_b"]
-    return ca.Function(f"lining_log_ratio_{plugin}_{state}", [syms[n] for n in RATIO_INPUTS], [y],
-                       list(RATIO_INPUTS), ["y"])
+    f = ca.Function(f"lining_log_ratio_{plugin}_{state}", [syms[n] for n in RATIO_INPUTS], [y],
+                    list(RATIO_INPUTS), ["y"])
+    return f.expand() if plugin == "rk4" else f
+
+
+@lru_cache(maxsize=64)
+def mapped_log_ratio_function(plugin: str, state: str, rtol: float, n: int, parallel: int = 1) -> ca.Function:
+    """:func:`log_ratio_function` mapped over n points (serial, or ``thread`` with ``parallel`` > 1)."""
+    f = log_ratio_function(plugin, state, rtol)
+    return f.map(n, "thread", parallel) if parallel > 1 else f.map(n)

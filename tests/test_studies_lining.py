@@ -1,0 +1,38 @@
+"""The lined-sheave studies run in --fast mode and their results hold their physics."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+
+STUDIES = Path(__file__).resolve().parent.parent / "studies"
+
+
+def _load(name):
+    spec = importlib.util.spec_from_file_location(name, STUDIES / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_hajduk_fig5_fast(tmp_path):
+    mod = _load("hajduk_fig5")
+    df = mod.main(tmp_path, fast=True)
+    assert (tmp_path / "hajduk_fig5.csv").exists() and (tmp_path / "hajduk_fig5.png").exists()
+    table = mod.table_check()
+    assert table["6 digits agree"].all()
+    # the ODE curves lie on the closed form, and no curve exceeds Euler–Eytelwein
+    assert df["ode rel. error [-]"].max() < 1e-6
+    assert (df["S/S_0 closed [-]"] <= df["e^(mu alpha) [-]"] * (1 + 1e-12)).all()
+
+
+def test_lining_accuracy_fast(tmp_path):
+    mod = _load("lining_accuracy")
+    df = mod.main(tmp_path, fast=True)
+    assert (tmp_path / "lining_accuracy.csv").exists() and (tmp_path / "lining_accuracy.png").exists()
+    ours = df[df["method"].str.startswith("ropemodel")]
+    assert (ours["failures"] == 0).all() and np.isfinite(ours["max rel. error"]).all()
+    s = mod.summary(df)
+    assert s.iloc[0]["max rel. error"] < 1e-6
