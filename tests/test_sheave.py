@@ -144,3 +144,13 @@ def test_bad_numerics_refused():
     for numerics in ({"method": "euler"}, {"integrator": "rk45"}, {"rtol": 0.5}):
         with pytest.raises(InputError):
             sheave(numerics=numerics)
+
+
+def test_distribution_api_uses_derived_data():
+    """Thirion friction (c_mu) and physical lining data (Q_R, ...) are outputs: the API solves first.
+    Truth: the chained-segment distribution ends at the scene's own S (one integration over the arc)."""
+    scene = rm.load_scene(THIRION)
+    df = distribution(scene, points=7)
+    r = rm.run(scene)
+    assert df["S/S_0 [-]"].iloc[-1] == pytest.approx(r["S_ratio"], rel=1e-6)
+    assert df["S [kN]"].iloc[0] == pytest.approx(20.0)

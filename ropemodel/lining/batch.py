@@ -32,14 +32,18 @@ def ode_log_ratio(mu, alpha, q_R, k_R, q_T=0.0, k_T=1.0, beta=0.0, plugin="rk4",
 def distribution(scene, points: int | None = None):
     """Tension along the arc of a sheave scene as a DataFrame (columns carry units).
 
+    ``scene``: a loaded ``model = "sheave"`` scene (:func:`ropemodel.load_scene`); it is
+    solved first (so derived data such as Q_R of a ``voigt_physical`` lining are used).
+
     Columns: ``alpha [deg]``, ``S [kN]``, ``S/S_0 [-]`` and ``e^(mu alpha) [-]``
     (Euler–Eytelwein for comparison).  ``points`` equally spaced angles from 0 to
     the wrap angle (default: the scene's ``[numerics] points``).  Uses the scene's
     method (closed form, or the integrator chained over the segments).
     """
     from ropemodel.effects.sheave import distribution_frame
+    from ropemodel.problem import run
 
-    return distribution_frame(scene.parameters, scene, points)
+    return distribution_frame(run(scene).values, scene, points)
 
 
 __all__ = ["RATIO_INPUTS", "closed_log_ratio", "distribution", "ode_log_ratio"]
