@@ -210,8 +210,8 @@ def test_single_spring_natural_frequency():
     x0 = equilibrium(sys, 0.0, z_free=False, z_fixed=1.0)   # a locked take-up pretensions both springs
     rows = []
     HybridIntegrator(sys, phases, 1e-11, 0.005, "cvodes", 1e4, 1.0, atol_u=1e-12).run(
-        x0, "stick", "fixed", lambda x, t, k_, d, te: (d, te), None,
-        lambda t, X, out, d, te: rows.append(np.vstack([t, X[3]])))
+        x0, ("stick", "fixed", "profile"), lambda x, t, k_, mode: mode, None,
+        lambda t, X, out, mode: rows.append(np.vstack([t, X[3]])))
     t, v = np.hstack(rows)
     sel = t > 2.0 + 1e-9
     w_d = math.sqrt(2 * k / m - (c / m) ** 2)
@@ -374,3 +374,70 @@ def test_bad_input_is_refused(change, match):
 def test_static_scene_has_no_transient(fig9):
     with pytest.raises(rm.InputError, match="dynamics"):
         simulate(fig9)
+
+
+# --- torque-limited motor -------------------------------------------------------------------------
+
+def test_torque_limited_start_of_a_rigid_rope_matches_newton():
+    """The motor's rim force is capped below what the ramp needs: the drum and the (inextensible) loop
+    accelerate at a = (F_max − F_fr(v))/(M + m_drive), F_fr(v) = G_lmC − G_ls + (T_m + T_l + T_ls)
+    tanh(v/v_eps), until the drum meets the profile again; F_C = F_C,static + m_C a meanwhile."""
+    F_max, m_d = 180e3, 1.0e4
+    sc = scene(effects={"rope_elasticity": "rigid", "drive": "torque_limited"},
+               params={"F_drive_max": F_max, "m_drive": m_d, "t_end": "14 s"}, numerics={"sim_rtol": 1e-11})
+    sim = simulate(sc)
+    v, st = sc.parameters, rm.run(sc)
+    s = sim.summary
+    assert s["torque_limited"] and [e["event"] for e in s["drive_events"]] == ["torque_pos", "on_profile"]
+    m_C = (v["G_m"] + v["q_l"] * v["L_u"]) / G_N
+    M = m_C + v["q_l"] * v["L_u"] / G_N
+    R = st["T_m"] + st["T_l"] + st["T_ls"]
+    F0 = st["G_lmC"] - st["G_ls"]
+    acc = v["v_pj"] / v["t_ramp"]
+
+    def need(t):                                      # rim force the ramp needs, rope stuck
+        return F0 + R * math.tanh(acc * t / v["v_eps"]) + (M + m_d) * acc - F_max
+
+    t_lim = brentq(need, 0.0, v["t_ramp"], xtol=1e-15)
+
+    def rhs(t, y):
+        return [(F_max - F0 - R * math.tanh(y[0] / v["v_eps"])) / (M + m_d)]
+
+    def on_profile(t, y):
+        return min(acc * t, v["v_pj"]) - y[0]
+
+    on_profile.terminal, on_profile.direction = True, -1
+    sol = solve_ivp(rhs, (t_lim, v["t_end"]), [acc * t_lim], method="LSODA", rtol=1e-12, atol=1e-13,
+                    events=on_profile)
+    t_back = sol.t_events[0][0]
+    assert s["drive_events"][0]["t"] == pytest.approx(t_lim, rel=1e-8)
+    assert s["drive_events"][1]["t"] == pytest.approx(t_back, rel=1e-7)
+    h = sim.history
+    lim = h[(h["t [s]"] > 1.0) & (h["t [s]"] < t_back - 0.1)]
+    a_lim = (F_max - F0 - R) / (M + m_d)
+    np.testing.assert_allclose(lim["F_C [N]"], st["F_C_up"] + m_C * a_lim, rtol=1e-8)
+    assert s["energy_residual"] < 1e-8
+    assert "torque limit" in sim.report()
+
+
+def test_torque_limit_above_the_need_changes_nothing():
+    base = simulate(scene(params={"t_end": "10 s"}))
+    lim = simulate(scene(effects={"drive": "torque_limited"},
+                         params={"F_drive_max": "1000 kN", "m_drive": "10000 kg", "t_end": "10 s"}))
+    assert not lim.summary["torque_limited"]
+    np.testing.assert_allclose(lim.history["F_C [N]"], base.history["F_C [N]"], rtol=1e-12)
+
+
+def test_torque_limited_drive_needs_an_inertia():
+    with pytest.raises(rm.InputError, match="m_drive"):
+        simulate(scene(effects={"drive": "torque_limited"}, params={"F_drive_max": "180 kN"}))
+
+
+def test_brake_too_weak_to_hold_a_lowered_load_is_reported():
+    """Lowering the Fig. 9 load needs F_C − F_S ≈ 97 kN of holding force at the rim; a 60 kN limit
+    cannot brake it: limited from t = 0 and the load speeds up instead of stopping."""
+    sim = simulate(scene("winch_start_brake.toml", effects={"drive": "torque_limited"},
+                         params={"F_drive_max": "60 kN", "m_drive": "10000 kg", "t_end": "6 s"}))
+    s = sim.summary
+    assert s["drive_events"][0] == {"t": 0.0, "event": "torque_pos"}
+    assert s["v_load_end"] < -sim.scene.parameters["v_pj"]

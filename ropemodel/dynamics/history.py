@@ -13,7 +13,7 @@ from ropemodel.dynamics.system import OUT
 #: history columns (SI), in order
 COLUMNS = ("t [s]", "v_drum [m/s]", "v_load [m/s]", "slip_speed [m/s]", "slip [m]", "F_C [N]", "F_S [N]",
            "T_sheave [N]", "take_up [m]", "carriage [m]", "W_drum [J]", "E [J]", "D [J]",
-           "energy_residual [J]", "T_min [N]", "drum", "tensioner")
+           "energy_residual [J]", "T_min [N]", "drum", "tensioner", "drive")
 
 
 class Simulation:
@@ -35,11 +35,11 @@ class Simulation:
         self.scene, self.static, self.chain, self.sign, self.ratio = scene, static, chain, sign, ratio
         self._t, self._x, self._o, self._modes = [], [], [], []
 
-    def record(self, times, X, out, drum, tens):
+    def record(self, times, X, out, mode):
         self._t.append(np.asarray(times, float))
         self._x.append(np.asarray(X, float))
         self._o.append(np.asarray(out, float))
-        self._modes += [(drum, tens)] * len(times)
+        self._modes += [tuple(mode)] * len(times)
 
     def finish(self, events, sys):
         t = np.concatenate(self._t)
@@ -55,6 +55,7 @@ class Simulation:
             "take_up [m]": z, "carriage [m]": z / 2, "W_drum [J]": W, "E [J]": E, "D [J]": D,
             "energy_residual [J]": W - E - D, "T_min [N]": O["T_min"],
             "drum": [m[0] for m in self._modes], "tensioner": [m[1] for m in self._modes],
+            "drive": [m[2] for m in self._modes],
         })
         self.events = events
         self.summary = self._summarise(events)
@@ -77,6 +78,11 @@ class Simulation:
             slips.append(_slip_interval(start, None, float(h["slip [m]"].iloc[-1])))
         stroke_events = [{"t": ev.t, "event": ev.name} for ev in events
                          if ev.name in ("stroke_end", "stroke_start", "release")]
+        drive_events = [{"t": ev.t, "event": ev.name} for ev in events
+                        if ev.name in ("torque_pos", "torque_neg", "on_profile")]
+        first_drive = h["drive"].iloc[0]
+        if first_drive != "profile":                          # at the torque limit from the start
+            drive_events.insert(0, {"t": 0.0, "event": "torque_pos" if first_drive == "limited_pos" else "torque_neg"})
         W_max = max(float(np.max(np.abs(h["W_drum [J]"]))), float(np.max(np.abs(h["D [J]"]))), 1.0)
         tens = self.scene.effects["tensioner"]
         return {
@@ -86,6 +92,8 @@ class Simulation:
             "F_C_end": float(h["F_C [N]"].iloc[-1]),
             "F_S_min": float(h["F_S [N]"].min()),
             "F_S_end": float(h["F_S [N]"].iloc[-1]),
+            "v_load_end": float(h["v_load [m/s]"].iloc[-1]),
+            "v_drum_end": float(h["v_drum [m/s]"].iloc[-1]),
             "F_C_static": F_C_static,
             "F_S_static": F_S_static,
             "dynamic_factor": float(h["F_C [N]"].max()) / F_C_static,
@@ -98,6 +106,8 @@ class Simulation:
             "stroke_exhausted": any(e["event"] == "stroke_end" for e in stroke_events)
                                 or bool((h["tensioner"] == "at_end").any()),
             "stroke_events": stroke_events,
+            "torque_limited": bool((h["drive"] != "profile").any()),
+            "drive_events": drive_events,
             "slack": any(ev.name == "slack" for ev in events),
             "t_slack": next((ev.t for ev in events if ev.name == "slack"), None),
             "T_min": float(h["T_min [N]"].min()),
@@ -125,7 +135,8 @@ class Simulation:
                  f"dynamic factor {s['dynamic_factor']:.4f}",
                  f"  F_C end {s['F_C_end'] / 1e3:10.2f} kN   F_S end {s['F_S_end'] / 1e3:8.2f} kN   "
                  f"(static {s['F_S_static'] / 1e3:.2f} kN)",
-                 f"  F_S min {s['F_S_min'] / 1e3:10.2f} kN   traction ratio {s['traction_ratio']:.4g} (at F_S static, v_pj)"]
+                 f"  F_S min {s['F_S_min'] / 1e3:10.2f} kN   traction ratio {s['traction_ratio']:.4g} (at F_S static, v_pj)",
+                 f"  at t = {s['t_end']:.3f} s: load {s['v_load_end']:.4g} m/s, drum {s['v_drum_end']:.4g} m/s"]
         if s["slip"]:
             for sl in s["slip_events"]:
                 end = f"{sl['t_end']:.3f} s" if sl["t_end"] is not None else "the end (still slipping)"
@@ -141,6 +152,11 @@ class Simulation:
             what = {"stroke_end": "RAN OUT OF STROKE (carriage on its end stop)",
                     "stroke_start": "carriage on its start stop", "release": "carriage free again"}[ev["event"]]
             lines.append(f"  t = {ev['t']:.3f} s: tensioner {what}")
+        for ev in s["drive_events"]:
+            what = {"torque_pos": "motor at its torque limit (driving): the drum falls behind the ramp",
+                    "torque_neg": "motor at its torque limit (braking): the drum runs ahead of the ramp",
+                    "on_profile": "drum back on the speed ramp"}[ev["event"]]
+            lines.append(f"  t = {ev['t']:.3f} s: {what}")
         if s["slack"]:
             lines.append(f"  STOPPED at t = {s['t_slack']:.3f} s: the rope went slack (a tension reached 0); the "
                          f"linear rope model does not hold beyond, the results end there")

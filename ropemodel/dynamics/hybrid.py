@@ -32,18 +32,27 @@ MAX_EVENTS = 2000
 
 @dataclass
 class Event:
+    """A located event: time, switching function, the mode (drum, tensioner, drive) after it, state."""
+
     t: float
     name: str
-    drum: str
-    tensioner: str
+    mode: tuple
     state: np.ndarray = field(repr=False)
+
+    @property
+    def drum(self) -> str:
+        return self.mode[0]
+
+    @property
+    def tensioner(self) -> str:
+        return self.mode[1]
 
 
 class _Mode:
-    """Compiled integrators of one (phase, drum, tensioner) mode."""
+    """Compiled integrators of one mode (drum, tensioner, drive) in one phase."""
 
-    def __init__(self, sys, phase, drum, tens, opts, f_scale, v_scale, integrator):
-        self.fun = mode_functions(sys, phase, drum, tens, f_scale, v_scale)
+    def __init__(self, sys, phase, mode, opts, f_scale, v_scale, integrator):
+        self.fun = mode_functions(sys, phase, *mode, f_scale, v_scale)
         tau, p = ca.SX.sym("tau"), ca.SX.sym("p", 2)
         ode = ca.substitute(self.fun.ode, sys.t, p[0] + p[1] * tau) * p[1]
         dae = {"x": sys.x, "p": p, "t": tau, "ode": ode}
@@ -66,10 +75,11 @@ class HybridIntegrator:
         self.opts = {"reltol": rtol, "abstol": atol_u, "max_num_steps": 200000}
         self._modes: dict = {}
 
-    def mode(self, k, drum, tens) -> _Mode:
-        key = (k, drum, tens)
+    def mode(self, k, mode) -> _Mode:
+        """The compiled mode ``(drum, tensioner, drive)`` of phase ``k`` (built on first use only)."""
+        key = (k, tuple(mode))
         if key not in self._modes:
-            self._modes[key] = _Mode(self.sys, self.phases[k], drum, tens, self.opts, self.f_scale,
+            self._modes[key] = _Mode(self.sys, self.phases[k], tuple(mode), self.opts, self.f_scale,
                                      self.v_scale, self.integrator)
         return self._modes[key]
 
@@ -79,32 +89,32 @@ class HybridIntegrator:
         except RuntimeError as exc:
             raise SolveError(f"the integrator failed at t = {t0:.6g} s: {exc}") from None
 
-    def run(self, x0, drum, tens, choose, transition, on_record):
-        """Integrate from t = 0.  ``choose(x, t, k, drum, tens)`` → consistent (drum, tens) at the
-        start and at phase boundaries; ``transition(name, x, t, k, drum, tens)`` → (x, drum, tens)
-        after an event, or None to end the simulation there (a terminal event);
-        ``on_record(times, X, out, drum, tens)`` receives every accepted chunk."""
+    def run(self, x0, mode, choose, transition, on_record):
+        """Integrate from t = 0 in ``mode`` = (drum, tensioner, drive).  ``choose(x, t, k, mode)`` → a
+        consistent mode at the start and at phase boundaries; ``transition(name, x, t, k, mode)`` →
+        (x, mode) after an event, or None to end the simulation there (a terminal event);
+        ``on_record(times, X, out, mode)`` receives every accepted chunk."""
         x = np.asarray(x0, float)
         events: list[Event] = []
         t_end = self.phases[-1].t1
         k = 0
         t = 0.0
-        drum, tens = choose(x, t, k, drum, tens)
-        self._record(self.mode(k, drum, tens), np.array([t]), x[:, None], on_record, drum, tens)
+        mode = choose(x, t, k, tuple(mode))
+        self._record(self.mode(k, mode), np.array([t]), x[:, None], on_record, mode)
         armed = None
         while t < t_end * (1 - 1e-14):
             while t >= self.phases[k].t1 * (1 - 1e-14) and k + 1 < len(self.phases):
                 k += 1
-                drum, tens = choose(x, t, k, drum, tens)
+                mode = choose(x, t, k, mode)
                 armed = None
-            m = self.mode(k, drum, tens)
+            m = self.mode(k, mode)
             if armed is None:
                 armed = np.array(m.fun.g(x, t)).ravel() > ARM_TOL
             h = min(CHUNK * self.dt, self.phases[k].t1 - t)
             try:
                 X = np.array(m.chunk(x0=x, p=[t, h])["xf"])
             except RuntimeError as exc:
-                raise SolveError(f"the integrator failed after t = {t:.6g} s ({drum}, {tens}): {exc}") from None
+                raise SolveError(f"the integrator failed after t = {t:.6g} s (mode {mode}): {exc}") from None
             times = t + h * m.grid
             G = np.array(m.gmap(X, times[None, :])).reshape(-1, CHUNK) if m.fun.g_names else np.zeros((0, CHUNK))
             hit = None
@@ -116,7 +126,7 @@ class HybridIntegrator:
                 if G.size:
                     armed = armed | (G[:, j] > ARM_TOL)
             if hit is None:
-                self._record(m, times, X, on_record, drum, tens)
+                self._record(m, times, X, on_record, mode)
                 x, t = X[:, -1], times[-1]
                 continue
             j, which = hit
@@ -124,7 +134,7 @@ class HybridIntegrator:
             t_a = t if j == 0 else times[j - 1]
             h_j = times[j] - t_a
             if j > 0:
-                self._record(m, times[:j], X[:, :j], on_record, drum, tens)
+                self._record(m, times[:j], X[:, :j], on_record, mode)
             best = None
             for i in which:
                 def g_i(s, i=i):
@@ -140,26 +150,26 @@ class HybridIntegrator:
             x = self._step(m, x_a, t_a, s_star) if s_star > 0 else x_a
             t = t_a + s_star
             name = m.fun.g_names[i]
-            self._record(m, np.array([t]), x[:, None], on_record, drum, tens)
-            after = transition(name, x, t, k, drum, tens)
+            self._record(m, np.array([t]), x[:, None], on_record, mode)
+            after = transition(name, x, t, k, mode)
             if after is None:                      # a terminal event: the model's validity ends here
-                events.append(Event(t, name, drum, tens, x.copy()))
+                events.append(Event(float(t), name, mode, x.copy()))
                 break
-            x, drum, tens = after
-            events.append(Event(t, name, drum, tens, x.copy()))
+            x, mode = after
+            events.append(Event(float(t), name, mode, x.copy()))
             if len(events) > MAX_EVENTS:
                 raise SolveError(f"more than {MAX_EVENTS} events by t = {t:.6g} s: the slip or stroke state "
                                  f"chatters; refine the model or check the traction")
             armed = None
         return events
 
-    def _record(self, m: _Mode, times, X, on_record, drum, tens):
+    def _record(self, m: _Mode, times, X, on_record, mode):
         n = X.shape[1]
         if n == CHUNK:
             out = np.array(m.omap(X, times[None, :]))
         else:
             out = np.column_stack([np.array(m.fun.out(X[:, j], times[j])).ravel() for j in range(n)])
-        on_record(times, X, out, drum, tens)
+        on_record(times, X, out, mode)
 
 
 __all__ = ["HybridIntegrator", "Event", "OUT"]

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from ropemodel.dynamics.chain import BUILDERS
+from ropemodel.dynamics.drive import DRIVE_EVENTS
 from ropemodel.dynamics.history import Simulation
 from ropemodel.dynamics.hybrid import HybridIntegrator
 from ropemodel.dynamics.profile import PROFILES
@@ -59,6 +60,10 @@ def simulate(scene, values: dict | None = None) -> Simulation:
     chain = BUILDERS[eff["rope_elasticity"]](vals, num["segments"])
     ratio = TRACTION[lining](vals)
     sys = LoopSystem(chain, vals, ratio)
+    sys.torque_limited = eff["drive"] == "torque_limited"
+    if sys.torque_limited and not vals["m_drive"] > 0:
+        raise InputError("drive = \"torque_limited\" needs m_drive > 0 (drum, gearing and motor inertia reduced "
+                         "to the drum rim, J/R^2 in kg)")
     phases, v0 = PROFILES[eff["dynamics"]](vals["v_pj"], vals["t_ramp"], vals["t_end"], sign)
     tens0 = INITIAL_TENSIONER[eff["tensioner"]] if not chain.rigid else "fixed"
     # initial state: at rest (start) or steady motion (stop); the fixed take-up is set at rest
@@ -70,7 +75,7 @@ def simulate(scene, values: dict | None = None) -> Simulation:
             if (mode == "at_end" and x0[2 * chain.n] > limit) or (mode == "at_start" and x0[2 * chain.n] < limit):
                 x0 = equilibrium(sys, v0, z_free=False, z_fixed=limit)
                 tens0 = mode
-    T0 = float(np.array(mode_functions(sys, phases[0], "stick", tens0, 1.0, 1.0).out(x0, 0.0))[-1, 0])
+    T0 = float(np.array(mode_functions(sys, phases[0], "stick", tens0, "profile", 1.0, 1.0).out(x0, 0.0))[-1, 0])
     if T0 < 0:
         fixed = " (tensioner = \"fixed\" locks the take-up where F_nwl set it at rest)" if tens0 == "fixed" else ""
         raise InputError(f"the rope is slack at the start (least tension {T0 / 1e3:.3g} kN){fixed}: raise F_nwl "
@@ -80,39 +85,58 @@ def simulate(scene, values: dict | None = None) -> Simulation:
     hyb = HybridIntegrator(sys, phases, num["sim_rtol"], num["sim_dt"], num["sim_integrator"], f_scale, v_scale,
                            atol_u=num["sim_rtol"] * 1e-1 * max(vals["L_u"] * vals["q_lw"] * f_scale, 1e-9))
 
-    def stick_or_slip(x, t, k, tens):
+    iv = sys.layout.v_drum
+
+    def drum_speed(x, t, k, drive):
+        return float(phases[k].v(t)) if drive == "profile" else float(x[iv])
+
+    def g_of(x, t, k, mode):
+        m = hyb.mode(k, mode)
+        return dict(zip(m.fun.g_names, np.array(m.fun.g(x, t)).ravel()))
+
+    def stick_or_slip(x, t, k, tens, drive):
         """The drum mode that holds at (x, t) for a rope not sliding on the drum."""
-        g = np.array(hyb.mode(k, "stick", tens).fun.g(x, t)).ravel()
-        if g[0] < -DRUM_TOL:
+        g = g_of(x, t, k, ("stick", tens, drive))
+        if g["slip_fwd"] < -DRUM_TOL:
             return "slip_fwd"
-        if g[1] < -DRUM_TOL:
+        if g["slip_back"] < -DRUM_TOL:
             return "slip_back"
-        x[chain.n] = float(phases[k].v(t))
+        x[chain.n] = drum_speed(x, t, k, drive)
         return "stick"
 
-    def choose(x, t, k, drum, tens):
+    def choose(x, t, k, mode):
         """Consistent modes at the start and at a phase boundary (the drive's acceleration jumps)."""
-        if tens in ("at_end", "at_start"):
-            g = np.array(hyb.mode(k, "stick", tens).fun.g(x, t)).ravel()
-            if g[hyb.mode(k, "stick", tens).fun.g_names.index("release")] < -DRUM_TOL:
-                tens = "free"
-        if drum == "stick" or abs(x[chain.n] - float(phases[k].v(t))) <= DRUM_TOL * v_scale:
-            drum = stick_or_slip(x, t, k, tens)
-        return drum, tens
+        drum, tens, drive = mode
+        if tens in ("at_end", "at_start") and g_of(x, t, k, ("stick", tens, drive))["release"] < -DRUM_TOL:
+            tens = "free"
+        if drive == "profile" and sys.torque_limited:
+            g = g_of(x, t, k, ("stick" if drum == "stick" else drum, tens, drive))
+            for name in ("torque_pos", "torque_neg"):
+                if g[name] < -DRUM_TOL:
+                    x[iv] = float(phases[k].v(t))
+                    drive = DRIVE_EVENTS[name]
+                    break
+        if drum == "stick" or abs(x[chain.n] - drum_speed(x, t, k, drive)) <= DRUM_TOL * v_scale:
+            drum = stick_or_slip(x, t, k, tens, drive)
+        return drum, tens, drive
 
-    def transition(name, x, t, k, drum, tens):
+    def transition(name, x, t, k, mode):
         if name in TERMINAL:
             return None
+        drum, tens, drive = mode
         x = TRANSITIONS[name](x.copy(), vals, chain.n)
+        if name in DRIVE_EVENTS:
+            x[iv] = float(phases[k].v(t))          # the drum leaves or rejoins the profile at its speed
+            drive = DRIVE_EVENTS[name]
         drum = DRUM_EVENTS.get(name, drum)
-        if name == "stick":
-            drum = stick_or_slip(x, t, k, tens)
-        return x, drum, TENS_EVENTS.get(name, tens)
+        if name == "stick" or (name in DRIVE_EVENTS and drum == "stick"):
+            drum = stick_or_slip(x, t, k, tens, drive)
+        return x, (drum, TENS_EVENTS.get(name, tens), drive)
 
     # the ratio reported: at the static slack-side force of this direction, at full speed
     F_slack = static[f"F_S_{direction}"]
     sim = Simulation(scene, static, chain, sign, float(ratio(F_slack, vals["v_pj"])))
-    events = hyb.run(x0, "stick", tens0, choose, transition, sim.record)
+    events = hyb.run(x0, ("stick", tens0, "profile"), choose, transition, sim.record)
     sim.finish(events, sys)
     return sim
 
@@ -137,6 +161,9 @@ TRANSITIONS = {
     "stroke_end": lambda x, vals, n: _impact(x, vals, n, vals["stroke"]),
     "stroke_start": lambda x, vals, n: _impact(x, vals, n, 0.0),
     "release": _keep,
+    "torque_pos": _keep,
+    "torque_neg": _keep,
+    "on_profile": _keep,
 }
 #: events that end the simulation: a slack rope element (the linear rope model no longer holds)
 TERMINAL = {"slack"}

@@ -1,12 +1,12 @@
 """Equations of motion of the lumped loop, one ODE per *mode*, as CasADi expressions.
 
-State ``x = [u (n), v (n), z, ż, s_d, W, D]``: node displacements and speeds along the
-path (node 0 is the rope on the drum), the tensioner take-up z and its rate, the drum's
+State ``x = [u (n), v (n), z, ż, s_d, W, D, v_drum]``: node displacements and speeds along
+the path (node 0 is the rope on the drum), the tensioner take-up z and its rate, the drum's
 surface travel s_d (so that the slip is s_d − u_0), the work W the drum has done on the
-rope and the energy D dissipated (rope damping, travel resistance, slip, stop impacts):
-the energy balance W = ΔKE + ΔPE + D is checked on these states.
+rope, the energy D dissipated (rope damping, travel resistance, slip, stop impacts) and the
+drum's surface speed: the energy balance W = ΔKE + ΔPE + D is checked on these states.
 
-A mode is (drum, tensioner):
+A mode is (drum, tensioner, drive); the drive modes are in :mod:`ropemodel.dynamics.drive`.
 
 * drum ``stick``: the rope on the drum moves with it, u̇_0 = v_d(t), v̇_0 = a_d(t); the friction
   force the drum exerts follows.  ``slip_fwd`` (the drum runs ahead of the rope) and
@@ -33,6 +33,7 @@ import casadi as ca
 import numpy as np
 
 from ropemodel.dynamics.chain import Chain
+from ropemodel.dynamics.drive import DRIVE_MODES
 
 
 @dataclass
@@ -43,11 +44,16 @@ class Layout:
 
     @property
     def nx(self) -> int:
+        return 2 * self.n + 6
+
+    @property
+    def v_drum(self) -> int:
+        """Index of the drum's surface speed (a state; follows the profile unless the motor is limited)."""
         return 2 * self.n + 5
 
     def split(self, x):
         n = self.n
-        return x[:n], x[n:2 * n], x[2 * n], x[2 * n + 1], x[2 * n + 2], x[2 * n + 3], x[2 * n + 4]
+        return x[:n], x[n:2 * n], x[2 * n], x[2 * n + 1], x[2 * n + 2], x[2 * n + 3], x[2 * n + 4], x[2 * n + 5]
 
 
 class LoopSystem:
@@ -61,7 +67,8 @@ class LoopSystem:
         self.layout = Layout(chain.n)
         self.x = ca.SX.sym("x", self.layout.nx)
         self.t = ca.SX.sym("t")
-        u, v, z, zd, _, _, _ = self.layout.split(self.x)
+        u, v, z, zd, *_ = self.layout.split(self.x)
+        self.torque_limited = False
         self.u, self.v, self.z, self.zd = u, v, z, zd
         eps = values["v_eps"]
         self.th = ca.tanh(v / eps)
@@ -117,10 +124,11 @@ class LoopSystem:
         return p + ca.dot(ca.DM(self.chain.resistance), self.th * self.v)
 
 
-def _drum_stick(sys: LoopSystem, v_d, a_d):
-    F_C, F_S = sys.F_C(a_d), sys.F_S(a_d)
-    return a_d, v_d, {"slip_fwd": sys.ratio(F_S, v_d) * F_S - F_C,
-                      "slip_back": sys.ratio(F_C, v_d) * F_C - F_S}
+def _drum_stick(sys: LoopSystem, drive):
+    a = drive.stick_acc()
+    F_C, F_S = sys.F_C(a), sys.F_S(a)
+    return a, drive.v_d, a, {"slip_fwd": sys.ratio(F_S, drive.v_d) * F_S - F_C,
+                             "slip_back": sys.ratio(F_C, drive.v_d) * F_C - F_S}
 
 
 NEWTON_STEPS = 4
@@ -147,19 +155,19 @@ def _slip_acceleration(sys: LoopSystem, tight, slack, v_d):
     return x
 
 
-def _drum_slip_fwd(sys: LoopSystem, v_d, a_d):
+def _drum_slip_fwd(sys: LoopSystem, drive):
     """The drum runs ahead of the rope: the winding side is tight, F_C = ρ(F_S)·F_S."""
-    a = _slip_acceleration(sys, sys.F_C, sys.F_S, v_d)
-    return a, sys.v[0], {"stick": v_d - sys.v[0]}
+    a = _slip_acceleration(sys, sys.F_C, sys.F_S, drive.v_d)
+    return a, sys.v[0], drive.drum_acc(sys.F_C(a) - sys.F_S(a)), {"stick": drive.v_d - sys.v[0]}
 
 
-def _drum_slip_back(sys: LoopSystem, v_d, a_d):
+def _drum_slip_back(sys: LoopSystem, drive):
     """The rope overruns the drum: the unwinding side is tight, F_S = ρ(F_C)·F_C."""
-    a = _slip_acceleration(sys, sys.F_S, sys.F_C, v_d)
-    return a, sys.v[0], {"stick": sys.v[0] - v_d}
+    a = _slip_acceleration(sys, sys.F_S, sys.F_C, drive.v_d)
+    return a, sys.v[0], drive.drum_acc(sys.F_C(a) - sys.F_S(a)), {"stick": sys.v[0] - drive.v_d}
 
 
-#: drum mode → (system, v_d, a_d) → (drum-node acceleration, u̇_0, switching functions)
+#: drum mode → (system, drive) → (rope-on-drum acceleration, u̇_0, drum acceleration, switching functions)
 DRUM_MODES = {"stick": _drum_stick, "slip_fwd": _drum_slip_fwd, "slip_back": _drum_slip_back}
 
 
@@ -199,11 +207,13 @@ class ModeFunctions:
     g_names: tuple[str, ...]
 
 
-def mode_functions(sys: LoopSystem, phase, drum: str, tens: str, f_scale: float, v_scale: float) -> ModeFunctions:
+def mode_functions(sys: LoopSystem, phase, drum: str, tens: str, drive: str, f_scale: float,
+                   v_scale: float) -> ModeFunctions:
     """Assemble ẋ, outputs and switching functions of one mode in one drive phase."""
     t, x = sys.t, sys.x
-    v_d, a_d = phase.v(t), phase.a(t)
-    a0, u0dot, g_drum = DRUM_MODES[drum](sys, v_d, a_d)
+    drv = DRIVE_MODES[drive](sys, phase, t)
+    v_d = drv.v_d
+    a0, u0dot, a_drum, g_drum = DRUM_MODES[drum](sys, drv)
     zdot, zdd, g_tens = TENSIONER_MODES[tens](sys)
     ch = sys.chain
     acc = [a0] + [sys.F[i] / ch.mass[i] for i in range(1, ch.n)]
@@ -211,12 +221,13 @@ def mode_functions(sys: LoopSystem, phase, drum: str, tens: str, f_scale: float,
     F_C, F_S = sys.F_C(a0), sys.F_S(a0)
     F_fr = F_C - F_S
     P_diss = sys.damping_power() + F_fr * (v_d - sys.v[0])
-    ode = ca.vertcat(*udot, *acc, zdot, zdd, v_d, F_fr * v_d, P_diss)
+    ode = ca.vertcat(*udot, *acc, zdot, zdd, v_d, F_fr * v_d, P_diss, a_drum)
     T_min = ca.mmin(ca.vertcat(F_C, F_S, *sys.T))
     out = ca.vertcat(v_d, sys.v[0], sys.v[ch.load], F_C, F_S, sys.T_sheave, F_fr, sys.energy(), T_min)
     scale = {"slip_fwd": f_scale, "slip_back": f_scale, "stick": v_scale,
-             "stroke_end": 1.0, "stroke_start": 1.0, "release": f_scale, "slack": f_scale}
-    gd = {**g_drum, **g_tens, "slack": T_min}
+             "stroke_end": 1.0, "stroke_start": 1.0, "release": f_scale, "slack": f_scale,
+             "torque_pos": f_scale, "torque_neg": f_scale, "on_profile": v_scale}
+    gd = {**g_drum, **g_tens, "slack": T_min, **drv.g(F_fr, a_drum)}
     names = tuple(gd)
     g = ca.vertcat(*[gd[k] / scale[k] for k in names]) if names else ca.SX(0, 1)
     return ModeFunctions(
@@ -261,6 +272,7 @@ def equilibrium(sys: LoopSystem, v0: float, z_free: bool, z_fixed: float = 0.0) 
     n = lay.n
     x = np.zeros(lay.nx)
     x[n:2 * n] = v0
+    x[lay.v_drum] = v0
     if n == 1:
         x[2 * n] = z_fixed
         return x

@@ -24,6 +24,10 @@ Effects and variants
 ``tensioner``       ``constant_force`` (default): the return sheave's carriage (mass ``m_t``)
                     is pulled with ``F_nwl`` and travels within its ``stroke``;
                     ``fixed``: the carriage is locked where ``F_nwl`` put it at rest.
+``drive``           ``speed`` (default): the drum's surface speed follows the ramp exactly;
+                    ``torque_limited``: it follows the ramp while the motor's force at the rim
+                    stays within ±``F_drive_max``, else the motor gives ±F_drive_max and the
+                    drum (inertia ``m_drive`` = J/R² at the rim) accelerates as it can.
 
 ``rope_damping`` is the Kelvin–Voigt **retardation time** τ = c/k of the rope [s]: every
 element's tension is T = k (e + τ ė), k = EA/ℓ.  Stiffness-proportional, so a mode of
@@ -65,6 +69,7 @@ define_effect(MODEL, "dynamics", "none", "time-domain transient: none, start (dr
 define_effect(MODEL, "travel", "up", "direction of travel of the simulated transient (up: load hauled up)")
 define_effect(MODEL, "rope_elasticity", "segments", "rope model of the transient: rigid, spring or segments")
 define_effect(MODEL, "tensioner", "constant_force", "return-sheave tensioner of the transient")
+define_effect(MODEL, "drive", "speed", "drive of the transient: prescribed speed ramp, or a torque-limited motor")
 
 
 def _int_check(low: int, high: int):
@@ -131,7 +136,7 @@ class _Transient(Submodel):
 
     def equations(self, v):
         names = [q.name for q in DYNAMIC] + list(STATIC_INPUTS)
-        for effect in ("rope_elasticity", "tensioner"):
+        for effect in ("rope_elasticity", "tensioner", "drive"):
             for cls in REGISTRY[MODEL][effect].variants.values():
                 names += [q.name for q in cls.quantities]
         for name in names:
@@ -219,6 +224,31 @@ class ConstantForceTensioner(Submodel):
         # default 100 m: no limit in practice; give the installed stroke to have it checked
         Quantity("stroke", "m", "rope take-up the tensioner allows (the paper's stroke)", "mm",
                  default=100.0, guess=1.0, **_pos),
+    )
+
+
+@register(MODEL, "drive", "speed")
+class SpeedDrive(Submodel):
+    """The drum's surface speed is prescribed by the ramp (a stiff speed-controlled drive)."""
+
+    description = "drum speed follows the ramp exactly"
+
+
+@register(MODEL, "drive", "torque_limited")
+class TorqueLimitedDrive(Submodel):
+    """Speed-controlled drive whose motor force at the drum rim is limited to ±F_drive_max.
+
+    Not in the paper.  F_drive_max = motor torque limit × gear ratio / drum radius; m_drive = the
+    inertia of drum, gearing and motor reduced to the rim (J/R²).  Defaults: no limit (1e12 N) and
+    no inertia (0 kg, refused by the torque-limited drive): give both.
+    """
+
+    description = "motor force at the rim limited to F_drive_max; drum inertia m_drive"
+    quantities = (
+        Quantity("F_drive_max", "N", "largest force the motor gives at the drum rim (torque limit / radius)",
+                 "kN", default=1e12, guess=3e5, **_pos),
+        Quantity("m_drive", "kg", "inertia of drum, gearing and motor reduced to the drum rim (J/R^2)", "kg",
+                 low=0.0, default=0.0, guess=1e4),
     )
 
 
