@@ -181,3 +181,14 @@ def test_evaluate_columns_equals_problem_evaluate(fig9, scene):
     assert set(got) == set(ref)
     for k in ref:
         np.testing.assert_allclose(got[k], ref[k], rtol=1e-13, atol=1e-12)
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".parquet"])
+def test_cli_sweep_summary(tmp_path, capsys, suffix):
+    import json
+
+    out = tmp_path / f"o{suffix}"
+    assert cli(["sweep", "example", "--vary", "alpha_u=1deg:9deg:9", "--vary", "mu_pm=0.01,0.02",
+                "--outputs", "F_C_up", "-o", str(out), "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert info["rows"] == 18 and info["columns"] == ["alpha_u [deg]", "mu_pm [-]", "F_C_up [kN]"]

@@ -71,7 +71,30 @@ def main(args) -> int:
           find=_names(args.find), out=args.output, chunk_size=args.chunk_size, threads=args.threads,
           backend=args.backend, si=args.si, errors="mark" if args.mark_failures else "raise",
           progress=False if args.no_progress else None, restart=args.restart, collect=False)
+    _summary(args.output, args.json)
     return 0
+
+
+def _summary(path, as_json: bool) -> None:
+    """One line (or JSON object) saying what was written."""
+    import json
+    from pathlib import Path
+
+    p = Path(path)
+    if p.suffix.lower() == ".csv":
+        with open(p, "rb") as f:
+            header = f.readline().decode().strip()
+            rows = sum(chunk.count(b"\n") for chunk in iter(lambda: f.read(1 << 20), b""))
+        columns = [c.strip('"') for c in header.split('","')]
+    else:
+        import pyarrow.parquet as pq
+
+        meta = pq.ParquetFile(p).metadata
+        rows, columns = meta.num_rows, meta.schema.to_arrow_schema().names
+    if as_json:
+        print(json.dumps({"output": str(p), "rows": rows, "columns": columns}))
+    else:
+        print(f"wrote {rows} points x {len(columns)} columns to {p}")
 
 
 def _sizing(scene, vary, points, args) -> int:
@@ -90,4 +113,5 @@ def _sizing(scene, vary, points, args) -> int:
         frame.to_csv(out, index=False)
     else:
         frame.to_parquet(out, index=False)
+    _summary(out, args.json)
     return 0
