@@ -6,13 +6,16 @@ lowering (ropemodel/data/winch_start_brake.toml) with linear drive ramps of 1-20
 damping (Kelvin-Voigt retardation time) 0-0.2 s.  For every case: the peak F_C, the dynamic
 factor F_C_max / F_C_static, the least F_S, and whether the rope slipped on the drum, the
 tensioner ran out of stroke or a rope span went slack.  The inextensible-rope value
-(static + moving mass x ramp acceleration) is drawn for comparison: the elastic rope adds the
-overshoot of the load's oscillation on the rope, which fades once the ramp is several load
-periods long.  Braking a lowered load ends at rest, where the smoothed resistance vanishes:
+(static + moving mass x ramp acceleration) is drawn for comparison.  A linear ramp starts
+(and ends) with a step of acceleration: the load then oscillates on the elastic rope about the
+moving equilibrium with an amplitude of about the inertia force m·a, so the peak exceeds the
+static force by two to three times the inextensible rope's excess, however long the ramp
+(the resistance breaking away at the start adds to it); rope damping of realistic size
+lowers it only a little.  Braking a lowered load ends at rest, where the smoothed resistance vanishes:
 the load creeps (time constant ≈ (T_m + T_l)/(v_eps k), 12 s here) towards the frictionless
 holding force 0.5 F_nwl + G_lmC, 20 % above the moving F_C of the paper's downward column, so
 long braking ramps level off near 1.16-1.2 rather than 1.  Also draws the history of the
-three start-up example scenes.
+four start-up example scenes.
 
     python studies/dynamic_factor.py [--fast]
 """
@@ -79,7 +82,7 @@ def _rigid_factor(sc) -> float:
 
 def histories(t_end: float, segments: int) -> dict:
     out = {}
-    for name in ("winch_start.toml", "winch_start_slip.toml", "winch_start_stroke.toml"):
+    for name in ("winch_start.toml", "winch_start_slip.toml", "winch_start_stroke.toml", "winch_start_motor.toml"):
         sim = simulate(_scene(name, {"t_end": t_end}, {"segments": segments}))
         out[sim.scene.name] = sim
     return out
@@ -124,7 +127,7 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
 
     sims = histories(12.0 if fast else 40.0, segments)
     fig, ax = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
-    for (title, sim), c in zip(sims.items(), ("C0", "C1", "C3")):
+    for (title, sim), c in zip(sims.items(), ("C0", "C1", "C3", "C2")):
         h = sim.history
         t = h["t [s]"]
         ax[0].plot(t, h["F_C [N]"] / 1e3, color=c, label=title)
