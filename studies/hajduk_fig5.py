@@ -83,7 +83,7 @@ def plot(df: pd.DataFrame, check: pd.DataFrame, path: Path) -> None:
                 ax.plot(g["alpha [deg]"], g["S/S_0 closed [-]"], color=c, label=f"λω = {kp:g}π")
                 ax.plot(g["alpha [deg]"][::4], g["S/S_0 ode [-]"][::4], "o", color=c, ms=3, mfc="none")
             g = d[d["lambda*omega/pi [-]"] == d["lambda*omega/pi [-]"].iloc[0]]
-            ax.plot(g["alpha [deg]"], g["e^(mu alpha) [-]"], "k--", label="Euler–Eytelwein e^{μα}")
+            ax.plot(g["alpha [deg]"], g["e^(mu alpha) [-]"], "k--", label=r"Euler–Eytelwein $e^{\mu\alpha}$")
             t = check[(check["mu [-]"] == mu) & (check["q [-]"] == Q * S_0)]
             ax.plot(t["alpha [deg]"], t["MODELS.md [-]"], "rx", ms=8, label="reference table")
             ax.set_yscale("log")

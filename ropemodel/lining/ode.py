@@ -73,7 +73,7 @@ def rhs(state: str):
         c = q_R * hj.creep_factor(alpha, kR) + q_T * hj.creep_factor(alpha, kT)
         s = exp(hj._log_ratio(x, c))
         dx = dalpha * friction(mu, beta, s)
-    return x, sigma, p, dx
+    return x, sigma, p, ca.cse(dx)
 
 
 def state_of(state: str, y, alpha, q_R, k_R, q_T, k_T, alpha_b):
