@@ -40,6 +40,14 @@ def test_recovers_mu_and_EA_within_two_standard_errors(scene):
     assert math.sqrt(res.rss / (res.n_points - 2)) == pytest.approx(NOISE, rel=0.3)
 
 
+def test_recovers_the_preload_too(scene):
+    start = scene.with_values({"mu": 0.3, "EA": 4e4, "F_p": 50.0})
+    res = identify(start, synthetic(scene, seed=0), fit=("mu", "EA", "F_p"))
+    assert res.ok, res.messages
+    for k, v in {**TRUE, "F_p": scene.parameters["F_p"]}.items():
+        assert abs(res.estimates[k] - v) < 2 * res.standard_errors[k], (k, res.estimates[k], res.standard_errors[k])
+
+
 @pytest.mark.slow
 def test_standard_errors_cover_the_truth_over_seeds(scene):
     # 95 % nominal coverage of +-2 SE; with 10 seeds, fewer than 7 hits has probability < 0.2 %
