@@ -136,7 +136,9 @@ def test_voigt_lining_without_compliance_is_the_rigid_drum():
                            params={**VOIGT, "Q": "0 1/N", "t_end": "12 s"}))
     assert voigt.summary["slip_events"][0]["t_start"] == pytest.approx(rigid.summary["slip_events"][0]["t_start"],
                                                                        rel=1e-12)
-    np.testing.assert_allclose(voigt.history["F_C [N]"], rigid.history["F_C [N]"], rtol=1e-9)
+    # the same model through two expression graphs: equal to the integrator's tolerance (rtol 1e-8)
+    h_v, h_r = voigt.history, rigid.history
+    np.testing.assert_allclose(np.interp(h_r["t [s]"], h_v["t [s]"], h_v["F_C [N]"]), h_r["F_C [N]"], rtol=1e-7)
 
 
 def test_voigt_lining_slip_onset_matches_an_independent_solve():

@@ -27,12 +27,12 @@ the paper) and μ_pl1 beyond it; the unwinding rope uses μ_pl.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ropemodel.errors import InputError
+from ropemodel.papers import krauze2025 as kr
 
 G_N = 9.80665  # standard gravity [m/s²]
 
@@ -79,7 +79,6 @@ def build_elastic(v: dict, segments: int) -> Chain:
     L_u, x_m, q_l, a = v["L_u"], v["x_m"], v["q_l"], v["alpha_u"]
     EA = L_u / v["q_lw"]          # q_lw: elongation of L_u of installed rope per newton, eq. (19)
     tau = v["rope_damping"]
-    sa, ca_ = math.sin(a), math.cos(a)
     # spans: (length, gravity sign along +p, distance from drive at span start, step sign)
     spans = [("S", L_u, +1.0), ("C2", L_u - x_m, -1.0), ("C1", x_m, -1.0)]
     nodes_m, nodes_w, nodes_r = [0.0], [0.0], [0.0]
@@ -109,8 +108,8 @@ def build_elastic(v: dict, segments: int) -> Chain:
                 s0 = s_from_drive[name] - (j + 1) * ell
                 mu = _mu_winding(v, s0, s0 + ell)
             m_e = q_l * ell / G_N
-            w_e = gsign * q_l * ell * sa
-            r_e = mu * q_l * ell * ca_
+            w_e = gsign * kr.rope_weight_along_incline(q_l, ell, a)      # eq. (3), (4), (6) per element
+            r_e = kr.rope_resistance(mu, q_l, ell, a)                     # eq. (8), (9), (11) per element
             # weight and resistance of an element on the return sheave go to its far node, so that
             # the rope at the sheave's tangent points is at F_nwl/2 per side in steady motion, as in
             # the paper's eq. (12)-(13) (the wrapped rope carries no weight across the sheave)
@@ -137,8 +136,8 @@ def build_elastic(v: dict, segments: int) -> Chain:
     if load is None:
         load = sheave
     nodes_m[load] += v["G_m"] / G_N
-    nodes_w[load] += -v["G_m"] * sa
-    nodes_r[load] += v["mu_pm"] * v["G_m"] * ca_
+    nodes_w[load] += -kr.load_weight_along_incline(v["G_m"], a)           # eq. (1)
+    nodes_r[load] += kr.load_resistance(v["mu_pm"], v["G_m"], a)          # eq. (7)
     # exactly two elements touch the sheave node: the last of S and the first after it
     elements = [(e[0], e[1], e[2], e[3], e[1] == sheave or e[0] == sheave) for e in elements]
     mass = np.array(nodes_m)
@@ -159,14 +158,11 @@ def build_rigid(v: dict, segments: int) -> Chain:
     Forces (Krauze et al. 2025 eq. (12)-(13) plus inertia): F_C = F_nwl/2 + G_lmC + (T_m + T_l)·th
     + (G_m + q_l L_u)/g · a and F_S = F_nwl/2 + G_ls − T_ls·th − q_l L_u/g · a.
     """
-    L_u, q_l, a = v["L_u"], v["q_l"], v["alpha_u"]
-    sa, ca_ = math.sin(a), math.cos(a)
+    L_u, q_l = v["L_u"], v["q_l"]
     m_C = v["G_m"] / G_N + q_l * L_u / G_N
     m_S = q_l * L_u / G_N
-    w_C = -(v["G_m"] + q_l * L_u) * sa                 # −G_lmC, eq. (14)
-    w_S = q_l * L_u * sa                               # G_ls, eq. (6)
-    r_C = (v["mu_pm"] * v["G_m"] + (v["mu_pl1"] * (L_u - v["L_ul"]) + v["mu_pl2"] * v["L_ul"]) * q_l) * ca_
-    r_S = v["mu_pl"] * q_l * L_u * ca_                 # T_ls, eq. (11)
+    w_C, w_S = -v["G_lmC"], v["G_ls"]              # eq. (14), (6) from the static model
+    r_C, r_S = v["T_m"] + v["T_l"], v["T_ls"]      # eq. (7) + (10), (11)
     masses = {"load": v["G_m"] / G_N, "rope_winding": q_l * L_u / G_N, "rope_unwinding": m_S}
     return Chain(np.array([m_C + m_S]), np.array([w_C + w_S]), np.array([r_C + r_S]),
                  (m_C, w_C, r_C), (m_S, w_S, r_S), [], 0, None, True, masses)

@@ -26,7 +26,6 @@ carriage has a mass), so CasADi's BDF integrators (cvodes, idas) apply directly.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import casadi as ca
@@ -34,6 +33,7 @@ import numpy as np
 
 from ropemodel.dynamics.chain import Chain
 from ropemodel.dynamics.drive import DRIVE_MODES
+from ropemodel.papers import friction
 
 
 @dataclass
@@ -241,7 +241,7 @@ def mode_functions(sys: LoopSystem, phase, drum: str, tens: str, drive: str, f_s
 
 def rigid_traction(values: dict):
     """Euler–Eytelwein ratio e^{μ_d α_d} of a rigid drum surface [-], whatever the forces."""
-    rho = math.exp(values["mu_d"] * values["alpha_d"])
+    rho = float(friction.euler_eytelwein_ratio(values["mu_d"], values["alpha_d"]))
     return lambda F_slack, v_drum: rho + 0 * F_slack
 
 

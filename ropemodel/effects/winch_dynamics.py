@@ -50,14 +50,13 @@ inertia and the motor do not enter; no torque limit is modelled).
 
 from __future__ import annotations
 
-import math
-
 from ropemodel.effects.base import (
     REGISTRY,
     Submodel,
     choice,
     define_effect,
     define_numerics,
+    positive_number,
     register,
 )
 from ropemodel.errors import InputError
@@ -81,19 +80,10 @@ def _int_check(low: int, high: int):
     return check
 
 
-def _float_check(low: float, high: float):
-    def check(key, value):
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not (low < value <= high):
-            raise InputError(f"numerics {key} = {value!r} must be a number in ({low:g}, {high:g}]")
-        return float(value)
-
-    return check
-
-
 define_numerics(MODEL, "segments", 8, "Kelvin-Voigt elements per rope span (rope_elasticity = segments)",
                 _int_check(1, 400))
-define_numerics(MODEL, "sim_rtol", 1e-8, "relative tolerance of the transient's integrator", _float_check(0.0, 1e-2))
-define_numerics(MODEL, "sim_dt", 0.02, "output step of the transient's history [s]", _float_check(0.0, 10.0))
+define_numerics(MODEL, "sim_rtol", 1e-8, "relative tolerance of the transient's integrator", positive_number(0.0, 1e-2))
+define_numerics(MODEL, "sim_dt", 0.02, "output step of the transient's history [s]", positive_number(0.0, 10.0))
 define_numerics(MODEL, "sim_integrator", "cvodes", "CasADi integrator of the transient (BDF: cvodes, idas)",
                 choice("cvodes", "idas"))
 
@@ -103,17 +93,13 @@ DYNAMIC = (
     Quantity("t_ramp", "s", "duration of the drive's linear speed ramp", "s", guess=5.0, **_pos),
     Quantity("t_end", "s", "end of the simulated transient", "s", guess=60.0, **_pos),
     Quantity("x_m", "m", "distance of the load from the drive along the winding rope", "m", guess=1000.0, **_pos),
-    Quantity("v_pj", "m/s", "haulage speed of the load", "m/s", guess=2.5, **_pos),
-    Quantity("mu_d", "1", "friction coefficient of the rope on the drum", low=0.0, low_open=True,
-             warn_high=1.0, guess=0.2),
-    Quantity("alpha_d", "rad", "wrap angle of the rope on the drum", "deg", low=0.0, low_open=True,
-             warn_high=10 * math.pi, guess=math.pi),
     Quantity("v_eps", "m/s", "speed scale of the smoothed Coulomb resistance tanh(v/v_eps)", "m/s",
              default=0.01, warn_high=0.1, guess=0.01, **_pos),
 )
 
-#: quantities touched by the dynamics submodel besides its own (declared by the static model)
-STATIC_INPUTS = ("q_lw",)
+#: quantities the transient reads that other winch effects declare: q_lw (elongation, Krauze eq. (19)),
+#: v_pj (power), mu_d and alpha_d (lining: the drum's friction and wrap)
+STATIC_INPUTS = ("q_lw", "v_pj", "mu_d", "alpha_d")
 
 
 @register(MODEL, "dynamics", "none")
