@@ -46,6 +46,8 @@ def switching_functions(F, F_p, mu, alpha_1, alpha_2):
     z_tight = ln(1 + F/F_p) − μα1 = μ(θ_s1 − α1)            (eq. 6, 13)
     z_slack = F/F_p − (1 − e^{−μα2}) = (F − F_p(1 − e^{−μα2}))/F_p   (eq. 16, 19; finite for F ≥ F_p)
     z_unload = F/F_p − 1                                      (eq. 26, row 4)
+
+    F [N] load ≥ 0; F_p [N] preload > 0; mu [-] > 0; alpha_1, alpha_2 [rad] wraps.
     """
     x = F / F_p
     return log1p(x) - mu * alpha_1, x + expm1(-mu * alpha_2), x - 1.0

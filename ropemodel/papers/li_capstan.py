@@ -114,7 +114,10 @@ def slack_slip_zone_stiffness(F_T, F_p, mu, EA, R):
 
 
 def tight_saturated_stiffness(mu, EA, R, alpha_1):
-    """Tight side's wrap stiffness once θ_s1 = α1, K_1 = μEA/(R(1 − e^{−μα1})) [N/m].  Eq. (15)."""
+    """Tight side's wrap stiffness once θ_s1 = α1, K_1 = μEA/(R(1 − e^{−μα1})) [N/m].  Eq. (15).
+
+    mu [-] > 0; EA [N] > 0; R [m] > 0; alpha_1 [rad] > 0 tight-side wrap.
+    """
     return mu * EA / (R * -expm1(-mu * alpha_1))
 
 
@@ -123,6 +126,7 @@ def slack_saturated_stiffness(mu, EA, R, alpha_2):
 
     As published.  It is e^{μα2} times eq. (18) at the switch, so the slack side's
     stiffness jumps up there; see :func:`slack_saturated_stiffness_continuous`.
+    mu [-] > 0; EA [N] > 0; R [m] > 0; alpha_2 [rad] > 0 slack-side wrap.
     """
     return mu * EA / (R * -expm1(-mu * alpha_2))
 
@@ -134,6 +138,7 @@ def slack_saturated_stiffness_continuous(mu, EA, R, alpha_2):
     (F_p − F_T)e^{μθ} (eq. 16 continued), so the wrap shortens by
     δ2 = (R/EA)[F_p α2 − (F_p − F_T)(e^{μα2} − 1)/μ] and dF_T/dδ2 = μEA/(R(e^{μα2} − 1)),
     which equals eq. (18) at the switch F_T = F_p(1 − e^{−μα2}).
+    mu [-] > 0; EA [N] > 0; R [m] > 0; alpha_2 [rad] > 0.
     """
     return mu * EA / (R * expm1(mu * alpha_2))
 
@@ -157,7 +162,10 @@ def tight_side_stiffness_slipping(F_T, F_p, mu, EA, R, L):
 
 
 def tight_side_stiffness_saturated(mu, EA, R, L, alpha_1):
-    """K_ti once θ_s1 ≥ α1: μEA/(2R(1 − e^{−μα1}) + μL) [N/m].  Eq. (24) with (15), (22); eq. (26)."""
+    """K_ti once θ_s1 ≥ α1: μEA/(2R(1 − e^{−μα1}) + μL) [N/m].  Eq. (24) with (15), (22); eq. (26).
+
+    mu [-] > 0; EA [N] > 0; R [m] > 0; L [m] ≥ 0; alpha_1 [rad] > 0.
+    """
     return mu * EA / (-2.0 * R * expm1(-mu * alpha_1) + mu * L)
 
 
@@ -165,6 +173,7 @@ def slack_side_stiffness_slipping(F_T, F_p, mu, EA, R, L):
     """K_sl while θ_s2 < α2: μEA(F_p−F_T)/(2RF_T + μL(F_p−F_T)) [N/m].  Eq. (25) with (18), (22); eq. (26).
 
     Evaluated with max(F_p − F_T, 0), so it is 0 (not negative or infinite) for F_T ≥ F_p.
+    F_T [N] ≥ 0; F_p [N] > 0; mu [-] > 0; EA [N] > 0; R [m] > 0; L [m] ≥ 0 (> 0 if F_T = 0).
     """
     q = fmax(F_p - F_T, 0.0)
     return mu * EA * q / (2.0 * R * F_T + mu * L * q)
@@ -176,6 +185,7 @@ def slack_side_stiffness_saturated(mu, EA, R, L, alpha_2, continuous=False):
     As published (``continuous=False``): μEA/(2R(1 − e^{−μα2}) + μL), which jumps
     up from :func:`slack_side_stiffness_slipping` at the switch.  ``continuous=True``:
     μEA/(2R(e^{μα2} − 1) + μL) (:func:`slack_saturated_stiffness_continuous`), no jump.
+    mu [-] > 0; EA [N] > 0; R [m] > 0; L [m] ≥ 0; alpha_2 [rad] > 0.
     """
     wrap = expm1(mu * alpha_2) if continuous else -expm1(-mu * alpha_2)
     return mu * EA / (2.0 * R * wrap + mu * L)
@@ -185,6 +195,7 @@ def tight_side_stiffness(F_T, F_p, mu, EA, R, L, alpha_1):
     """Tight part of eq. (26), K_ti [N/m]: slipping form while F_T < F_p(e^{μα1} − 1), else saturated.
 
     Continuous at the switch.  Both branches are finite for F_T ≥ 0 (L > 0 if F_T = 0).
+    F_T [N]; F_p [N]; mu [-]; EA [N]; R [m]; L [m]; alpha_1 [rad] (ranges as in :func:`drive_stiffness`).
     """
     tight_sat = F_T >= tight_switch_load(F_p, mu, alpha_1)
     return if_else(tight_sat, tight_side_stiffness_saturated(mu, EA, R, L, alpha_1),
@@ -193,7 +204,11 @@ def tight_side_stiffness(F_T, F_p, mu, EA, R, L, alpha_1):
 
 def slack_side_stiffness(F_T, F_p, mu, EA, R, L, alpha_2, continuous=False):
     """Slack part of eq. (26), K_sl [N/m]: 0 for F_T ≥ F_p (slack side unloaded); slipping form while
-    F_T < F_p(1 − e^{−μα2}); else saturated (published eq. 21, or the continuous alternative)."""
+    F_T < F_p(1 − e^{−μα2}); else saturated (published eq. 21, or the continuous alternative).
+
+    F_T [N]; F_p [N]; mu [-]; EA [N]; R [m]; L [m]; alpha_2 [rad] (ranges as in :func:`drive_stiffness`);
+    continuous: use :func:`slack_saturated_stiffness_continuous` for the saturated side.
+    """
     slack_sat = F_T >= slack_switch_load(F_p, mu, alpha_2)
     inner = if_else(slack_sat, slack_side_stiffness_saturated(mu, EA, R, L, alpha_2, continuous),
                     slack_side_stiffness_slipping(F_T, F_p, mu, EA, R, L))
