@@ -4,9 +4,9 @@
                   and stroke, re-optimised by IPOPT with d fixed, satisfy every check; larger
                   sizes are tried in turn if one is infeasible (e.g. a slip check that tightens
                   with d), up to the catalogue's largest.
-``bonmin``        one mixed-integer NLP (B-BB of bonmin through ``ca.nlpsol``): binaries b_k
-                  select the diameter d = Σ b_k d_k, Σ b_k = 1, with F_nwl and stroke
-                  continuous and the same objective and constraints.
+``bonmin``        one mixed-integer NLP (B-BB of bonmin through ``ca.nlpsol``): binaries b_k,
+                  Σ b_k = 1, select d = Σ b_k d_k (normalised by Σ b_k), with F_nwl and
+                  stroke continuous and the same objective and constraints.
 
 Both give the lexicographic optimum over the catalogue when the feasible diameters form
 an interval [d_lo, D/D_ratio_min]; the study ``studies/discrete_design.py`` compares them
@@ -82,13 +82,23 @@ def next_size_up(problem: SizingProblem, d_star: float, p=None, catalogue=None) 
 
 
 def bonmin(problem: SizingProblem, p=None, catalogue=None, x0=None) -> DiscreteDesign:
-    """Mixed-integer solve with bonmin over every catalogue size."""
+    """Mixed-integer solve with bonmin over every catalogue size.
+
+    One binary b_k per catalogue size, Σ b_k = 1, and d = Σ b_k d_k / Σ b_k: the
+    normalisation keeps d a convex combination of catalogue sizes in every relaxed
+    node, also at IPOPT iterates where Σ b_k ≠ 1 yet (d → 0 would make the drum
+    margin D/(30 d) infinite).  At integer points it is exactly the chosen size.
+    (An ordered incremental formulation was tried first: its relaxation has many
+    tied fractional vertices and bonmin branched through thousands of nodes.)
+    """
     catalogue = np.array(ropes.diameters() if catalogue is None else sorted(catalogue))
     p = problem.p0 if p is None else np.asarray(p, dtype=float)
     nk = len(catalogue)
     b = ca.MX.sym("b", nk)
     y = ca.MX.sym("y", 2)           # scaled F_nwl, stroke
-    d_s = ca.dot(b, ca.DM(catalogue / problem.x_scale[0]))
+    eps = 1e-12     # keeps d defined where a node's start point has every free b_k = 0
+    d_s = (ca.dot(b, ca.DM(catalogue / problem.x_scale[0])) + eps * catalogue[0] / problem.x_scale[0]) \
+        / (ca.sum1(b) + eps)
     xs = ca.vertcat(d_s, y)
     sub = ca.Function("sub", [problem.xs, problem.p], [problem.f, problem.g])
     f, g = sub(xs, problem.p)
@@ -96,24 +106,29 @@ def bonmin(problem: SizingProblem, p=None, catalogue=None, x0=None) -> DiscreteD
     nlp = {"x": z, "p": problem.p, "f": f, "g": ca.vertcat(g, ca.sum1(b))}
     opts = {"discrete": [True] * nk + [False, False], "print_time": False,
             "bonmin.print_level": 0, "bonmin.bb_log_level": 0, "bonmin.nlp_log_level": 0,
-            "bonmin.lp_log_level": 0, "bonmin.milp_log_level": 0, "bonmin.fp_log_level": 0, "bonmin.oa_log_level": 0,
-            "bonmin.algorithm": "B-BB", "bonmin.integer_tolerance": 1e-9}
+            "bonmin.algorithm": "B-BB", "bonmin.integer_tolerance": 1e-9, "bonmin.time_limit": 120.0,
+            "bonmin.node_limit": 2000, "bonmin.num_resolve_at_infeasibles": 0, "bonmin.num_resolve_at_node": 0,
+            "bonmin.num_resolve_at_root": 0, "bonmin.num_retry_unsolved_random_point": 0}
     solver = ca.nlpsol("sizing_minlp", "bonmin", nlp, opts)
     ng = problem.g.numel()
     x_start = problem.x0() if x0 is None else np.asarray(x0)
-    k0 = int(np.argmin(np.abs(catalogue - x_start[0] * problem.x_scale[0])))
-    z0 = np.concatenate([np.eye(nk)[k0], x_start[1:]])
+    k0 = min(int(np.searchsorted(catalogue, x_start[0] * problem.x_scale[0] - 1e-12)), nk - 1)
+    z0 = np.concatenate([np.eye(nk)[k0], np.maximum(x_start[1:], 0.0)])
     lbz = np.concatenate([np.zeros(nk), [0.0, 0.0]])
     ubz = np.concatenate([np.ones(nk), [np.inf, np.inf]])
+    lbg = np.concatenate([np.zeros(ng), [1.0]])
+    ubg = np.concatenate([np.full(ng, np.inf), [1.0]])
     t0 = time.perf_counter()
-    with _quiet():
-            res = solver(x0=z0, p=p, lbx=lbz, ubx=ubz, lbg=np.concatenate([np.zeros(ng), [1.0]]),
-                     ubg=np.concatenate([np.full(ng, np.inf), [1.0]]))
+    try:
+        with _quiet():
+            res = solver(x0=z0, p=p, lbx=lbz, ubx=ubz, lbg=lbg, ubg=ubg)
+        ok = bool(solver.stats()["success"])
+    except RuntimeError:     # bonmin raises on some infeasible trees instead of returning a status
+        res, ok = None, False
     seconds = time.perf_counter() - t0
-    stats = solver.stats()
-    zopt = np.asarray(res["x"]).ravel()
-    if not stats["success"]:
+    if not ok:
         return DiscreteDesign(None, "bonmin", seconds, [])
+    zopt = np.asarray(res["x"]).ravel()
     dk = float(catalogue[int(np.argmax(zopt[:nk]))])
     # the same lexicographic answer at that size, with multipliers and active set (for the report)
     x0 = np.concatenate([[dk / problem.x_scale[0]], zopt[nk:]])

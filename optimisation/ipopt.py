@@ -78,14 +78,18 @@ def solve_continuous(problem: SizingProblem, p=None, x0=None, d_range=None, fix_
 
 
 def _active_set(problem, sol, lbx, ubx):
+    """Active margins and bounds; x is put exactly on an active bound (IPOPT relaxes bounds by ~1e-8)."""
     sol.active = [c for c, g, lam in zip(problem.constraints, sol.g, sol.lam_g)
                   if g < ACTIVE_G and abs(lam) > ACTIVE_LAM]
     sol.active_bounds = []
     for i in range(3):
-        if abs(sol.xs[i] - lbx[i]) < 1e-9 * max(1.0, abs(lbx[i])):
+        near = ACTIVE_G * max(1.0, abs(sol.xs[i]))
+        if lbx[i] == ubx[i] or (abs(sol.xs[i] - lbx[i]) < near and sol.lam_x[i] < -ACTIVE_LAM):
             sol.active_bounds.append((i, "lower"))
-        elif np.isfinite(ubx[i]) and abs(sol.xs[i] - ubx[i]) < 1e-9 * max(1.0, abs(ubx[i])):
+            sol.xs[i] = lbx[i]
+        elif np.isfinite(ubx[i]) and abs(sol.xs[i] - ubx[i]) < near and sol.lam_x[i] > ACTIVE_LAM:
             sol.active_bounds.append((i, "upper"))
+            sol.xs[i] = ubx[i]
 
 
 def _jac_functions(problem):

@@ -1,0 +1,79 @@
+"""Sizing with the Voigt drum lining inside the NLP (Hajduk 1992 traction) against a hand search."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from optimisation import SizingProblem
+from optimisation.ipopt import solve_continuous
+from ropemodel.scene import load
+
+SCENE = "ropemodel/data/winch_sizing_voigt.toml"
+G = 9.80665
+K, W, C = 0.356, 4090.0, 0.460        # 6x36-IWRC, EN 12385-4
+
+
+def traction(mu, alpha, q, k):
+    """s from ln s + q s (1 - exp(-alpha/k)) = mu alpha (Hajduk 1992 eq. 19, isotropic), by bracketing."""
+    c = q * (1 - math.exp(-alpha / k))
+    return brentq(lambda s: math.log(s) + c * s - mu * alpha, 1e-300, math.exp(mu * alpha), xtol=1e-300,
+                  rtol=1e-15)
+
+
+class HandVoigt:
+    def __init__(self, P):
+        self.P = P
+        self.k = P["lambda"] * 2 * P["v_pj"] / P["D"]
+
+    def parts(self, d):
+        P = self.P
+        q = G * W * d * d
+        a, L = P["alpha_u"], P["L_u"]
+        G_ls, T_ls = q * L * math.sin(a), P["mu_pl"] * q * L * math.cos(a)
+        G_lmC = (P["G_m"] + q * L) * math.sin(a)
+        T = P["mu_pm"] * P["G_m"] * math.cos(a) + P["mu_pl"] * q * L * math.cos(a)
+        return {"up": (G_ls - T_ls, G_lmC + T), "down": (G_ls + T_ls, G_lmC - T)}
+
+    def F_lo(self, d):
+        P = self.P
+        need = 0.0
+        for s, c in self.parts(d).values():
+            need = max(need, 2 * (P["F_S_min"] - s))
+
+            def phi(F, s=s, c=c):      # held minus needed: F_S traction(Q F_S) - n_slip F_C
+                F_S = 0.5 * F + s
+                return F_S * traction(P["mu_d"], P["alpha_d"], P["Q"] * F_S, self.k) - P["n_slip"] * (0.5 * F + c)
+
+            F = 0.0
+            while phi(F) < 0:          # the held force rises, then saturates at mu alpha / Q: first root
+                F += 1e3
+                assert F < 5e6, "no pretension holds the rope"
+            lo = brentq(phi, max(F - 1e3, 0.0), F, xtol=1e-9, rtol=1e-15) if F > 0 else 0.0
+            need = max(need, lo)
+        return need
+
+    def safety(self, d):
+        F = self.F_lo(d)
+        F_min = K * d * d * self.P["rope_grade"]
+        return min(F_min / (self.P["n_rope"] * (0.5 * F + c)) - 1 for _, c in self.parts(d).values())
+
+
+def test_voigt_optimum_equals_one_dimensional_search():
+    scene = load(SCENE)
+    problem = SizingProblem(scene)
+    sol = solve_continuous(problem)
+    assert sol.success and sol.lexicographic_ok
+    got = problem.to_si(sol.xs)
+    hand = HandVoigt(scene.parameters)
+    d_star = brentq(hand.safety, 0.02, 0.08, xtol=1e-14, rtol=1e-14)
+    assert got["d"] == pytest.approx(d_star, rel=1e-6)
+    assert got["F_nwl"] == pytest.approx(hand.F_lo(d_star), rel=1e-6)
+    assert "slip_margin_up" in sol.active
+    # the lining matters here: Euler-Eytelwein (Q = 0) would need a smaller pretension at this d
+    P = dict(scene.parameters)
+    s, c = hand.parts(d_star)["up"]
+    r = math.exp(P["mu_d"] * P["alpha_d"])
+    assert 2 * (P["n_slip"] * c - r * s) / (r - P["n_slip"]) < 0.9 * got["F_nwl"]
+    assert np.all(sol.g >= -1e-10)

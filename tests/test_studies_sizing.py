@@ -1,0 +1,40 @@
+"""The sizing studies run end to end in fast mode and their numbers are consistent."""
+
+import importlib.util
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+STUDIES = Path(__file__).resolve().parent.parent / "studies"
+
+
+def _load(name):
+    spec = importlib.util.spec_from_file_location(f"study_{name}", STUDIES / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_sizing_benchmark_fast(tmp_path):
+    summary = _load("sizing_benchmark").main(tmp_path, fast=True)
+    df = pd.read_csv(tmp_path / "sizing_benchmark.csv")
+    assert len(df) == summary["scenes"] >= 5
+    assert (tmp_path / "sizing_benchmark.png").stat().st_size > 0
+    # IPOPT solved every (feasible by construction) scene and met every check
+    assert summary["ipopt_success_rate"] == 1.0
+    # where both converged to feasible points, SLSQP (finite differences) found the same rope
+    both = df[df["ipopt_ok"] & df["slsqp_converged"] & df["slsqp_feasible"]]
+    assert (both["rel_diff_d"] <= 1e-4).all()
+    assert summary["time_ratio_slsqp_over_ipopt"] == pytest.approx(
+        df["slsqp_s"].median() / df["ipopt_s"].median(), rel=1e-12)
+
+
+def test_discrete_design_fast(tmp_path):
+    summary = _load("discrete_design").main(tmp_path, fast=True)
+    df = pd.read_csv(tmp_path / "discrete_design.csv")
+    assert len(df) == summary["scenes"] >= 1
+    # the next size up is a catalogue size >= the continuous optimum
+    found = df[df["next_up_found"]]
+    assert (found["d_next_up"] >= found["d_continuous"] - 1e-12).all()
+    assert (tmp_path / "discrete_design.png").stat().st_size > 0
