@@ -109,6 +109,10 @@ def test_torque_and_force_scenes_agree(scene):
     b = rm.run(torque).to_dict()
     for k in KEYS:
         assert b[k] == pytest.approx(a[k], rel=1e-13), k
+    curve_f = load_curve(scene, 100.0, 5)
+    curve_t = load_curve(torque, 100.0, 5)
+    assert list(curve_t.columns) == list(curve_f.columns)
+    np.testing.assert_allclose(curve_t.to_numpy(), curve_f.to_numpy(), rtol=1e-13, atol=0)
     inv = rm.solve(scene, given={"T": 2 * p["R"] * 37.0}, find=["F_T"])
     assert inv["F_T"] == pytest.approx(37.0, rel=1e-12)
     assert inv["K"] == pytest.approx(a["K"], rel=1e-12)

@@ -40,7 +40,7 @@ def load_curve(scene, F_max, n: int = 201, F_min=0.0, display: bool = False) -> 
     columns = {"T": 2.0 * p["R"] * F} if torque else {"F_T": F}
     scene.built.validate({**p, **{k: v[-1] for k, v in columns.items()}})  # ranges and the unwrap check at F_max
     out = problem.evaluate(columns)
-    values = {"F_T": F, **{k: np.asarray(v) for k, v in out.items()}}
+    values = {**columns, "F_T": F, **{k: np.asarray(v) for k, v in out.items()}}
     bad = [k for k, v in values.items() if not np.all(np.isfinite(v))]
     if bad:
         raise SolveError(f"non-finite {', '.join(bad)} on the load curve")

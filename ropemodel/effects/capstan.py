@@ -174,7 +174,8 @@ class SmoothStiffness(_Stiffness):
 
     z are dimensionless switching functions (:func:`ropemodel.capstan.laws.switching_functions`):
     μ(θ_s1 − α1), (F_T − F_p(1 − e^{−μα2}))/F_p and (F_T − F_p)/F_p, so each transition is
-    about F_p/s wide in load.  K(0) = 2EA/L·(1 − O(e^{−s})).  ``regime`` is reported by the
+    about F_p/s wide in load.  At F_T = 0 the slack weight is σ(−s(1 − e^{−μα0})), so K(0)
+    misses 2EA/L by that fraction of the jump (1e-4 at s = 30 in the experiment).  ``regime`` is reported by the
     crisp conditions.  For gradient-based optimisation; accuracy cost in
     ``studies/capstan_smooth_cost.py``.
     """
