@@ -72,3 +72,25 @@ def test_unwrap_load_is_where_the_rotation_reaches_the_wrap():
 
 def test_zero_load_gives_zero_rotation():
     assert rotation(0.0, **P) == 0.0
+
+
+@pytest.mark.parametrize("variant", ["li", "continuous", "smooth"])
+def test_parameter_derivatives_through_located_switches(variant):
+    # AD of the event-located scheme (switch locations move with the parameters) against central
+    # differences of the rotation, at a load past all three switches
+    import casadi as ca
+
+    from ropemodel.capstan.rotation import ARGS, rotation_function
+
+    fun = rotation_function(variant)
+    x = ca.SX.sym("x", len(ARGS))
+    jac = ca.Function("j", [x], [ca.jacobian(fun(*ca.vertsplit(x)), x)])
+    point = np.array([100.0, P["mu"], P["EA"], P["R"], P["L"], P["alpha_0"], P["F_p"]])
+    ad = np.asarray(jac(point)).ravel()
+    for i in range(len(ARGS)):
+        h = 1e-5 * point[i]
+        up, dn = point.copy(), point.copy()
+        up[i] += h
+        dn[i] -= h
+        fd = (float(fun(*up)) - float(fun(*dn))) / (2 * h)
+        assert ad[i] == pytest.approx(fd, rel=1e-5), ARGS[i]
