@@ -6,13 +6,13 @@ lowering (ropemodel/data/winch_start_brake.toml) with linear drive ramps of 1-20
 damping (Kelvin-Voigt retardation time) 0-0.2 s.  For every case: the peak F_C, the dynamic
 factor F_C_max / F_C_static, the least F_S, and whether the rope slipped on the drum, the
 tensioner ran out of stroke or a rope span went slack.  The inextensible-rope value
-(static + moving mass x ramp acceleration) is drawn for comparison.  A linear ramp starts
-(and ends) with a step of acceleration: the load then oscillates on the elastic rope about the
-moving equilibrium with an amplitude of about the inertia force m·a, so the peak exceeds the
-static force by two to three times the inextensible rope's excess, however long the ramp
-(the resistance breaking away at the start adds to it); rope damping of realistic size
-lowers it only a little.  Braking a lowered load ends at rest, where the smoothed resistance vanishes:
-the load creeps (time constant ≈ (T_m + T_l)/(v_eps k), 12 s here) towards the frictionless
+(static + moving mass x ramp acceleration) is drawn for comparison.  The elastic peak stays
+well above it even for long ramps because of the breakaway: the load stays (nearly) put while
+the rope stretches by (resistance)/k, and when it breaks away the drum is already moving at
+v_b, so the load oscillates on the rope with a force amplitude of about k·v_b/ω (18 kN for a
+20 s ramp here: 191 + 7 + 18 = 216 kN against 214.5 kN simulated).  A cosine ramp does not
+remove it (ramp = "cosine").  Rope damping of realistic size lowers the peak only a little.
+Braking a lowered load ends at rest, where the smoothed resistance vanishes: the load creeps (time constant ≈ (T_m + T_l)/(v_eps k), 12 s here) towards the frictionless
 holding force 0.5 F_nwl + G_lmC, 20 % above the moving F_C of the paper's downward column, so
 long braking ramps level off near 1.16-1.2 rather than 1.  Also draws the history of the
 four start-up example scenes.

@@ -443,3 +443,17 @@ def test_brake_too_weak_to_hold_a_lowered_load_is_reported():
     s = sim.summary
     assert s["drive_events"][0] == {"t": 0.0, "event": "torque_pos"}
     assert s["v_load_end"] < -sim.scene.parameters["v_pj"]
+
+
+# --- ramp shape -----------------------------------------------------------------------------------
+
+def test_rigid_cosine_ramp_gives_static_plus_mass_times_its_acceleration():
+    """Cosine ramp: a(t) = (π/2)(v_pj/t_ramp) sin(π t/t_ramp); F_C = F_C,static + (G_m + q_l L_u)/g · a(t)."""
+    sc = scene(effects={"rope_elasticity": "rigid", "ramp": "cosine"}, params={"t_end": "6 s"})
+    v, st = sc.parameters, rm.run(sc)
+    h = simulate(sc).history
+    ramp = h[(h["t [s]"] > 0.5) & (h["t [s]"] < v["t_ramp"])]
+    a = 0.5 * math.pi * v["v_pj"] / v["t_ramp"] * np.sin(math.pi * ramp["t [s]"] / v["t_ramp"])
+    np.testing.assert_allclose(ramp["v_drum [m/s]"],
+                               v["v_pj"] * 0.5 * (1 - np.cos(math.pi * ramp["t [s]"] / v["t_ramp"])), rtol=1e-12)
+    np.testing.assert_allclose(ramp["F_C [N]"], st["F_C_up"] + (v["G_m"] + v["q_l"] * v["L_u"]) / G_N * a, rtol=1e-6)

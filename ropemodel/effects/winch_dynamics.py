@@ -24,6 +24,9 @@ Effects and variants
 ``tensioner``       ``constant_force`` (default): the return sheave's carriage (mass ``m_t``)
                     is pulled with ``F_nwl`` and travels within its ``stroke``;
                     ``fixed``: the carriage is locked where ``F_nwl`` put it at rest.
+``ramp``            ``linear`` (default): constant acceleration v_pj/t_ramp; ``cosine``:
+                    v = v_pj (1 − cos(π t/t_ramp))/2, acceleration continuous and zero at
+                    both ends (peak π/2 times the linear ramp's).
 ``drive``           ``speed`` (default): the drum's surface speed follows the ramp exactly;
                     ``torque_limited``: it follows the ramp while the motor's force at the rim
                     stays within ±``F_drive_max``, else the motor gives ±F_drive_max and the
@@ -68,6 +71,7 @@ define_effect(MODEL, "dynamics", "none", "time-domain transient: none, start (dr
 define_effect(MODEL, "travel", "up", "direction of travel of the simulated transient (up: load hauled up)")
 define_effect(MODEL, "rope_elasticity", "segments", "rope model of the transient: rigid, spring or segments")
 define_effect(MODEL, "tensioner", "constant_force", "return-sheave tensioner of the transient")
+define_effect(MODEL, "ramp", "linear", "shape of the drive's speed ramp: linear or cosine (smooth)")
 define_effect(MODEL, "drive", "speed", "drive of the transient: prescribed speed ramp, or a torque-limited motor")
 
 
@@ -211,6 +215,20 @@ class ConstantForceTensioner(Submodel):
         Quantity("stroke", "m", "rope take-up the tensioner allows (the paper's stroke)", "mm",
                  default=100.0, guess=1.0, **_pos),
     )
+
+
+@register(MODEL, "ramp", "linear")
+class LinearRamp(Submodel):
+    """Linear speed ramp: constant acceleration, with steps of acceleration at both ends."""
+
+    description = "linear speed ramp (constant acceleration)"
+
+
+@register(MODEL, "ramp", "cosine")
+class CosineRamp(Submodel):
+    """Cosine speed ramp v = v_pj (1 − cos(π t/t_ramp))/2: no step of acceleration."""
+
+    description = "cosine speed ramp (acceleration continuous, zero at both ends)"
 
 
 @register(MODEL, "drive", "speed")
