@@ -12,9 +12,10 @@ the rope stretches by (resistance)/k, and when it breaks away the drum is alread
 v_b, so the load oscillates on the rope with a force amplitude of about k·v_b/ω (18 kN for a
 20 s ramp here: 191 + 7 + 18 = 216 kN against 214.5 kN simulated).  A cosine ramp does not
 remove it (ramp = "cosine").  Rope damping of realistic size lowers the peak only a little.
-Braking a lowered load ends at rest, where the smoothed resistance vanishes: the load creeps (time constant ≈ (T_m + T_l)/(v_eps k), 12 s here) towards the frictionless
-holding force 0.5 F_nwl + G_lmC, 20 % above the moving F_C of the paper's downward column, so
-long braking ramps level off near 1.16-1.2 rather than 1.  Also draws the history of the
+Braking a lowered load ends at rest, where the smoothed resistance vanishes: the load creeps
+(time constant ≈ (T_m + T_l)/(v_eps k), 12 s here) towards the frictionless holding force
+0.5 F_nwl + G_lmC, 20 % above the moving F_C of the paper's downward column, so long braking
+ramps level off near 1.16-1.2 rather than 1.  Also draws the history of the
 four start-up example scenes.
 
     python studies/dynamic_factor.py [--fast]
