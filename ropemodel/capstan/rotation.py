@@ -40,6 +40,7 @@ from scipy.optimize import brentq
 
 from ropemodel.capstan.laws import LAWS, switching_functions
 from ropemodel.errors import InputError
+from ropemodel.papers import li_capstan as li
 
 ARGS = ("F_T", "mu", "EA", "R", "L", "alpha_0", "F_p")
 NEWTON_ITERATIONS = 3
@@ -56,8 +57,6 @@ def _rate(law, sharpness, u, delta, flags, p):
     if flags is None:
         k_ti, k_sl = law.parts(F, F_p, mu, EA, R, L, a1, a2, sharpness)
     else:
-        from ropemodel.papers import li_capstan as li
-
         tight, slack, unloaded = flags
         k_ti = ca.if_else(tight, li.tight_side_stiffness_saturated(mu, EA, R, L, a1),
                           li.tight_side_stiffness_slipping(F, F_p, mu, EA, R, L))
