@@ -181,3 +181,11 @@ def test_size_cli_json(capsys):
 def test_size_bad_input_exit_2(capsys):
     assert cli(["size", SCENE, "--set", "mu_d=-1"]) == 2
     assert cli(["size", "ropemodel/data/krauze2025_fig9.toml"]) == 2    # rope = "given": nothing to size
+
+
+def test_size_cli_json_when_infeasible(capsys):
+    assert cli(["size", SCENE, "--set", "D=1.0m", "--json"]) == 1
+    out = json.loads(capsys.readouterr().out)
+    assert out["feasible"] is False
+    assert "drum_margin" in out["infeasible"]["conflicting"]
+    assert "drum_margin" in out["message"]

@@ -77,3 +77,31 @@ def test_voigt_optimum_equals_one_dimensional_search():
     r = math.exp(P["mu_d"] * P["alpha_d"])
     assert 2 * (P["n_slip"] * c - r * s) / (r - P["n_slip"]) < 0.9 * got["F_nwl"]
     assert np.all(sol.g >= -1e-10)
+
+
+def test_voigt_sensitivities_match_finite_differences():
+    """KKT sensitivities through the lining's implicit traction (rootfinder inside the NLP)."""
+    from optimisation.sensitivity import sensitivities
+
+    problem = SizingProblem(load(SCENE))
+    sol = solve_continuous(problem)
+    sens = sensitivities(problem, sol)
+    x_star = problem.to_si(sol.xs)
+    for name in ("Q", "lambda", "mu_d", "G_m", "n_rope"):
+        j = problem.params.index(name)
+        h = 1e-5 * abs(problem.p0[j])
+        xs = []
+        for sgn in (+1, -1):
+            p = problem.p0.copy()
+            p[j] += sgn * h
+            s = solve_continuous(problem, p=p, x0=sol.xs)
+            assert s.success and s.polished
+            xs.append(problem.to_si(s.xs))
+        for v in ("d", "F_nwl", "stroke"):
+            fd = (xs[0][v] - xs[1][v]) / (2 * h)
+            if name == "lambda":
+                # k = lambda omega = 0.03 rad against a 3 pi wrap: exp(-alpha_d/k) ~ e^-300, no effect
+                assert fd == 0.0 and abs(sens[name][v]) * problem.p0[j] / x_star[v] < 1e-12
+                continue
+            assert abs(fd) * abs(problem.p0[j]) / abs(x_star[v]) > 1e-6      # every one of these matters
+            assert sens[name][v] == pytest.approx(fd, rel=1e-4), (name, v)
