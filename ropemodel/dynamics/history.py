@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 
 from ropemodel.dynamics.system import OUT
+from ropemodel.errors import SolveError
 
 #: history columns (SI), in order
 COLUMNS = ("t [s]", "v_drum [m/s]", "v_load [m/s]", "slip_speed [m/s]", "slip [m]", "F_C [N]", "F_S [N]",
@@ -57,6 +58,11 @@ class Simulation:
             "drum": [m[0] for m in self._modes], "tensioner": [m[1] for m in self._modes],
             "drive": [m[2] for m in self._modes],
         })
+        numeric = self.history.select_dtypes("number").to_numpy()
+        bad = ~np.isfinite(numeric).all(axis=1)
+        if bad.any():
+            raise SolveError(f"the transient has non-finite values from t = {t[bad.argmax()]:.6g} s on "
+                             f"(an integrator failure); try a tighter [numerics] sim_rtol")
         self.events = events
         self.summary = self._summarise(events)
 
