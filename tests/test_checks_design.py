@@ -88,3 +88,13 @@ stroke = "1000 mm"
     assert cli(["run", str(p), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["stroke_margin_up"] == pytest.approx(-0.40294, abs=1e-5)
+
+
+def test_shipped_paper_scene_flags_the_stroke(capsys):
+    assert cli(["run", "ropemodel/data/winch_sizing_paper_rope.toml", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["stroke_margin_up"] * 1e3 == pytest.approx(1000 - FIG9["dF_up"], abs=0.01)
+    assert out["F_C_up"] / 1e3 == pytest.approx(FIG9["F_C_up"], abs=0.01)
+    # the 6x36-IWRC 1770 rope of 42 mm: F_min = K d^2 R_r (EN 12385-4)
+    assert out["safety_margin_up"] == pytest.approx(0.356 * 42**2 * 1770 / 1e3 / (4.5 * FIG9["F_C_up"]) - 1,
+                                                    abs=2e-4)
