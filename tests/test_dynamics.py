@@ -430,9 +430,14 @@ def test_torque_limit_above_the_need_changes_nothing():
     np.testing.assert_allclose(lim.history["F_C [N]"], base.history["F_C [N]"], rtol=1e-12)
 
 
-def test_torque_limited_drive_needs_an_inertia():
+@pytest.mark.parametrize("params", [{"F_drive_max": "180 kN"}, {"F_drive_max": "180 kN", "m_drive": 0.0}])
+def test_torque_limited_drive_needs_an_inertia(params):
     with pytest.raises(rm.InputError, match="m_drive"):
-        simulate(scene(effects={"drive": "torque_limited"}, params={"F_drive_max": "180 kN"}))
+        simulate(scene(effects={"drive": "torque_limited"}, params=params))
+
+
+def test_speed_drive_has_no_motor_parameters():
+    assert "F_drive_max" not in scene().parameters and "m_drive" not in scene().parameters
 
 
 def test_brake_too_weak_to_hold_a_lowered_load_is_reported():

@@ -61,9 +61,6 @@ def simulate(scene, values: dict | None = None) -> Simulation:
     ratio = TRACTION[lining](vals)
     sys = LoopSystem(chain, vals, ratio)
     sys.torque_limited = eff["drive"] == "torque_limited"
-    if sys.torque_limited and not vals["m_drive"] > 0:
-        raise InputError("drive = \"torque_limited\" needs m_drive > 0 (drum, gearing and motor inertia reduced "
-                         "to the drum rim, J/R^2 in kg)")
     phases, v0 = PROFILES[eff["dynamics"]](vals["v_pj"], vals["t_ramp"], vals["t_end"], sign, eff["ramp"])
     tens0 = INITIAL_TENSIONER[eff["tensioner"]] if not chain.rigid else "fixed"
     # initial state: at rest (start) or steady motion (stop); the fixed take-up is set at rest

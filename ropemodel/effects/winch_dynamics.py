@@ -126,7 +126,7 @@ class _Transient(Submodel):
 
     def equations(self, v):
         names = [q.name for q in DYNAMIC] + list(STATIC_INPUTS)
-        for effect in ("rope_elasticity", "tensioner", "drive"):
+        for effect in ("rope_elasticity", "tensioner"):
             for cls in REGISTRY[MODEL][effect].variants.values():
                 names += [q.name for q in cls.quantities]
         for name in names:
@@ -243,17 +243,22 @@ class TorqueLimitedDrive(Submodel):
     """Speed-controlled drive whose motor force at the drum rim is limited to ±F_drive_max.
 
     Not in the paper.  F_drive_max = motor torque limit × gear ratio / drum radius; m_drive = the
-    inertia of drum, gearing and motor reduced to the rim (J/R²).  Defaults: no limit (1e12 N) and
-    no inertia (0 kg, refused by the torque-limited drive): give both.
+    inertia of drum, gearing and motor reduced to the rim (J/R²).  Both required (no default).
+    Builds no equation; only this variant makes them parameters of the scene.
     """
 
     description = "motor force at the rim limited to F_drive_max; drum inertia m_drive"
     quantities = (
         Quantity("F_drive_max", "N", "largest force the motor gives at the drum rim (torque limit / radius)",
-                 "kN", default=1e12, guess=3e5, **_pos),
+                 "kN", guess=3e5, **_pos),
         Quantity("m_drive", "kg", "inertia of drum, gearing and motor reduced to the drum rim (J/R^2)", "kg",
-                 low=0.0, default=0.0, guess=1e4),
+                 guess=1e4, **_pos),
     )
+
+    def equations(self, v):
+        for q in self.quantities:
+            v[q.name]  # noqa: B018 - creating the symbol makes it a parameter
+        return []
 
 
 @register(MODEL, "tensioner", "fixed")
