@@ -15,6 +15,18 @@ CURVE_OUTPUTS = ("T", "K", "K_ti", "K_sl", "delta", "delta_alpha", "alpha_1", "a
                  "regime")
 
 
+def evaluate(problem: Problem, columns: dict) -> dict:
+    """Every unknown of ``problem`` at the points of ``columns`` (name → SI array of one length; other
+    knowns from the scene), by ``Function.map`` of the compiled solver: one call, no caching."""
+    n = len(next(iter(columns.values())))
+    base = problem.inputs()
+    args = [np.broadcast_to(np.asarray(columns.get(k, base[k]), dtype=float), (n,)).reshape(1, n)
+            for k in problem.knowns]
+    res = problem.function.map(n)(*args)
+    res = res if isinstance(res, (list, tuple)) else [res]
+    return {u: np.asarray(r).ravel() for u, r in zip(problem.unknowns, res)}
+
+
 def load_curve(scene, F_max, n: int = 201, F_min=0.0, display: bool = False) -> pd.DataFrame:
     """The scene's outputs at ``n`` loads F_T evenly spaced from ``F_min`` to ``F_max``.
 
@@ -39,7 +51,7 @@ def load_curve(scene, F_max, n: int = 201, F_min=0.0, display: bool = False) -> 
     problem = Problem(scene)
     columns = {"T": 2.0 * p["R"] * F} if torque else {"F_T": F}
     scene.built.validate({**p, **{k: v[-1] for k, v in columns.items()}})  # ranges and the unwrap check at F_max
-    out = problem.evaluate(columns)
+    out = evaluate(problem, columns)
     values = {**columns, "F_T": F, **{k: np.asarray(v) for k, v in out.items()}}
     bad = [k for k, v in values.items() if not np.all(np.isfinite(v))]
     if bad:
