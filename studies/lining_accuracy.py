@@ -163,7 +163,7 @@ def plot(df: pd.DataFrame, path: Path) -> None:
         ax.set_title(f"{label} cases")
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel("time per point [s] (batched, this machine)")
-    axes[1].legend(fontsize=7, loc="upper right")
+    axes[0].legend(fontsize=7, loc="lower left", ncol=2)
     fig.suptitle("Lined sheave: work-precision of the ODE path (ropemodel, CasADi) vs scipy solve_ivp", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
