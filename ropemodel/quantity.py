@@ -50,12 +50,17 @@ class Quantity:
         """Convert an SI value to the display unit."""
         return value * factor(self.unit, self.display_unit)
 
+    @property
+    def unit_text(self) -> str:
+        """The display unit as shown after a number: ``" kN"``, or ``""`` for a pure number."""
+        return "" if self.display_unit in ("1", "") else f" {self.display_unit}"
+
     def range_text(self) -> str:
-        """The valid range as text in display units, e.g. ``(0, inf) m``."""
+        """The valid range as text in display units, e.g. ``(0, inf] m``."""
         f = factor(self.unit, self.display_unit)
         lo = "[" if not self.low_open else "("
         hi = "]" if not self.high_open else ")"
-        return f"{lo}{_fmt(self.low * f)}, {_fmt(self.high * f)}{hi} {self.display_unit}"
+        return f"{lo}{_fmt(self.low * f)}, {_fmt(self.high * f)}{hi}{self.unit_text}"
 
     def in_range(self, value: float) -> bool:
         if not math.isfinite(value):
@@ -71,7 +76,7 @@ class Quantity:
         if not self.in_range(value):
             shown = self.to_display(value)
             raise InputError(
-                f"{what or self.name} = {_fmt(shown)} {self.display_unit} is outside the valid range "
+                f"{what or self.name} = {_fmt(shown)}{self.unit_text} is outside the valid range "
                 f"{self.range_text()} ({self.description})"
             )
         return value

@@ -73,16 +73,31 @@ class Scene:
         return out
 
 
+def builtin_scenes() -> list[str]:
+    """Names of the scenes shipped in the package (``ropemodel/data/*.toml``), without ``.toml``."""
+    return sorted(f.name[:-5] for f in resources.files("ropemodel.data").iterdir()
+                  if f.name.endswith(".toml") and "[scene]" in f.read_text())
+
+
 def load(path: str | Path | None = None) -> Scene:
-    """Load a scene file; ``None`` loads the built-in example (Krauze et al. 2025, Fig. 9)."""
-    if path is None:
-        text = resources.files("ropemodel.data").joinpath(EXAMPLE).read_text()
-        return from_toml(text, source=f"built-in example {EXAMPLE}")
+    """Load a scene file.
+
+    ``None`` (or ``"example"``) loads the built-in example (Krauze et al. 2025, Fig. 9);
+    the name of a built-in scene (see :func:`builtin_scenes`, e.g.
+    ``"capstan_li_experiment"``) loads that one when no such file exists.
+    """
+    if path is None or str(path) == "example":
+        path = EXAMPLE[:-5]
     p = Path(path)
+    name = p.name[:-5] if p.name.endswith(".toml") else p.name
+    if not p.exists() and str(path) in (name, p.name) and name in builtin_scenes():
+        text = resources.files("ropemodel.data").joinpath(f"{name}.toml").read_text()
+        return from_toml(text, source=f"built-in scene {name}")
     try:
         text = p.read_text()
     except FileNotFoundError:
-        raise InputError(f"scene file not found: {p}") from None
+        raise InputError(f"scene file not found: {p} (built-in scenes: {', '.join(builtin_scenes())})"
+                         f"{suggest(name, builtin_scenes())}") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(f"cannot read scene file {p}: {exc}") from None
     return from_toml(text, source=str(p))
@@ -144,7 +159,7 @@ def _check_values(model: Model, params: dict[str, float]) -> None:
     for name, value in params.items():
         q = model.quantities[name]
         if q.beyond_source(value):
-            warnings.warn(f"{name} = {q.to_display(value):.6g} {q.display_unit} is beyond the range the source "
+            warnings.warn(f"{name} = {q.to_display(value):.6g}{q.unit_text} is beyond the range the source "
                           f"covers ({q.description})", BeyondSourceWarning, stacklevel=3)
 
 

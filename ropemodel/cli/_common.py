@@ -33,7 +33,7 @@ def add_scene_arguments(parser, optional: bool = True) -> None:
     if optional:
         parser.add_argument("scene", nargs="?", help="scene TOML file (default: the built-in Fig. 9 example)")
     else:
-        parser.add_argument("scene", help="scene TOML file ('example' for the built-in one)")
+        parser.add_argument("scene", help="scene TOML file, or the name of a built-in scene ('example' for Fig. 9)")
     parser.add_argument("--set", action="append", metavar="NAME=VALUE", default=[],
                         help="override a parameter; VALUE is SI or carries a unit, e.g. alpha_u=20deg")
     parser.add_argument("--json", action="store_true", help="print one JSON object in SI units")
@@ -41,7 +41,6 @@ def add_scene_arguments(parser, optional: bool = True) -> None:
 
 def scene_from_args(args):
     """Load the scene named on the command line and apply ``--set``."""
-    path = None if args.scene in (None, "example") else args.scene
-    scene = load(path)
+    scene = load(args.scene)
     values = assignments(args.set, "--set")
     return scene.with_values(values) if values else scene
