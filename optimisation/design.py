@@ -15,7 +15,9 @@ from optimisation.sensitivity import sensitivities
 from ropemodel import ropes
 from ropemodel.scene import Scene
 
-#: default way to pick a catalogue diameter (chosen on the evidence of studies/discrete_design.py)
+#: default way to pick a catalogue diameter, chosen on the evidence of studies/discrete_design.py:
+#: on 30 random scenes bonmin returned the same design as next-size-up every time it finished,
+#: did not finish within 20 s on 3 of them (10 %), and took ~150x longer (median 3.6 s vs 25 ms).
 DEFAULT_DISCRETE = "next-size-up"
 FEAS_TOL = 1e-8
 
