@@ -12,9 +12,8 @@ are built.
 Effects and variants
 --------------------
 ``dynamics``        ``none`` (default): static scene.  ``start``: the drum's surface speed
-                    ramps linearly from rest to ``v_pj`` in ``t_ramp``; ``stop``: from
-                    steady motion at ``v_pj`` down to rest in ``t_ramp``.  Simulated up to
-                    ``t_end``.
+                    ramps from rest to ``v_pj`` in ``t_ramp``; ``stop``: from steady motion
+                    at ``v_pj`` down to rest in ``t_ramp``.  Simulated up to ``t_end``.
 ``travel``          ``up`` (default, load hauled up the incline) or ``down`` (load lowered):
                     the direction of the transient.
 ``rope_elasticity`` ``segments`` (default): every rope span cut into ``[numerics] segments``
@@ -47,8 +46,9 @@ frictionless holding force with time constant ≈ R/(v_eps·k) (12 s for the Fig
 rope), where real friction would stick anywhere within ±R of it.
 
 Moving masses: the load G_m/g, the rope q_l·L_u/g of each side (lumped on the nodes), the
-return sheave's carriage m_t (constant-force tensioner).  The drum's speed is prescribed (its
-inertia and the motor do not enter; no torque limit is modelled).
+return sheave's carriage m_t (constant-force tensioner), and with ``drive = "torque_limited"``
+the drum, gearing and motor m_drive (reduced to the rim).  With ``drive = "speed"`` the drum's
+speed is prescribed and its inertia does not enter the rope forces.
 """
 
 from __future__ import annotations
