@@ -15,8 +15,9 @@ lengths are frozen at their initial values).
 
 Moving masses (stated, as the issue asks): the load G_m/g; the rope q_l ℓ/g of every
 element, lumped half on each end node; the return sheave's carriage m_t (constant-force
-tensioner).  The drum's speed is prescribed, so its inertia does not enter the rope
-forces; the sheaves' rotational inertia is neglected.  Gravity is g = 9.80665 m/s².
+tensioner).  The drum's inertia enters only with a torque-limited drive
+(:mod:`ropemodel.dynamics.drive`), else its speed is prescribed; the sheaves' rotational
+inertia is neglected.  Gravity is g = 9.80665 m/s².
 
 Forces on the nodes come from the paper's resistances (eq. (7)-(11)): weight along the
 incline (eq. (1), (3), (4), (6)) and travel resistance μ·(normal weight), the Coulomb
