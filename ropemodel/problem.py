@@ -89,19 +89,20 @@ class Problem:
     def evaluate(self, columns: dict[str, np.ndarray], parallel: int = 1) -> dict[str, np.ndarray]:
         """Vectorised solve: arrays of SI inputs (missing ones from the scene) → arrays of unknowns.
 
-        Uses ``Function.map`` (``"thread"`` when ``parallel > 1``).  No range check is
-        made here; callers validate their inputs (see :mod:`ropemodel.sweep`).
+        Evaluated in chunks of 65536 points by :func:`ropemodel.sweep.evaluate.evaluate_columns`
+        (``Function.map``, or the same Function compiled to C; ``parallel`` threads), so memory
+        stays bounded and the Function is compiled once per process.  No range check is made
+        here; callers validate their inputs (see :mod:`ropemodel.sweep`).
         """
+        from ropemodel.sweep.evaluate import evaluate_columns
+
         n = max((np.size(v) for v in columns.values()), default=1)
         base = self.inputs({k: v for k, v in columns.items() if not isinstance(v, np.ndarray)})
-        args = []
-        for k in self.knowns:
-            v = columns.get(k, base.get(k))
-            args.append(np.broadcast_to(np.asarray(v, dtype=float), (n,)).reshape(1, n))
-        fmap = self.function.map(n, "thread", parallel) if parallel > 1 else self.function.map(n)
-        res = fmap(*args)
-        res = res if isinstance(res, (list, tuple)) else [res]
-        return {u: np.asarray(r).ravel() for u, r in zip(self.unknowns, res)}
+        arrays = {k: np.broadcast_to(np.asarray(columns[k], dtype=float), (n,)) for k in self.knowns
+                  if isinstance(columns.get(k), np.ndarray)}
+        constants = {k: base[k] for k in self.knowns if k not in arrays}
+        out = evaluate_columns(self.function, arrays, constants, threads=parallel)
+        return {u: out[u] for u in self.unknowns}
 
     def _check_round_trip(self, values_all):
         """The forward model at the solution must reproduce every given output: an implicit
@@ -116,7 +117,7 @@ class Problem:
             got, want = float(out[n]), values_all[n]
             if not abs(got - want) <= 1e-6 * max(1.0, abs(want)):
                 q = self.model.quantities[n]
-                u = "" if q.display_unit == "1" else f" {q.display_unit}"
+                u = q.unit_text
                 raise SolveError(
                     f"no solution with {n} = {q.to_display(want):.6g}{u}: the solver stopped "
                     f"where {n} = {q.to_display(got):.6g}{u} (no such {', '.join(self.find)} "
@@ -127,7 +128,7 @@ class Problem:
             q = self.model.quantities[n]
             if not q.in_range(sol[n]):
                 raise SolveError(
-                    f"no valid {n}: the solution {n} = {q.to_display(sol[n]):.6g} {q.display_unit} "
+                    f"no valid {n}: the solution {n} = {q.to_display(sol[n]):.6g}{q.unit_text} "
                     f"is outside its valid range {q.range_text()}"
                 )
 

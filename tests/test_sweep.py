@@ -192,3 +192,14 @@ def test_cli_sweep_summary(tmp_path, capsys, suffix):
                 "--outputs", "F_C_up", "-o", str(out), "--json"]) == 0
     info = json.loads(capsys.readouterr().out)
     assert info["rows"] == 18 and info["columns"] == ["alpha_u [deg]", "mu_pm [-]", "F_C_up [kN]"]
+
+
+@pytest.mark.parametrize("backend", ["casadi", "compiled"])
+def test_constants_are_not_cached_with_the_compiled_function(fig9, backend):
+    """Two sweeps of one Function with different constant inputs (one evaluator shared by both)."""
+    alpha = np.radians([5.0, 20.0])
+    for G_m in (300e3, 600e3):
+        df = rm.sweep(fig9.with_values({"G_m": G_m}), {"alpha_u": alpha}, ["F_C_up"], si=True, backend=backend)
+        np.testing.assert_allclose(df["F_C_up [N]"], f_c_up_closed_form(alpha, G_m, fig9), rtol=1e-13)
+        out = rm.Problem(fig9).evaluate({"alpha_u": alpha, "G_m": G_m})
+        np.testing.assert_allclose(out["F_C_up"], f_c_up_closed_form(alpha, G_m, fig9), rtol=1e-13)

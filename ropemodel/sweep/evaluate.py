@@ -20,8 +20,8 @@ Two backends evaluate the same Function:
     which dominates the cost of ``"casadi"`` on cheap models.  Blocks of points
     run on ``threads`` Python threads (``ctypes`` releases the GIL).
 
-``"auto"`` picks ``"compiled"`` for explicit (SX) Functions when a C compiler
-works, else ``"casadi"``.
+``"auto"`` picks ``"compiled"`` for explicit (SX) Functions of at least
+:data:`COMPILE_MIN` points when a C compiler works, else ``"casadi"``.
 """
 
 from __future__ import annotations
@@ -45,6 +45,7 @@ from ropemodel.errors import InputError, SolveError
 
 BACKENDS = ("auto", "casadi", "compiled")
 BLOCK = 4096  # points per call of the compiled map: its work array stays in cache
+COMPILE_MIN = 20000  # "auto" compiles to C only for at least this many points (gcc takes ~0.3 s)
 
 
 @dataclass
@@ -52,7 +53,7 @@ class ChunkJob:
     """A picklable description of how to evaluate chunks of one sweep.
 
     function: one scalar input per name in ``varied + constant_names``, one output per ``outputs``.
-    constants: SI values of the inputs that do not vary.
+    constants: SI values of the inputs that do not vary (passed at each call; not part of ``key``).
     columns: (label, name, factor) of every column written: the varied inputs, then the outputs.
     checks: output name → (low, high, low_open, high_open, description) ranges a solution must meet.
     roundtrip: extra output → given output it must reproduce (the forward model at the solution).
@@ -94,7 +95,7 @@ def evaluator(job: ChunkJob):
 def run_chunk(job: ChunkJob, start: int, inputs: dict[str, np.ndarray]) -> pa.Table:
     """Evaluate the points ``inputs`` (SI arrays of the varied inputs; first point has index ``start``)."""
     n = len(next(iter(inputs.values())))
-    outs = evaluator(job)([np.asarray(inputs[k], dtype=float) for k in job.varied], n)
+    outs = evaluator(job)([np.asarray(inputs[k], dtype=float) for k in job.varied], n, _constants(job))
     ok = np.ones(n, dtype=bool)
     for y in outs.values():
         ok &= np.isfinite(y)
@@ -131,22 +132,27 @@ def run_chunk(job: ChunkJob, start: int, inputs: dict[str, np.ndarray]) -> pa.Ta
     return pa.table(data)
 
 
+def _constants(job: ChunkJob) -> list[float]:
+    """Values of the constant inputs in the Function's input order (passed at every call: the
+    evaluator is shared by every job with the same Function, whatever their values)."""
+    return [job.constants[k] for k in job.function.name_in()[len(job.varied):]]
+
+
 def _make(job: ChunkJob):
     backend = job.backend
     if backend not in BACKENDS:
         raise InputError(f"backend {backend!r}: valid backends: {', '.join(BACKENDS)}")
     fun = job.function
     n_var = len(job.varied)
-    const = [job.constants[k] for k in fun.name_in()[n_var:]]
     if backend == "auto":
         backend = "compiled" if fun.is_a("SXFunction") and compiler() else "casadi"
     if backend == "compiled":
         try:
-            return _Compiled(fun, n_var, const, job.threads)
+            return _Compiled(fun, n_var, job.threads)
         except (OSError, RuntimeError, subprocess.CalledProcessError) as exc:
             if job.backend == "compiled":
                 raise InputError(f"backend 'compiled' is not available: {exc}") from None
-    return _Mapped(fun, n_var, const, job.threads)
+    return _Mapped(fun, n_var, job.threads)
 
 
 def compiler() -> str | None:
@@ -157,18 +163,18 @@ def compiler() -> str | None:
 class _Mapped:
     """``Function.map`` with threads; constant inputs passed once."""
 
-    def __init__(self, fun, n_var, const, threads):
-        self.fun, self.n_var, self.const, self.threads = fun, n_var, const, max(1, threads)
+    def __init__(self, fun, n_var, threads):
+        self.fun, self.n_var, self.threads = fun, n_var, max(1, threads)
         self.maps = {}
 
-    def __call__(self, inputs, n):
+    def __call__(self, inputs, n, const):
         fm = self.maps.get(n)
         if fm is None:
             reduce_in = list(range(self.n_var, self.fun.n_in()))
             par = "thread" if self.threads > 1 else "serial"
             fm = self.maps[n] = self.fun.map("sweep_map", par, n, reduce_in, [],
                                              {"max_num_threads": self.threads} if self.threads > 1 else {})
-        args = [ca.DM(v.reshape(1, n)) for v in inputs] + self.const
+        args = [ca.DM(v.reshape(1, n)) for v in inputs] + [float(c) for c in const]
         res = fm.call(args)
         return {name: np.asarray(r).ravel() for name, r in zip(self.fun.name_out(), res)}
 
@@ -176,7 +182,7 @@ class _Mapped:
 class _Compiled:
     """The mapped Function as C, compiled and called through ctypes on numpy buffers."""
 
-    def __init__(self, fun, n_var, const, threads):
+    def __init__(self, fun, n_var, threads):
         self.n_var, self.threads = n_var, max(1, threads)
         self.names = fun.name_out()
         reduce_in = list(range(n_var, fun.n_in()))
@@ -188,7 +194,6 @@ class _Compiled:
         self.entry = self.lib.sweep_block
         self.entry.restype = ctypes.c_int
         self.sz = (fm.sz_arg(), fm.sz_res(), fm.sz_iw(), fm.sz_w())
-        self.const = [np.array([c], dtype=float) for c in const]
         self.local = threading.local()
         self.pool = ThreadPoolExecutor(self.threads) if self.threads > 1 else None
 
@@ -200,20 +205,21 @@ class _Compiled:
                                 (ctypes.c_longlong * max(1, self.sz[2]))(), np.zeros(max(1, self.sz[3])))
         return w
 
-    def _block(self, ins, out, b):
+    def _block(self, ins, const, out, b):
         P = ctypes.POINTER(ctypes.c_double)
         arg, res, iw, w = self._work()
         s = b * BLOCK
         for i, x in enumerate(ins):
             arg[i] = x[s:s + BLOCK].ctypes.data_as(P)
-        for i, c in enumerate(self.const):
+        for i, c in enumerate(const):
             arg[self.n_var + i] = c.ctypes.data_as(P)
         for j in range(out.shape[0]):
             res[j] = out[j, s:s + BLOCK].ctypes.data_as(P)
         if self.entry(arg, res, iw, w.ctypes.data_as(P), 0):
             raise SolveError("the compiled sweep function failed")
 
-    def __call__(self, inputs, n):
+    def __call__(self, inputs, n, const):
+        const = [np.array([c], dtype=float) for c in const]
         blocks = -(-n // BLOCK)
         m = blocks * BLOCK
         ins = []
@@ -224,10 +230,10 @@ class _Compiled:
             ins.append(x)
         out = np.empty((len(self.names), m))
         if self.pool is not None and blocks > 1:
-            list(self.pool.map(lambda b: self._block(ins, out, b), range(blocks)))
+            list(self.pool.map(lambda b: self._block(ins, const, out, b), range(blocks)))
         else:
             for b in range(blocks):
-                self._block(ins, out, b)
+                self._block(ins, const, out, b)
         return {name: out[j, :n] for j, name in enumerate(self.names)}
 
 
@@ -276,6 +282,9 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     validation or files: a drop-in body for ``Problem.evaluate``.
     """
     columns = {k: np.ascontiguousarray(v, dtype=float).ravel() for k, v in columns.items()}
+    n_points = len(next(iter(columns.values()))) if columns else 1
+    if backend == "auto" and n_points < COMPILE_MIN:
+        backend = "casadi"
     constants = {k: float(v) for k, v in constants.items()}
     if not columns:  # one point: vary any input over a single value
         k = next(iter(constants))
@@ -293,7 +302,7 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     out = {o: np.empty(n) for o in fun.name_out()}
     for s in range(0, n, chunk):
         e = min(n, s + chunk)
-        res = ev([columns[k][s:e] for k in columns], e - s)
+        res = ev([columns[k][s:e] for k in columns], e - s, _constants(job))
         for o, v in res.items():
             out[o][s:e] = v
     return out

@@ -26,7 +26,7 @@ from tqdm.auto import tqdm
 
 from ropemodel.errors import InputError
 from ropemodel.problem import Problem
-from ropemodel.sweep.evaluate import ChunkJob, run_chunk
+from ropemodel.sweep.evaluate import COMPILE_MIN, ChunkJob, run_chunk
 from ropemodel.sweep.points import grid, table
 from ropemodel.sweep.store import ChunkStore
 from ropemodel.sweep.validate import check_ranges, check_rules
@@ -86,6 +86,8 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
     base = problem.inputs({**given_values, **{n: float(pts.values_of(n)[0]) for n in pts.names}})
     check_ranges(pts, inputs)
     check_rules(model, pts, base)
+    if backend == "auto" and pts.n < COMPILE_MIN:
+        backend = "casadi"  # a C compile costs more than it saves on small sweeps
     job = _job(problem, pts.names, base, outputs, si, errors, backend,
                threads or (1 if executor is not None else (os.cpu_count() or 1)))
     n_chunks = -(-pts.n // chunk_size)
