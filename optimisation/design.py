@@ -122,4 +122,7 @@ def size(scene: Scene, method: str = DEFAULT_DISCRETE, with_sensitivities: bool 
     values = problem.evaluate(dsol.xs)
     design.power = {k: values[k] for k in ("N_p_up", "N_p_down")}
     design.message = "design found"
+    if sol.lexicographic_ok is False:
+        design.message += ("; warning: the rope mass alone is not optimal at this design (the pretension or "
+                           "stroke weight outweighed it): check the lexicographic order")
     return design
