@@ -154,3 +154,20 @@ def test_distribution_api_uses_derived_data():
     r = rm.run(scene)
     assert df["S/S_0 [-]"].iloc[-1] == pytest.approx(r["S_ratio"], rel=1e-6)
     assert df["S [kN]"].iloc[0] == pytest.approx(20.0)
+
+
+def test_thirion_inverse_pressure_by_hand():
+    """Rigid lining with Thirion friction: ds/dα = μ s/(1 + β s), β = S_0/(p_c R a), separates to
+    ln s + β (s − 1) = μα, so the p_c giving a ratio s is S_0 (s − 1)/((μα − ln s) R a)."""
+    scene = rm.from_dict({"scene": {"model": "sheave"}, "effects": {"lining": "rigid", "friction": "thirion"},
+                          "parameters": {"S_0": "20 kN", "mu": 0.3, "alpha": "180 deg", "R": "1 m", "a": "30 mm",
+                                         "p_c": "2 MPa"},
+                          "numerics": {"method": "ode"}})
+    s = 2.2
+    hand = 2e4 * (s - 1) / ((0.3 * math.pi - math.log(s)) * 1.0 * 0.03)
+    r = rm.solve(scene, {"S_ratio": s}, ["p_c"])
+    assert r["p_c"] == pytest.approx(hand, rel=1e-6)
+    # and forward at the scene's p_c against the same separable solution (Lambert W)
+    beta = 2e4 / (2e6 * 0.03)
+    truth = lambertw(beta * math.exp(beta + 0.3 * math.pi)).real / beta
+    assert rm.run(scene)["S_ratio"] == pytest.approx(truth, rel=1e-6)

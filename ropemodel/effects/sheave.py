@@ -59,10 +59,12 @@ MU = Quantity("mu", "1", "friction coefficient of the rope on the lining (low-pr
 ALPHA = Quantity("alpha", "rad", "wrap angle (arc of contact)", "deg", warn_high=10 * math.pi, guess=math.pi,
                  **_pos)
 OMEGA = Quantity("omega", "rad/s", "angular speed of the sheave (0: the slow-sheave limit)", guess=1.0, **_nonneg)
-S_OUT = Quantity("S", "N", "tension of the rope leaving the arc", "kN", equation=f"{SRC}, eq. (19)", **_pos)
-S_RATIO = Quantity("S_ratio", "1", "tension ratio S/S_0 over the arc", equation="S/S_0", **_pos)
+# guesses: starting points of Newton when an inverse question makes these unknowns of an implicit block
+S_OUT = Quantity("S", "N", "tension of the rope leaving the arc", "kN", equation=f"{SRC}, eq. (19)",
+                 low=0.0, low_open=True, positive=True, guess=2e4)
+S_RATIO = Quantity("S_ratio", "1", "tension ratio S/S_0 over the arc", equation="S/S_0", guess=2.0, **_pos)
 C_MU = Quantity("c_mu", "1/N", "pressure sensitivity of friction, mu(S) = mu/(1 + c_mu S) (0: constant)",
-                equation="1/(p_c R a)", **_nonneg)
+                equation="1/(p_c R a)", guess=3e-5, **_nonneg)
 R_SHEAVE = Quantity("R", "m", "sheave radius to the rope centre", "mm", guess=1.0, **_pos)
 A_WIDTH = Quantity("a", "m", "width of the lining in contact with the rope", "mm", guess=0.03, **_pos)
 
@@ -255,7 +257,8 @@ class ThirionFriction(Submodel):
                            **_pos))
 
     def equations(self, v):
-        return [Equation("c_mu", v["c_mu"] - 1.0 / (v["p_c"] * v["R"] * v["a"]), "c_mu = 1/(p_c R a)")]
+        # multiplied out: linear in c_mu and in p_c, R, a, so either direction is explicit
+        return [Equation("c_mu", v["c_mu"] * v["p_c"] * v["R"] * v["a"] - 1.0, "c_mu = 1/(p_c R a)")]
 
     def validate(self, values):
         if self.options.get("method", "closed") != "ode":
