@@ -2,9 +2,10 @@
 
 On random scenes (drum 1.0-2.5 m, so some catalogue sizes break the drum rule), both methods
 start from the continuous IPOPT optimum.  Reported: how often they return the same design
-(d exactly, F_nwl and stroke within 1e-8 relative to the value or, at zero, to its scale), how often they agree that no catalogue
-size exists, how often bonmin does not finish within a wall-clock limit (run in a forked
-process), and their median times (a bonmin time-out counts at the limit).  The default of ``ropemodel size`` is chosen on this.
+(d exactly, F_nwl and stroke within 1e-8 relative to the value or, at zero, to its scale),
+how often they agree that no catalogue size exists, how often bonmin does not finish within
+a wall-clock limit (run in a forked process), and their median times (a bonmin time-out
+counts at the limit).  The default of ``ropemodel size`` is chosen on this.
 Also draws the design space of the example scene (ropemodel/data/winch_sizing_fig9.toml):
 the least and greatest pretension against d from the scene's own equations (inverse solves),
 the drum limit, the catalogue sizes, the continuous optimum and the catalogue design.
