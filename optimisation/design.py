@@ -20,6 +20,8 @@ from ropemodel.scene import Scene
 #: did not finish within 20 s on 3 of them (10 %), and took ~150x longer (median 3.6 s vs 25 ms).
 DEFAULT_DISCRETE = "next-size-up"
 FEAS_TOL = 1e-8
+#: wall-clock limit of a bonmin solve [s] (it can run far past its own time_limit option)
+BONMIN_TIMEOUT = 60.0
 
 
 @dataclass
@@ -100,7 +102,10 @@ def size(scene: Scene, method: str = DEFAULT_DISCRETE, with_sensitivities: bool 
     if with_sensitivities:
         design.sensitivities = sensitivities(problem, sol)
     d_star = design.continuous["d"]
-    disc = discrete.bonmin(problem, x0=sol.xs) if method == "bonmin" else discrete.next_size_up(problem, d_star)
+    if method == "bonmin":
+        disc = discrete.bonmin_with_timeout(problem, BONMIN_TIMEOUT, x0=sol.xs)
+    else:
+        disc = discrete.next_size_up(problem, d_star)
     if not disc.found:
         cat = ropes.diameters()
         above = [dk for dk in cat if dk >= d_star - 1e-9]
@@ -112,6 +117,9 @@ def size(scene: Scene, method: str = DEFAULT_DISCRETE, with_sensitivities: bool 
                               f"the largest catalogue size {cat[-1] * 1e3:g} mm")
         else:
             design.message = "no catalogue diameter meets every check; " + diag.text(problem.units)
+        if disc.method.endswith("(timed out)"):
+            design.message = (f"bonmin did not finish within {BONMIN_TIMEOUT:g} s; use --discrete next-size-up. "
+                              + design.message)
         return design
     dsol = disc.solution
     design.feasible = True

@@ -16,8 +16,6 @@ the drum limit, the catalogue sizes, the continuous optimum and the catalogue de
 from __future__ import annotations
 
 import argparse
-import multiprocessing as mp
-import time
 from importlib import resources
 from pathlib import Path
 
@@ -40,30 +38,6 @@ NAME = "discrete_design"
 FIGURES = Path(__file__).resolve().parent / "figures"
 
 
-def _bonmin_guarded(problem, x0, timeout):
-    """bonmin in a forked process with a wall-clock limit: on some scenes it branches (or hangs inside
-    a node NLP) far beyond its own time_limit option.  Returns (found, design or None, seconds, timed_out)."""
-    ctx = mp.get_context("fork")
-    parent, child = ctx.Pipe(duplex=False)
-
-    def work():
-        r = discrete.bonmin(problem, x0=x0)
-        child.send((r.found, problem.to_si(r.solution.xs) if r.found else None, r.seconds))
-
-    proc = ctx.Process(target=work)
-    t0 = time.perf_counter()
-    proc.start()
-    proc.join(timeout)
-    if proc.is_alive():
-        proc.terminate()
-        proc.join()
-        return False, None, time.perf_counter() - t0, True
-    if not parent.poll():
-        return False, None, time.perf_counter() - t0, False
-    found, design, seconds = parent.recv()
-    return found, design, seconds, False
-
-
 def compare(n: int, seed: int = 7, timeout: float = 30.0) -> pd.DataFrame:
     rng = np.random.default_rng(seed)
     rows = []
@@ -78,7 +52,9 @@ def compare(n: int, seed: int = 7, timeout: float = 30.0) -> pd.DataFrame:
             continue                      # no continuous design: nothing to round
         d_star = problem.to_si(sol.xs)["d"]
         a = discrete.next_size_up(problem, d_star)
-        b_found, b_design, b_seconds, b_timeout = _bonmin_guarded(problem, sol.xs, timeout)
+        b = discrete.bonmin_with_timeout(problem, timeout, x0=sol.xs)
+        b_found, b_seconds, b_timeout = b.found, b.seconds, b.method.endswith("(timed out)")
+        b_design = problem.to_si(b.solution.xs) if b.found else None
         row = {"scene": scene.name, "D": scene.parameters["D"], "d_continuous": d_star,
                "next_up_found": a.found, "bonmin_found": b_found, "bonmin_timed_out": b_timeout,
                "next_up_s": a.seconds, "bonmin_s": b_seconds, "next_up_sizes_tried": len(a.tried)}

@@ -189,3 +189,11 @@ def test_size_cli_json_when_infeasible(capsys):
     assert out["feasible"] is False
     assert "drum_margin" in out["infeasible"]["conflicting"]
     assert "drum_margin" in out["message"]
+
+
+def test_bonmin_wall_clock_limit(problem, optimum):
+    """A bonmin solve that cannot finish in time is reported as not found, not waited for."""
+    from optimisation.discrete import bonmin_with_timeout
+
+    r = bonmin_with_timeout(problem, 1e-4, x0=optimum.xs)
+    assert not r.found and r.method == "bonmin (timed out)"
