@@ -8,9 +8,9 @@ function ``rtol → CasADi options``:
   steps, built here as one SX expression (CasADi ``mapaccum`` of the step,
   expanded), so a point costs only arithmetic and a batch is one SX ``map``.
   The same scheme as CasADi's ``rk`` plugin; that plugin cannot be expanded to
-  SX and measured 3-5x slower per point (studies/lining_accuracy.py).  In the stretched variable the ODE is not
-  stiff (see :mod:`ropemodel.lining.ode`), so an explicit fixed-step method is
-  the right tool; it cannot fail.
+  SX and measured 3-5x slower per point (``studies/lining_accuracy.py``).  In
+  the stretched variable the ODE is not stiff (see :mod:`ropemodel.lining.ode`),
+  so an explicit fixed-step method is the right tool; it cannot fail.
 * ``rk`` — CasADi's RK4 plugin, same N;
 * ``cvodes`` — SUNDIALS CVODES, variable-order BDF, adaptive steps,
   ``reltol = abstol = rtol·SUNDIALS_SAFETY`` (the state is ln s, so abstol is a
