@@ -229,5 +229,7 @@ def test_property_trends_with_self_consistent_rotation(scene, F, f, mu, a0, Fp):
                 continue
             if variant == "continuous" or reg[i] == reg[0]:
                 assert sign * (K[i] - K[0]) >= -1e-12 * K[0], (variant, i, K)
-        if F > 0:  # F_p acts on the rotation at second order in F: not below rounding at tiny loads
+        # the rotation's strict fall with EA needs a rotation above underflow: hypothesis found
+        # F = 5e-324 N (delta = 0 exactly); 1 mN is far below any load of interest
+        if F >= 1e-3:  # F_p acts on the rotation at second order in F: not below rounding at tiny loads
             assert da[3] <= da[0] * (1 + 1e-12) and da[4] < da[0]
