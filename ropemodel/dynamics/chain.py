@@ -60,6 +60,7 @@ class Chain:
     sheave: int | None = None
     rigid: bool = False
     masses: dict = field(default_factory=dict)
+    contact: dict = field(default_factory=dict)   # drum contact stiffnesses (drum_contact = "capstan")
 
     @property
     def n(self) -> int:

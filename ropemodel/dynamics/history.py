@@ -122,6 +122,9 @@ class Simulation:
                              | ({"carriage": float(vals["m_t"])} if tens == "constant_force"
                                 and not self.chain.rigid else {}),
             "n_nodes": self.chain.n,
+            # drum_contact = "capstan": the contact stiffnesses [N/m] (None: rigid side) and Li's F_p, F_T [N]
+            "drum_contact": {k: (float(v) if math.isfinite(v) else None) for k, v in self.chain.contact.items()}
+                            or None,
             "t_end": float(h["t [s]"].iloc[-1]),
         }
 

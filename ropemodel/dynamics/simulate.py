@@ -3,7 +3,8 @@
 Only the chosen variants are built: the ``rope_elasticity`` variant picks the chain
 builder (:data:`ropemodel.dynamics.chain.BUILDERS`), ``dynamics`` the drive profile
 (:data:`ropemodel.dynamics.profile.PROFILES`), ``tensioner`` the carriage's modes
-(:data:`INITIAL_TENSIONER`), ``lining`` the traction ratio (:data:`TRACTION`); the
+(:data:`INITIAL_TENSIONER`), ``lining`` the traction ratio (:data:`TRACTION`),
+``drum_contact`` the drum's contact compliance (:data:`ropemodel.dynamics.contact.CONTACTS`); the
 static model (:func:`ropemodel.problem.run`) gives the reference forces and the
 resistance coefficients of the scene's ``resistance`` case.
 """
@@ -13,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from ropemodel.dynamics.chain import BUILDERS
+from ropemodel.dynamics.contact import CONTACTS
 from ropemodel.dynamics.drive import DRIVE_EVENTS
 from ropemodel.dynamics.history import Simulation
 from ropemodel.dynamics.hybrid import HybridIntegrator
@@ -58,6 +60,8 @@ def simulate(scene, values: dict | None = None) -> Simulation:
     sign = DIRECTION[direction]
     num = scene.numerics
     chain = BUILDERS[eff["rope_elasticity"]](vals, num["segments"])
+    chain = CONTACTS[eff.get("drum_contact", "rigid")](chain, vals, static[f"F_C_{direction}"],
+                                                      static[f"F_S_{direction}"])
     ratio = TRACTION[lining](vals)
     sys = LoopSystem(chain, vals, ratio)
     sys.torque_limited = eff["drive"] == "torque_limited"

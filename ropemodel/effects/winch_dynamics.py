@@ -30,6 +30,14 @@ Effects and variants
                     ``torque_limited``: it follows the ramp while the motor's force at the rim
                     stays within ±``F_drive_max``, else the motor gives ±F_drive_max and the
                     drum (inertia ``m_drive`` = J/R² at the rim) accelerates as it can.
+``drum_contact``    ``rigid`` (default): the rope at the drum's tangent points moves with the drum
+                    surface while it sticks.  ``capstan``: the wrapped rope's slip zone is a spring
+                    in series between the drum and the tight span, stiffness from the capstan model
+                    of Li et al. (eq. (12), (15), (24)) with μ = mu_d, wrap alpha_d, R = D/2, EA =
+                    L_u/q_lw, preload = the slack-side force, load = the tension difference, free
+                    length → 0 (the spans are the chain's); linearised at the static forces of the
+                    transient's direction.  Needs the drum diameter ``D``.  The mapping, and why,
+                    is in :mod:`ropemodel.dynamics.contact`.
 
 ``rope_damping`` is the Kelvin–Voigt **retardation time** τ = c/k of the rope [s]: every
 element's tension is T = k (e + τ ė), k = EA/ℓ.  Stiffness-proportional, so a mode of
@@ -62,6 +70,7 @@ from ropemodel.effects.base import (
     positive_number,
     register,
 )
+from ropemodel.effects.winch_lining import D_DRUM
 from ropemodel.errors import InputError
 from ropemodel.quantity import Quantity
 
@@ -73,6 +82,8 @@ define_effect(MODEL, "rope_elasticity", "segments", "rope model of the transient
 define_effect(MODEL, "tensioner", "constant_force", "return-sheave tensioner of the transient")
 define_effect(MODEL, "ramp", "linear", "shape of the drive's speed ramp: linear or cosine (smooth)")
 define_effect(MODEL, "drive", "speed", "drive of the transient: prescribed speed ramp, or a torque-limited motor")
+define_effect(MODEL, "drum_contact", "rigid",
+              "rope-on-drum contact of the transient: rigid, or capstan (Li et al. slip-zone stiffness in series)")
 
 
 def _int_check(low: int, high: int):
@@ -266,3 +277,29 @@ class FixedTensioner(Submodel):
     """Return sheave locked where F_nwl put it with the haulage at rest (a fixed take-up)."""
 
     description = "carriage locked at its position at rest under F_nwl"
+
+
+@register(MODEL, "drum_contact", "rigid")
+class RigidDrumContact(Submodel):
+    """The rope at the drum's tangent points moves with the drum surface while it sticks."""
+
+    description = "rope on the drum rigidly attached while it sticks"
+
+
+@register(MODEL, "drum_contact", "capstan")
+class CapstanDrumContact(Submodel):
+    """Contact compliance of the wrapped rope from the capstan model (Li et al., eq. (12), (15), (24)).
+
+    Builds no equation; only this variant makes the drum diameter ``D`` (the lining's ``D_DRUM``)
+    a parameter of the scene.  The mapping of the capstan model's quantities onto the drum (preload
+    = slack-side force, load = tension difference, R = D/2, μ = mu_d, wrap alpha_d, EA = L_u/q_lw,
+    free length → 0) and its limits are documented in :mod:`ropemodel.dynamics.contact`.
+    """
+
+    description = "slip-zone compliance of the rope on the drum in series with the tight span (Li et al.)"
+    citations = ("li_capstan",)
+    quantities = (D_DRUM,)
+
+    def equations(self, v):
+        v["D"]  # noqa: B018 - creating the symbol makes it a parameter
+        return []

@@ -1,0 +1,134 @@
+"""Drum contact stiffness of the transient from the capstan model (drum_contact = "capstan").
+
+Truths: the rigid drum's transient (limit of a stiff contact, D → 0), closed-form natural
+frequencies of springs in series with the contact spring (Li et al. eq. (12) typed here from the
+paper), the static model (unchanged by the effect), and the continuity of the tight side's
+stiffness at the slip zone's saturation (MODELS.md §3).
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from importlib import resources
+
+import numpy as np
+import pytest
+from scipy.optimize import curve_fit
+
+import ropemodel as rm
+from ropemodel.dynamics import simulate
+from ropemodel.dynamics.contact import capstan_contact, capstan_contact_stiffness
+
+DATA = resources.files("ropemodel.data")
+
+
+def scene(name="winch_start.toml", effects=None, params=None, numerics=None):
+    """A built-in dynamic scene with overrides."""
+    d = tomllib.loads(DATA.joinpath(name).read_text())
+    d["effects"].update(effects or {})
+    d["parameters"].update(params or {})
+    d.setdefault("numerics", {}).update(numerics or {})
+    return rm.from_dict(d)
+
+CAPSTAN = {"drum_contact": "capstan"}
+
+
+def _li_eq12(F_tight, F_slack, mu, EA, R):
+    """Li et al. eq. (12), K_1 = μEA(F_p + F_T)/(R F_T), with F_p = F_slack, F_T = F_tight − F_slack."""
+    return mu * EA * F_tight / (R * (F_tight - F_slack))
+
+
+def test_contact_stiffness_is_li_eq12_and_continuous_at_saturation():
+    mu, EA, R, alpha = 0.25, 2e8, 1.25, 4 * math.pi
+    assert capstan_contact_stiffness(2e5, 3e4, mu, EA, R, alpha) == pytest.approx(_li_eq12(2e5, 3e4, mu, EA, R),
+                                                                                  rel=1e-14)
+    assert capstan_contact_stiffness(3e4, 2e5, mu, EA, R, alpha) == math.inf      # slack side: stick arc
+    # at the saturation F_T = F_p(e^{μα} − 1) eq. (12) meets eq. (15) (the tight side is continuous)
+    F_p = 3e4
+    F_sw = F_p * math.expm1(mu * alpha)
+    below = capstan_contact_stiffness(F_p + F_sw * (1 - 1e-12), F_p, mu, EA, R, alpha)
+    above = capstan_contact_stiffness(F_p + F_sw * (1 + 1e-12), F_p, mu, EA, R, alpha)
+    assert below == pytest.approx(above, rel=1e-9)
+    assert above == pytest.approx(mu * EA / (R * (1 - math.exp(-mu * alpha))), rel=1e-14)
+
+
+def test_single_spring_in_series_with_the_contact_spring():
+    """Mass m held by a spring k to each side of the drum; the tight side's spring is in series with the
+    contact spring K_1: ω_d² = (k_eff + k)/m − σ², k_eff = 1/(1/K_1 + 1/k), σ = (c_eff + c)/(2m)."""
+    from ropemodel.dynamics.chain import Chain
+    from ropemodel.dynamics.hybrid import HybridIntegrator
+    from ropemodel.dynamics.profile import start_profile
+    from ropemodel.dynamics.system import LoopSystem, equilibrium
+
+    m, k, c = 5000.0, 2.0e5, 800.0
+    chain = Chain(np.array([10.0, m]), np.array([0.0, -1.0e4]), np.array([0.0, 0.0]), (5.0, 0.0, 0.0),
+                  (5.0, 0.0, 0.0), [(0, 1, k, c, True), (1, 0, k, c, True)], load=1, sheave=1)
+    # contact: μ = 0.2, EA = 1 MN, R = 1 m at F_C = 20 kN, F_S = 10 kN → K_1 = 400 kN/m, comparable to k
+    vals = {"mu_d": 0.2, "alpha_d": 2 * math.pi, "D": 2.0, "L_u": 1.0, "q_lw": 1e-6}
+    chain = capstan_contact(chain, vals, 2e4, 1e4)
+    K1 = _li_eq12(2e4, 1e4, 0.2, 1e6, 1.0)
+    assert chain.contact["K_C"] == pytest.approx(K1, rel=1e-14) and chain.contact["K_S"] == math.inf
+    k_eff = 1 / (1 / K1 + 1 / k)
+    c_eff = c / k * k_eff
+    values = {"v_eps": 0.01, "F_nwl": 2e4, "m_t": 1.0, "stroke": 1.0}
+    sys = LoopSystem(chain, values, ratio=lambda F_slack, v_drum: 1e6 + 0 * F_slack)   # never slips
+    phases, _ = start_profile(1.0, 2.0, 12.0, +1)
+    x0 = equilibrium(sys, 0.0, z_free=False, z_fixed=1.0)
+    rows = []
+    HybridIntegrator(sys, phases, 1e-11, 0.005, "cvodes", 1e4, 1.0, atol_u=1e-12).run(
+        x0, ("stick", "fixed", "profile"), lambda x, t, k_, mode: mode, None,
+        lambda t, X, out, mode: rows.append(np.vstack([t, X[3]])))
+    t, v = np.hstack(rows)
+    sel = t > 2.0 + 1e-9
+    sigma = (c + c_eff) / (2 * m)
+    w_d = math.sqrt((k + k_eff) / m - sigma ** 2)
+    w_rigid = math.sqrt(2 * k / m - (c / m) ** 2)
+    assert abs(w_d / w_rigid - 1) > 0.05                            # the contact matters here
+
+    def model(t, A, B, w, s):
+        return 1.0 + np.exp(-s * (t - 2)) * (A * np.cos(w * (t - 2)) + B * np.sin(w * (t - 2)))
+
+    p, _ = curve_fit(model, t[sel], v[sel], p0=[-0.1, 0.0, w_d * 1.01, sigma], xtol=1e-14, ftol=1e-14)
+    assert p[2] == pytest.approx(w_d, rel=1e-6)
+    assert p[3] == pytest.approx(sigma, rel=1e-5)
+
+
+def test_stiff_contact_gives_the_rigid_drum():
+    """K_1 ∝ 1/R: as D → 0 the transient tends to the rigid drum's, the difference falling like D."""
+    rigid = simulate(scene(params={"t_end": "12 s"}))
+    diffs = []
+    for D in ("2.5 m", "0.025 m", "0.00025 m"):
+        sim = simulate(scene(effects=CAPSTAN, params={"t_end": "12 s", "D": D}))
+        assert sim.summary["drum_contact"]["K_C"] > 0 and sim.summary["drum_contact"]["K_S"] is None
+        h = sim.history
+        F = np.interp(rigid.history["t [s]"], h["t [s]"], h["F_C [N]"])
+        diffs.append(np.max(np.abs(F - rigid.history["F_C [N]"])) / rigid.summary["F_C_max"])
+    assert diffs[-1] < 1e-6
+    for d0, d1 in zip(diffs, diffs[1:]):
+        assert d1 / d0 == pytest.approx(1e-2, rel=0.2)                 # first order in the compliance
+
+
+def test_contact_is_built_only_when_asked_and_leaves_static_results_alone():
+    from ropemodel.core.model import Model
+
+    base, cap = scene(), scene(effects=CAPSTAN, params={"D": "2.5 m"})
+    assert "D" not in base.parameters and cap.parameters["D"] == 2.5
+    assert [str(e.residual) for e in cap.built.equations] == [str(e.residual) for e in
+                                                            Model("winch", {**cap.effects, "dynamics": "none"}).equations]
+    r_base, r_cap = rm.run(base), rm.run(cap)
+    for k in ("F_C_up", "F_C_down", "F_S_up", "F_S_down", "dF_up"):
+        assert r_cap[k] == r_base[k]
+    default = simulate(scene(params={"t_end": "6 s"}))
+    rigid = simulate(scene(effects={"drum_contact": "rigid"}, params={"t_end": "6 s"}))
+    np.testing.assert_array_equal(default.history["F_C [N]"], rigid.history["F_C [N]"])
+    assert default.summary["drum_contact"] is None
+
+
+@pytest.mark.parametrize("change,match", [
+    (dict(effects=CAPSTAN), "D"),                                             # the diameter is required
+    (dict(effects={**CAPSTAN, "rope_elasticity": "rigid"}, params={"D": "2.5 m"}), "elastic rope"),
+])
+def test_contact_bad_input(change, match):
+    with pytest.raises(rm.InputError, match=match):
+        simulate(scene(**change))
