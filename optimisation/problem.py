@@ -58,7 +58,7 @@ W_S = 1e-3
 #: continuous bounds of d [m] (the catalogue's range is used for discrete designs)
 D_BOUNDS = (1e-3, 0.2)
 
-REQUIRED = {"rope": "catalogue", "checks": "design", "power": "drive"}
+REQUIRED = {"checks": "design", "power": "drive"}
 
 
 class SizingProblem:
@@ -76,6 +76,9 @@ class SizingProblem:
     def __init__(self, scene: Scene):
         if scene.model != "winch":
             raise InputError(f"sizing needs model = \"winch\", the scene has model = {scene.model!r}")
+        if scene.effects.get("rope") == "given":
+            raise InputError("sizing chooses the rope diameter: it needs [effects] rope = \"catalogue\" or a named "
+                             "construction such as \"6x36-IWRC\" (the scene has rope = \"given\")")
         for effect, variant in REQUIRED.items():
             if scene.effects.get(effect) != variant:
                 raise InputError(f"sizing needs [effects] {effect} = \"{variant}\" "

@@ -33,5 +33,5 @@ def random_sizing_scene(rng: np.random.Generator, name: str = "random", construc
     params.update({"rope_grade": float(rng.choice(GRADES)), "v_pj": 2.5, "eta": 0.85, "D": 2.5,
                    "d": 0.03, "F_nwl": 20e3, "stroke": 1.0})
     return from_dict({"scene": {"name": name},
-                      "effects": {"rope": "catalogue", "checks": "design", "lining": lining, "power": "drive"},
-                      "numerics": {"rope_construction": construction}, "parameters": params})
+                      "effects": {"rope": construction, "checks": "design", "lining": lining, "power": "drive"},
+                      "parameters": params})

@@ -60,8 +60,8 @@ def _scene(**extra_effects):
     base = load()
     params = {k: v for k, v in base.parameters.items() if k not in ("q_l", "q_lw")}
     params.update({"d": 0.042, "rope_grade": "1770 N/mm^2", "rope_E": "100 kN/mm^2"})
-    data = {"scene": {"name": "catalogue"}, "effects": {"power": "drive", "rope": "catalogue", **extra_effects},
-            "parameters": params, "numerics": {"rope_construction": "6x36-IWRC"}}
+    data = {"scene": {"name": "catalogue"}, "effects": {"power": "drive", "rope": "6x36-IWRC", **extra_effects},
+            "parameters": params}
     return from_dict(data)
 
 
@@ -86,7 +86,7 @@ def test_catalogue_rope_feeds_the_forces_and_elongation():
 def test_named_construction_equals_explicit_factors():
     named = run(_scene())
     s = _scene()
-    data = {"scene": {"name": "factors"}, "effects": dict(s.effects),
+    data = {"scene": {"name": "factors"}, "effects": {**s.effects, "rope": "catalogue"},
             "parameters": {**s.parameters, "rope_K": 0.356, "rope_W": "0.409 kg/(100 m*mm^2)", "rope_C": 0.46}}
     explicit = run(from_dict(data))
     for k in ("q_l", "q_lw", "F_min", "F_C_up", "dF_up"):
@@ -95,16 +95,16 @@ def test_named_construction_equals_explicit_factors():
 
 def test_rope_W_catalogue_unit_parses_to_si():
     s = _scene()
-    data = {"scene": {"name": "factors"}, "effects": dict(s.effects),
+    data = {"scene": {"name": "factors"}, "effects": {**s.effects, "rope": "catalogue"},
             "parameters": {**s.parameters, "rope_K": 0.356, "rope_W": "0.409 kg/(100 m*mm^2)", "rope_C": 0.46}}
     assert from_dict(data).parameters["rope_W"] == pytest.approx(4090.0)
 
 
 def test_unknown_construction_is_named_with_a_suggestion():
     base = _scene()
-    data = {"scene": {"name": "x"}, "effects": dict(base.effects), "parameters": dict(base.parameters),
-            "numerics": {"rope_construction": "6x36-IWCR"}}
-    with pytest.raises(InputError, match="6x36-IWRC"):
+    data = {"scene": {"name": "x"}, "effects": {**base.effects, "rope": "6x36-IWCR"},
+            "parameters": dict(base.parameters)}
+    with pytest.raises(InputError, match="did you mean '6x36-IWRC'"):
         from_dict(data)
 
 

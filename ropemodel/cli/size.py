@@ -51,7 +51,8 @@ def _text(design) -> str:
         lines.append(f"{'check margin':<22}{'value':>14}  unit")
         for k, v in design.margins.items():
             unit = "-" if q[k].display_unit == "1" else q[k].display_unit
-            lines.append(f"{k:<22}{q[k].to_display(v):>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS'}")
+            shown = q[k].to_display(v) if abs(v) > 1e-9 else 0.0  # an active check prints as 0, not -8.9e-13
+            lines.append(f"{k:<22}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS'}")
     lines.append("")
     lines.append(design.message)
     return "\n".join(lines)

@@ -6,36 +6,24 @@
                      mass per metre m_l follow from the diameter ``d`` and the construction
                      factors (EN 12385-4): they become OUTPUTS, and the acausal core wires them
                      into the force and elongation equations.  The factors are the parameters
-                     ``rope_K``, ``rope_W``, ``rope_C`` — or, with ``[numerics] rope_construction =
-                     "6x36-IWRC"`` (see :mod:`ropemodel.ropes`), constants of the named class.
-                     ``rope_grade`` (R_r) and ``rope_E`` are always parameters.
+                     ``rope_K``, ``rope_W``, ``rope_C``.
+``6x36-IWRC`` …      one variant per named construction of ``ropemodel/data/ropes.toml`` (see
+                     :mod:`ropemodel.ropes`): the same equations with the class's factors as
+                     constants, e.g. ``[effects] rope = "6x36-IWRC"``.
+``rope_grade`` (R_r) and ``rope_E`` are parameters of every catalogue variant.
 """
 
 from __future__ import annotations
 
 from ropemodel import ropes
-from ropemodel.effects.base import Equation, Submodel, define_effect, define_numerics, register
+from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.effects.winch import MODEL, Q
-from ropemodel.errors import InputError
 
 _pos = dict(low=0.0, low_open=True, positive=True)
 SRC = "EN 12385-4"
 
 define_effect(MODEL, "rope", "given", "the rope: q_l, q_lw given (paper) or from a catalogue construction and d")
 
-
-def _check_construction(key, value):
-    if value == "":
-        return value
-    if not isinstance(value, str):
-        raise InputError(f"numerics {key} = {value!r} must be a construction name, e.g. \"6x36-IWRC\"")
-    ropes.construction(value)
-    return value
-
-
-define_numerics(MODEL, "rope_construction", "",
-                "named rope construction of ropemodel/data/ropes.toml (rope = \"catalogue\"); "
-                "\"\" = give rope_K, rope_W, rope_C as parameters", _check_construction)
 
 D_ROPE = Q("d", "m", "nominal rope diameter", "mm", guess=0.03, high=0.5, warn_low=0.008, warn_high=0.06, **_pos)
 F_MIN = Q("F_min", "N", "minimum breaking force of the rope", "kN", guess=1e6, **_pos)
@@ -82,10 +70,6 @@ class RopeCatalogue(Submodel):
     )
 
     def _factors(self, v):
-        name = self.options.get("rope_construction", "")
-        if name:
-            c = ropes.construction(name)
-            return c.K, c.W, c.C
         return v["rope_K"], v["rope_W"], v["rope_C"]
 
     def equations(self, v):
@@ -100,3 +84,23 @@ class RopeCatalogue(Submodel):
             Equation("q_lw", v["q_lw"] - ropes.unit_elongation(v["L_u"], v["rope_E"], C, d),
                      "q_lw = L_u / (E C d^2)"),
         ]
+
+
+def _named(c: ropes.Construction) -> type[Submodel]:
+    """The catalogue rope with the factors of construction ``c`` as constants."""
+
+    class NamedConstruction(RopeCatalogue):
+        __doc__ = (f"{c.description}: the catalogue rope with K = {c.K:g}, W = {c.W:g} kg/m^3, "
+                   f"C = {c.C:g} ({c.source}).")
+        description = f"{c.description} (K, W, C of {c.source})"
+        quantities = tuple(q for q in RopeCatalogue.quantities if q.name not in ("rope_K", "rope_W", "rope_C"))
+
+        def _factors(self, v):
+            return c.K, c.W, c.C
+
+    NamedConstruction.__name__ = NamedConstruction.__qualname__ = f"Rope_{c.name.replace('-', '_')}"
+    return NamedConstruction
+
+
+for _c in ropes.constructions().values():
+    register(MODEL, "rope", _c.name)(_named(_c))
