@@ -86,7 +86,19 @@ def _mx_residual(eqs, unknowns, deps) -> ca.Function:
 
 
 def _newton(model, block, res: ca.Function, deps, guesses, b) -> ca.Function:
-    """Newton on ``res(x, p) = 0`` for the block, in log variables for strictly positive unknowns."""
+    """Newton on ``res(x, p) = 0`` for the block, in log variables for strictly positive unknowns.
+
+    Each residual row is divided by max(1, |guess|) of the block's unknown of the same
+    index.  This scaling is crude: the stopping test (``abstol`` on the scaled residual)
+    can accept too early when an equation's natural size is far above its unknown's
+    guess.  Writing such an equation multiplied out, so that it stays linear in the
+    unknowns it is solved for, avoids the Newton block altogether.  A scaling by each
+    row's own size at the start was tried and rejected: CasADi's line search measures
+    progress with the same residual norm, and with it the voigt least-pretension solves
+    stalled.  Turning the line search off found the wrong one of two roots.  What
+    guards every inverse solve is :meth:`ropemodel.problem.Problem.solve`'s
+    round-trip check: the forward model must reproduce each given value.
+    """
     n = len(block.unknowns)
     z = ca.MX.sym("z", n)
     p = ca.MX.sym("p", len(deps))
