@@ -95,7 +95,9 @@ def _newton(model, block, res: ca.Function, deps, guesses, b) -> ca.Function:
     unknowns it is solved for, avoids the Newton block altogether.  A scaling by each
     row's own size at the start was tried and rejected: CasADi's line search measures
     progress with the same residual norm, and with it the voigt least-pretension solves
-    stalled.  Turning the line search off found the wrong one of two roots.  What
+    stalled.  With the line search off as well, those solves converged, but the
+    Thirion pressure inverse and the "no pretension prevents slip" refusal then
+    failed their tests.  What
     guards every inverse solve is :meth:`ropemodel.problem.Problem.solve`'s
     round-trip check: the forward model must reproduce each given value.
     """
