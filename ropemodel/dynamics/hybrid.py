@@ -2,13 +2,32 @@
 
 Time is scaled per call, t = t0 + h·τ with τ ∈ [0, 1] and (t0, h) parameters, so one
 compiled integrator serves every interval of a mode.  Each call integrates a chunk of
-``CHUNK`` output steps; the switching functions of the current mode are evaluated at
-the chunk's outputs.  Where one changes sign between two outputs, the crossing is
-located by Brent's method on the switching function of the state integrated from the
-last output (each evaluation one integrator call, to ``xtol`` in time), the state at
-the crossing is taken, the transition applied and the integration restarted from it.
-A crossing that comes and goes within one output step (``[numerics] sim_dt``) is not
-seen; the default 0.02 s is below a tenth of the fastest load mode of haulage ropes.
+``CHUNK`` output steps (``[numerics] sim_dt``); the integrator's dense output gives the state
+on a detection grid of ``SUB`` points per output step (interpolated: the BDF's internal
+steps do not depend on it).
+
+Events not stepped over.  On every detection interval [t_j, t_j+1] (length δ = sim_dt/SUB)
+each switching function g is checked with its value *and its rate* ġ = ∇g·ẋ + ∂g/∂t at both
+ends (compiled from the mode's ODE):
+
+* a sign change (g_j ≥ 0 > g_j+1) is located by Brent's method on g of the state integrated
+  from t_j (each evaluation one integrator call, to ``xtol`` in time);
+* an *excursion* below zero that begins and ends inside the interval (both ends positive,
+  e.g. a slip episode shorter than the output step) is caught by the cubic Hermite
+  interpolant of (g, ġ) at the ends dipping below zero: its minimum is located by bounded
+  minimisation of g of the re-integrated state, and if that is negative, the first crossing
+  by Brent's method on [t_j, t_min].
+
+The rate argument: the Hermite cubic H differs from g by at most δ⁴ max|g⁗|/384 on the
+interval, so every excursion deeper than that is found, whatever its length; one shallower
+than the interpolation error, δ⁴|g⁗|/384, can still be missed (with the default sim_dt 0.02 s
+and a load mode of 2 rad/s that is 7e-13 of the switching function's amplitude; at
+sim_dt = 0.7 s, 1e-4).  The location itself is to the integrator's tolerance.
+
+CasADi 3.8's own event support (``zero`` outputs with a ``transition`` function) was tried
+first: it is marked experimental and, for an indicator that starts at 0 with zero slope (the
+slip speed at the onset of slip), fails with CV_ILL_INPUT ("tout too far back") when the
+crossing lies before the integrator's last internal step; so it is not used.
 
 Phase boundaries of the drive profile (the ramp's kink) and t_end are known time
 events: chunks end exactly on them.
@@ -20,12 +39,14 @@ from dataclasses import dataclass, field
 
 import casadi as ca
 import numpy as np
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 from ropemodel.dynamics.system import OUT, LoopSystem, mode_functions
 from ropemodel.errors import SolveError
 
 CHUNK = 25
+#: detection points per output step (the dense output between them is checked by the Hermite test)
+SUB = 2
 ARM_TOL = 1e-9
 MAX_EVENTS = 2000
 
@@ -56,12 +77,36 @@ class _Mode:
         tau, p = ca.SX.sym("tau"), ca.SX.sym("p", 2)
         ode = ca.substitute(self.fun.ode, sys.t, p[0] + p[1] * tau) * p[1]
         dae = {"x": sys.x, "p": p, "t": tau, "ode": ode}
-        grid = np.linspace(0, 1, CHUNK + 1)[1:]
+        grid = np.linspace(0, 1, CHUNK * SUB + 1)[1:]
         self.chunk = ca.integrator("chunk", integrator, dae, 0.0, list(grid), opts)
         self.one = ca.integrator("one", integrator, dae, 0.0, 1.0, opts)
         self.grid = grid
-        self.gmap = self.fun.g.map(CHUNK)
+        # switching functions and their rates along the mode's flow, on the detection grid
+        g = self.fun.g(sys.x, sys.t)
+        gdot = ca.jtimes(g, sys.x, self.fun.ode) + ca.jacobian(g, sys.t)
+        self.ggdot = ca.Function("ggdot", [sys.x, sys.t], [g, gdot], ["x", "t"], ["g", "gdot"])
+        self.gmap = self.ggdot.map(CHUNK * SUB)
         self.omap = self.fun.out.map(CHUNK)
+
+
+def hermite_min(g0, g1, d0, d1):
+    """Least value and its place u ∈ [0, 1] of the cubic Hermite interpolant with values g0, g1 and
+    slopes d0, d1 (per unit u) at the ends, for arrays of functions."""
+    # H(u) = g0 + d0 u + (3(g1 − g0) − 2d0 − d1) u² + (2(g0 − g1) + d0 + d1) u³
+    b, c3 = 3 * (g1 - g0) - 2 * d0 - d1, 2 * (g0 - g1) + d0 + d1
+    A, B, C = 3 * c3, 2 * b, d0                         # H'(u) = A u² + B u + C
+    best_v, best_u = np.minimum(g0, g1), np.where(g0 <= g1, 0.0, 1.0)
+    disc = B * B - 4 * A * C
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sq = np.sqrt(np.maximum(disc, 0.0))
+        lin = np.where(B != 0, -C / np.where(B != 0, B, 1.0), -1.0)
+        for r in ((-B - sq) / (2 * A), (-B + sq) / (2 * A)):
+            u = np.where(np.abs(A) > 1e-14 * (np.abs(B) + np.abs(C) + 1e-300), r, lin)
+            ok = (disc >= 0) & (u > 0) & (u < 1) & np.isfinite(u)
+            v = g0 + d0 * u + b * u * u + c3 * u ** 3
+            better = ok & (v < best_v)
+            best_v, best_u = np.where(better, v, best_v), np.where(better, u, best_u)
+    return best_v, best_u
 
 
 class HybridIntegrator:
@@ -74,6 +119,7 @@ class HybridIntegrator:
         self.f_scale, self.v_scale = f_scale, v_scale
         self.opts = {"reltol": rtol, "abstol": atol_u, "max_num_steps": 200000}
         self._modes: dict = {}
+        self.false_alarms = 0           # Hermite dips that re-integration showed not to cross (statistics)
 
     def mode(self, k, mode) -> _Mode:
         """The compiled mode ``(drum, tensioner, drive)`` of phase ``k`` (built on first use only)."""
@@ -116,36 +162,63 @@ class HybridIntegrator:
             except RuntimeError as exc:
                 raise SolveError(f"the integrator failed after t = {t:.6g} s (mode {mode}): {exc}") from None
             times = t + h * m.grid
-            G = np.array(m.gmap(X, times[None, :])).reshape(-1, CHUNK) if m.fun.g_names else np.zeros((0, CHUNK))
+            n_det = CHUNK * SUB
             hit = None
-            for j in range(CHUNK):
-                fired = armed & (G[:, j] < 0) if G.size else np.zeros(0, bool)
-                if fired.any():
-                    hit = (j, np.flatnonzero(fired))
-                    break
-                if G.size:
-                    armed = armed | (G[:, j] > ARM_TOL)
+            if m.fun.g_names:
+                G, Gd = (np.array(a).reshape(-1, n_det) for a in m.gmap(X, times[None, :]))
+                g0, d0 = (np.array(a) for a in m.ggdot(x, t))
+                Gp, Dp = np.hstack([g0, G[:, :-1]]), np.hstack([d0, Gd[:, :-1]])     # interval starts
+                delta = np.diff(np.concatenate([[t], times]))
+                # armed at the start of each interval: before the chunk, or above ARM_TOL at an earlier point
+                above = np.logical_or.accumulate(G > ARM_TOL, axis=1)
+                armed_at = armed[:, None] | np.hstack([np.zeros((len(armed), 1), bool), above[:, :-1]])
+                crossed = armed_at & (G < 0)
+                low, u = hermite_min(Gp, G, Dp * delta, Gd * delta)
+                dipped = armed_at & ~crossed & (Gp >= 0) & (G >= 0) & (low < 0)
+                flagged = (crossed | dipped).any(axis=0)
+                if flagged.any():
+                    j = int(np.argmax(flagged))
+                    armed = armed_at[:, j]
+                    hit = (j, np.flatnonzero(crossed[:, j]), np.flatnonzero(dipped[:, j]), u[:, j])
+                else:
+                    armed = armed_at[:, -1] | (G[:, -1] > ARM_TOL)
             if hit is None:
-                self._record(m, times, X, on_record, mode)
+                self._record(m, times[SUB - 1::SUB], X[:, SUB - 1::SUB], on_record, mode)
                 x, t = X[:, -1], times[-1]
                 continue
-            j, which = hit
+            j, crossed, dipped, u = hit
             x_a = x if j == 0 else X[:, j - 1]
             t_a = t if j == 0 else times[j - 1]
             h_j = times[j] - t_a
-            if j > 0:
-                self._record(m, times[:j], X[:, :j], on_record, mode)
             best = None
-            for i in which:
+            for i in list(crossed) + list(dipped):
                 def g_i(s, i=i):
                     if s <= 0:
                         return float(np.array(m.fun.g(x_a, t_a))[i, 0])
                     return float(np.array(m.fun.g(self._step(m, x_a, t_a, s), t_a + s))[i, 0])
 
+                hi = h_j
+                if i in dipped:                    # an excursion inside the interval: find its lowest point
+                    res = minimize_scalar(g_i, bounds=(0.0, h_j), method="bounded",
+                                          options={"xatol": 1e-10 * max(1.0, t_end)})
+                    s_min = min(float(res.x), u[i] * h_j, key=g_i)
+                    if g_i(s_min) >= 0:
+                        continue                   # the interpolant's dip was not real
+                    hi = s_min
                 lo = g_i(0.0)
-                s_star = 0.0 if lo <= 0 else brentq(g_i, 0.0, h_j, xtol=1e-12 * max(1.0, t_end), rtol=1e-14)
+                s_star = 0.0 if lo <= 0 else brentq(g_i, 0.0, hi, xtol=1e-12 * max(1.0, t_end), rtol=1e-14)
                 if best is None or s_star < best[0]:
                     best = (s_star, i)
+            if best is None:                       # false alarm: accept the interval and go on
+                armed = armed | (G[:, j] > ARM_TOL)
+                if times[SUB - 1:j + 1:SUB].size:
+                    self._record(m, times[SUB - 1:j + 1:SUB], X[:, SUB - 1:j + 1:SUB], on_record, mode)
+                x, t = X[:, j], times[j]
+                self.false_alarms += 1
+                continue
+            out_j = times[SUB - 1:j:SUB]
+            if out_j.size:
+                self._record(m, out_j, X[:, SUB - 1:j:SUB], on_record, mode)
             s_star, i = best
             x = self._step(m, x_a, t_a, s_star) if s_star > 0 else x_a
             t = t_a + s_star

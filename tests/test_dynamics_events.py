@@ -1,0 +1,119 @@
+"""State events of the transient are located, not stepped over (issue 6).
+
+Truths: Newton's law of an inextensible rope solved by scipy's solve_ivp with events (a slip
+episode shorter than the output step), brute-force sampling of a cubic (the Hermite test), and
+the same scene simulated with a fine output step (events independent of sim_dt).
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from importlib import resources
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+import ropemodel as rm
+from ropemodel.dynamics import simulate
+from ropemodel.dynamics.chain import G_N
+from ropemodel.dynamics.hybrid import hermite_min
+
+DATA = resources.files("ropemodel.data")
+
+
+def scene(name, effects=None, params=None, numerics=None):
+    d = tomllib.loads(DATA.joinpath(name).read_text())
+    d["effects"].update(effects or {})
+    d["parameters"].update(params or {})
+    d.setdefault("numerics", {}).update(numerics or {})
+    return rm.from_dict(d)
+
+
+def _short_slip_case(eps=1e-3):
+    """Rigid rope, cosine ramp: the stick margin dips below zero only near the peak acceleration,
+    for ε of it: the traction e^{μα} is set so that the drum slips at a* = (1 − ε) a_max."""
+    base = scene("winch_start_slip.toml", effects={"rope_elasticity": "rigid", "ramp": "cosine"})
+    v = base.parameters
+    m_C, m_S = (v["G_m"] + v["q_l"] * v["L_u"]) / G_N, v["q_l"] * v["L_u"] / G_N
+    sa, ca_ = math.sin(v["alpha_u"]), math.cos(v["alpha_u"])
+    half = v["F_nwl"] / 2
+    G_C, G_S = (v["G_m"] + v["q_l"] * v["L_u"]) * sa, v["q_l"] * v["L_u"] * sa
+    R_C = (v["mu_pm"] * v["G_m"] + v["mu_pl"] * v["q_l"] * v["L_u"]) * ca_
+    R_S = v["mu_pl"] * v["q_l"] * v["L_u"] * ca_
+    T, V = v["t_ramp"], v["v_pj"]
+    a_max = math.pi / 2 * V / T
+    a_s = a_max * (1 - eps)
+    rho = (half + G_C + R_C + m_C * a_s) / (half + G_S - R_S - m_S * a_s)
+
+    def th(s):
+        return math.tanh(s / v["v_eps"])
+
+    def vd(t):
+        return V * 0.5 * (1 - math.cos(math.pi * min(t, T) / T))
+
+    def ad(t):
+        return a_max * math.sin(math.pi * t / T) if t < T else 0.0
+
+    def margin(t):
+        s = vd(t)
+        return rho * (half + G_S - R_S * th(s) - m_S * ad(t)) - (half + G_C + R_C * th(s) + m_C * ad(t))
+
+    t0 = brentq(margin, 1.0, T / 2, xtol=1e-15)
+
+    def rhs(t, y):                                        # y = [slip, rope speed]
+        a = (rho * (half + G_S - R_S * th(y[1])) - half - G_C - R_C * th(y[1])) / (m_C + rho * m_S)
+        return [vd(t) - y[1], a]
+
+    def caught_up(t, y):
+        return vd(t) - y[1] if t > t0 + 1e-9 else 1.0
+
+    caught_up.terminal, caught_up.direction = True, -1
+    sol = solve_ivp(rhs, (t0, T), [0.0, vd(t0)], method="DOP853", rtol=1e-13, atol=1e-15, events=caught_up)
+    t1, dist = sol.t_events[0][0], sol.y_events[0][0][0]
+    return math.log(rho) / v["alpha_d"], t0, t1, dist
+
+
+def test_slip_shorter_than_the_output_step_is_located():
+    """A slip episode of 0.21 s inside one 0.7 s output step: no output sees it, the switching function is
+    positive at both ends of the step; it is found, and its start, end and length match scipy."""
+    mu_d, t0, t1, dist = _short_slip_case()
+    dt = 0.7
+    assert math.floor(t0 / dt) == math.floor(t1 / dt)             # both crossings inside one output step
+    sim = simulate(scene("winch_start_slip.toml", effects={"rope_elasticity": "rigid", "ramp": "cosine"},
+                         params={"mu_d": mu_d, "t_end": "8 s"}, numerics={"sim_dt": dt, "sim_rtol": 1e-12}))
+    s = sim.summary
+    assert s["slip"]
+    (ev,) = s["slip_events"]
+    assert ev["t_start"] == pytest.approx(t0, rel=1e-10)
+    # the end is where the drum's and the rope's speeds meet at a shallow angle (relative acceleration
+    # 0.008 m/s²): its time carries the speeds' absolute tolerance over that slope
+    assert ev["t_end"] == pytest.approx(t1, abs=1e-6)
+    assert ev["distance"] == pytest.approx(dist, rel=1e-4)        # 9 µm of slip, atol-limited
+    h = sim.history
+    outputs = h["t [s]"].to_numpy()
+    assert not ((outputs > t0 + 1e-9) & (outputs < t1 - 1e-9) & (h["drum"] == "stick")).any()
+
+
+def test_events_do_not_depend_on_the_output_step():
+    """Elastic rope with slip and stroke events: sim_dt = 0.5 s finds the same events at the same times
+    as sim_dt = 0.01 s."""
+    for name in ("winch_start_slip.toml", "winch_start_stroke.toml"):
+        runs = [simulate(scene(name, params={"t_end": "20 s"}, numerics={"sim_dt": dt, "sim_rtol": 1e-10}))
+                for dt in (0.01, 0.5)]
+        fine, coarse = ([(e.name, e.t) for e in r.events] for r in runs)
+        assert [n for n, _ in fine] == [n for n, _ in coarse] and fine
+        np.testing.assert_allclose([t for _, t in coarse], [t for _, t in fine], rtol=1e-7)
+
+
+def test_hermite_minimum_against_sampling():
+    rng = np.random.default_rng(6)
+    g0, g1, d0, d1 = rng.normal(size=(4, 500))
+    low, u = hermite_min(g0, g1, d0, d1)
+    uu = np.linspace(0, 1, 200001)[:, None]
+    H = ((2 * uu ** 3 - 3 * uu ** 2 + 1) * g0 + (uu ** 3 - 2 * uu ** 2 + uu) * d0
+         + (-2 * uu ** 3 + 3 * uu ** 2) * g1 + (uu ** 3 - uu ** 2) * d1)
+    np.testing.assert_allclose(low, H.min(axis=0), atol=1e-9)
+    assert ((u >= 0) & (u <= 1)).all()
