@@ -36,3 +36,14 @@ def test_dynamics_accuracy_study_fast(tmp_path):
     assert cv["err_F_C_max [-]"].iloc[-1] < cv["err_F_C_max [-]"].iloc[0]     # converges with segments
     loose = df[(df["integrator"] == "cvodes") & (df["rtol"] == df["rtol"].max())]
     assert (loose["energy_residual [-]"].to_numpy() > cv["energy_residual [-]"].to_numpy()).all()
+
+
+def test_drum_contact_study_fast(tmp_path):
+    df = _load("drum_contact").main(tmp_path, fast=True)
+    assert (tmp_path / "drum_contact.csv").exists() and (tmp_path / "drum_contact.png").exists()
+    d = df.sort_values("D [m]")
+    # Li et al. eq. (12): K_1 = mu EA F_C / (R (F_C - F_S)) is inversely proportional to the drum radius
+    D, K = d["D [m]"].to_numpy(), d["K_1 [N/m]"].to_numpy()
+    assert K[0] * D[0] == pytest.approx(K[-1] * D[-1], rel=1e-12)
+    # a softer contact (larger drum) changes the transient more
+    assert d["max_dF_C_history [-]"].iloc[-1] > d["max_dF_C_history [-]"].iloc[0] > 0
