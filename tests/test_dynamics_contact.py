@@ -133,3 +133,16 @@ def test_contact_is_built_only_when_asked_and_leaves_static_results_alone():
 def test_contact_bad_input(change, match):
     with pytest.raises(rm.InputError, match=match):
         simulate(scene(**change))
+
+
+def test_capstan_example_scene_reports_the_contact(capsys):
+    from ropemodel.cli import main
+
+    assert main(["simulate", "winch_start_capstan", "--set", "t_end=6s"]) == 0
+    out = capsys.readouterr().out
+    assert "drum contact (capstan" in out and "C side" in out
+    sc = rm.load_scene(str(DATA.joinpath("winch_start_capstan.toml")))
+    st, v = rm.run(sc), sc.parameters
+    K = simulate(sc.with_values({"t_end": "6 s"})).summary["drum_contact"]["K_C"]
+    assert K == pytest.approx(_li_eq12(st["F_C_up"], st["F_S_up"], v["mu_d"], v["L_u"] / v["q_lw"], v["D"] / 2),
+                              rel=1e-12)

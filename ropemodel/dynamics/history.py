@@ -153,6 +153,12 @@ class Simulation:
                              f"{sl['distance'] * 1e3:.1f} mm ({sl['kind']})")
         else:
             lines.append("  no slip on the drum")
+        if s["drum_contact"]:
+            K = s["drum_contact"]
+            sides = ", ".join(f"{side} side {K[f'K_{side}'] / 1e6:.4g} MN/m" for side in ("C", "S")
+                              if K[f"K_{side}"] is not None)
+            lines.append(f"  drum contact (capstan, Li et al. eq. 12 at F_p {K['F_p'] / 1e3:.2f} kN, F_T "
+                         f"{K['F_T'] / 1e3:.2f} kN): {sides or 'rigid on both sides'}")
         if s["stroke"] is not None:
             lines.append(f"  tensioner take-up max {s['stroke_used'] * 1e3:.1f} mm of {s['stroke'] * 1e3:.1f} mm")
         else:

@@ -20,14 +20,17 @@ ends (compiled from the mode's ODE):
 
 The rate argument: the Hermite cubic H differs from g by at most δ⁴ max|g⁗|/384 on the
 interval, so every excursion deeper than that is found, whatever its length; one shallower
-than the interpolation error, δ⁴|g⁗|/384, can still be missed (with the default sim_dt 0.02 s
-and a load mode of 2 rad/s that is 7e-13 of the switching function's amplitude; at
-sim_dt = 0.7 s, 1e-4).  The location itself is to the integrator's tolerance.
+than the interpolation error can still be missed.  For a switching function oscillating at
+ω with amplitude A, |g⁗| = Aω⁴: with the default sim_dt = 0.02 s (δ = 0.01 s) and the load
+mode of the Fig. 9 haulage (ω ≈ 2 rad/s) the bound is 4e-10·A; at sim_dt = 0.7 s, 6e-4·A
+(the test's slip excursion is 1e-3 of it deep).  The location itself is to the integrator's
+tolerance.
 
-CasADi 3.8's own event support (``zero`` outputs with a ``transition`` function) was tried
-first: it is marked experimental and, for an indicator that starts at 0 with zero slope (the
-slip speed at the onset of slip), fails with CV_ILL_INPUT ("tout too far back") when the
-crossing lies before the integrator's last internal step; so it is not used.
+CasADi 3.8's own event support (``zero`` outputs with a ``transition`` function, marked
+experimental) was tried first.  It fails with CV_ILL_INPUT ("tout too far back in direction
+of integration") when a crossing lies before the integrator's last internal step, e.g.
+ẏ = t, zero = 2e-4 − y on the output grid 0.04, 0.08, ... s (crossing at 0.02 s), the pattern
+of the slip speed at the onset of slip (starts at 0 with zero slope); so it is not used.
 
 Phase boundaries of the drive profile (the ramp's kink) and t_end are known time
 events: chunks end exactly on them.
