@@ -47,3 +47,12 @@ def test_drum_contact_study_fast(tmp_path):
     assert K[0] * D[0] == pytest.approx(K[-1] * D[-1], rel=1e-12)
     # a softer contact (larger drum) changes the transient more
     assert d["max_dF_C_history [-]"].iloc[-1] > d["max_dF_C_history [-]"].iloc[0] > 0
+
+
+def test_dynamics_events_study_fast(tmp_path):
+    df = _load("dynamics_events").main(tmp_path, fast=True)
+    assert (tmp_path / "dynamics_events.csv").exists() and (tmp_path / "dynamics_events.png").exists()
+    # the slip is found at every output step, also when it lies inside one, at the same times
+    assert df["found"].all() and df["inside_one_output_step"].any()
+    assert df["err_t_start [s]"].max() < 1e-9
+    assert df["err_t_end [s]"].max() < 1e-6
