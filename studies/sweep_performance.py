@@ -8,9 +8,10 @@
    included); the best of ``repeat`` runs of each.  The two files are compared
    (largest relative difference), so the peer is also a correctness check.
    The ratio is also given in-process (no start-up on either side).
-2. **Cost vs number of points**: in-process sweeps to Parquet of 10^3 … 10^6
-   points against the numpy peer; the fitted exponent of time ∝ N^k (k = 1 is
-   linear).
+2. **Cost vs number of points**: in-process sweeps to Parquet of 10^3 … 3·10^6
+   points against the numpy peer; the fitted exponent of time ∝ N^k over
+   N ≥ 5·10^4 (k = 1 is linear; below, the fixed cost of a sweep dominates), and
+   the least-squares fixed cost and cost per point.
 3. **Peak memory** (full mode): the peak resident set (VmHWM) of a fresh
    process sweeping 10^6 and 10^7 points to Parquet (chunks of 65536 points),
    and of one that only imports and compiles: the chunking keeps it flat; the
@@ -266,10 +267,11 @@ def main(out_dir=None, fast: bool = False) -> dict:
             scale = scaling(tmp, [1_000, 10_000, 100_000, 1_000_000, 3_000_000], repeat=2)
     sizes = np.array([r["points"] for r in scale], float)
     times = np.array([r["ropemodel_s"] for r in scale])
-    big = sizes >= 1e4  # fixed start-up costs dominate the smallest sweeps
+    big = sizes >= 5e4  # the fixed cost of a sweep (~0.1 s: build, compile lookup, files) hides N below
     if big.sum() < 2:
         big[:] = True
     k = float(np.polyfit(np.log(sizes[big]), np.log(times[big]), 1)[0])
+    per_point, fixed = (float(c) for c in np.polyfit(sizes, times, 1))  # t = fixed + per_point * N
     pd.DataFrame([head]).to_csv(out / "cli_vs_numpy.csv", index=False)
     pd.DataFrame(scale).to_csv(out / "scaling.csv", index=False)
     if mem:
@@ -285,11 +287,13 @@ def main(out_dir=None, fast: bool = False) -> dict:
     for r in scale:
         print(f"  in-process {r['points']:>9.0f} points: ropemodel / numpy = {r['ratio']:.2f}, "
               f"ropemodel {r['ropemodel_s'] / r['points'] * 1e9:.0f} ns/point")
-    print(f"cost ~ N^{k:.2f} for N >= {sizes[big].min():.0f} (1 = linear)")
+    print(f"cost ~ N^{k:.2f} for N >= {sizes[big].min():.0f} (1 = linear); least squares t = a + b N: "
+          f"fixed a = {fixed * 1e3:.0f} ms, b = {per_point * 1e9:.0f} ns/point (this machine)")
     for r in mem:
         label = "imports + compile only" if r["points"] == 0 else f"{r['points']:.0e} points"
         print(f"  peak RSS {label}: {r['peak_rss_bytes'] / 2 ** 20:.0f} MiB")
-    return {"cli_vs_numpy": head, "scaling": scale, "exponent": k, "memory": mem}
+    return {"cli_vs_numpy": head, "scaling": scale, "exponent": k, "fixed_s": fixed, "per_point_s": per_point,
+            "memory": mem}
 
 
 if __name__ == "__main__":
