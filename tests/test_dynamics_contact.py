@@ -27,6 +27,9 @@ def scene(name="winch_start.toml", effects=None, params=None, numerics=None):
     """A built-in dynamic scene with overrides."""
     d = tomllib.loads(DATA.joinpath(name).read_text())
     d["effects"].update(effects or {})
+    if (effects or {}).get("rope") == "catalogue":
+        for k in ("q_l", "q_lw"):                      # outputs of the catalogue rope
+            d["parameters"].pop(k)
     d["parameters"].update(params or {})
     d.setdefault("numerics", {}).update(numerics or {})
     return rm.from_dict(d)
@@ -146,3 +149,15 @@ def test_capstan_example_scene_reports_the_contact(capsys):
     K = simulate(sc.with_values({"t_end": "6 s"})).summary["drum_contact"]["K_C"]
     assert K == pytest.approx(_li_eq12(st["F_C_up"], st["F_S_up"], v["mu_d"], v["L_u"] / v["q_lw"], v["D"] / 2),
                               rel=1e-12)
+
+
+def test_catalogue_rope_gives_the_contact_its_EA():
+    """rope = "catalogue": q_lw = L_u/(E C d²) is an output of the static model, so the contact's EA is
+    the catalogue's E·A_m = E·C·d² (EN 12385-4 factors here; the 6 m stroke holds the softer rope)."""
+    sc = scene("winch_start_capstan.toml", effects={"rope": "catalogue"},
+               params={"d": "42 mm", "rope_grade": "1770 N/mm^2", "rope_E": "100 kN/mm^2", "rope_K": 0.356,
+                       "rope_W": 4090, "rope_C": 0.46, "stroke": "6 m", "t_end": "6 s"})
+    v, st = sc.parameters, rm.run(sc)
+    EA = v["rope_E"] * v["rope_C"] * v["d"] ** 2
+    K = simulate(sc).summary["drum_contact"]["K_C"]
+    assert K == pytest.approx(_li_eq12(st["F_C_up"], st["F_S_up"], v["mu_d"], EA, v["D"] / 2), rel=1e-12)
