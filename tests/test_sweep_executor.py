@@ -48,3 +48,13 @@ def test_thread_pool_equals_local(fig9, local):
 def test_worker_errors_reach_the_caller(fig9):
     with ThreadPoolExecutor(2) as pool, pytest.raises(rm.SolveError, match="G_m found outside"):
         rm.sweep(fig9, {"dF_up": [1.4, 0.1]}, given=["dF_up"], find=["G_m"], executor=pool, chunk_size=1)
+
+
+@pytest.mark.slow
+def test_dask_worker_processes_equal_local(fig9, local):
+    """Worker processes: the compiled Function travels pickled and is compiled there once."""
+    distributed = pytest.importorskip("dask.distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cl, \
+            distributed.Client(cl) as client:
+        remote = rm.sweep(fig9, VARY, chunk_size=50, executor=client)
+    pd.testing.assert_frame_equal(remote, local, check_exact=True)
