@@ -35,6 +35,7 @@ import tempfile
 import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 import casadi as ca
@@ -71,7 +72,7 @@ class ChunkJob:
     threads: int = 1
     roundtrip: dict[str, str] = field(default_factory=dict)
 
-    @property
+    @cached_property
     def key(self) -> str:
         h = hashlib.sha256(self.function.serialize().encode())
         h.update(repr((self.varied, sorted(self.constants), self.outputs, self.backend, self.threads)).encode())
@@ -79,6 +80,7 @@ class ChunkJob:
 
 
 _EVALUATORS: dict[str, object] = {}
+MAX_EVALUATORS = 64
 _LOCK = threading.Lock()
 
 
@@ -88,6 +90,8 @@ def evaluator(job: ChunkJob):
     with _LOCK:
         ev = _EVALUATORS.get(key)
         if ev is None:
+            if len(_EVALUATORS) >= MAX_EVALUATORS:  # oldest first out: dicts keep insertion order
+                del _EVALUATORS[next(iter(_EVALUATORS))]
             ev = _EVALUATORS[key] = _make(job)
     return ev
 
