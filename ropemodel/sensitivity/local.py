@@ -101,9 +101,10 @@ def matrix(frame: pd.DataFrame) -> pd.DataFrame:
     return m
 
 
-def table(frame: pd.DataFrame, width: int = 9) -> str:
+def table(frame: pd.DataFrame, width: int = 10) -> str:
     """Text table: rows outputs, columns parameters; undefined cells say why."""
     params = list(dict.fromkeys(frame["parameter"]))
+    width = max(width, 1 + max(len(p) for p in params))  # ".3g" takes up to 9 characters
     outs = list(dict.fromkeys(frame["output"]))
     cell = {(r.output, r.parameter): r for r in frame.itertuples()}
     head = f"{'d ln y / d ln p':<22}" + "".join(f"{p:>{width}}" for p in params)
