@@ -62,7 +62,7 @@ class Result:
         """Text table in display units: inputs, then single quantities, then up/down pairs."""
         q = self.model.quantities
         lines = [f"{self.scene.name}  (model {self.model.name}; "
-                 + ", ".join(f"{e}={v}" for e, v in self.model.effects.items()) + ")"]
+                 + ", ".join(f"{e}={v}" for e, v in self.model.built_effects.items()) + ")"]
         inputs = [n for n in self.model.parameters if n not in self.find] + self.given
         lines += ["", "inputs"] + [_row(n, q[n], self.values[n]) for n in inputs]
         single = [o for o in self.outputs if not _DIR.match(o)]

@@ -32,8 +32,11 @@ class Model:
         self.symbols = Symbols()
         self.equations: list[Equation] = []
         defined: dict[str, str] = {}
+        #: effect → variant of the submodels that built at least one equation
+        self.built_effects: dict[str, str] = {}
         for sm in self.submodels:
             for eq in sm.equations(self.symbols):
+                self.built_effects[sm.effect] = sm.variant
                 for name in eq.names():
                     self.symbols[name]  # a call equation's names become symbols too
                 if eq.defines in defined:
