@@ -13,9 +13,7 @@ ratio to the ``li`` fit, and the estimates' bias from the truth in units of thei
 
 from __future__ import annotations
 
-import argparse
 import time
-from pathlib import Path
 
 import matplotlib
 
@@ -28,9 +26,9 @@ import ropemodel as rm  # noqa: E402
 from ropemodel.capstan.curves import load_curve  # noqa: E402
 from ropemodel.capstan.identify import identify  # noqa: E402
 from ropemodel.capstan.rotation import rotation  # noqa: E402
+from ropemodel.studykit import cli, output_dir, save_figure
 
 NAME = "capstan_smooth_cost"
-FIGURES = Path(__file__).resolve().parent / "figures"
 BASE = {"mu": 0.25, "EA": "50 kN", "R": "75 mm", "L": "360 mm", "alpha_0": "64 deg", "F_p": "60 N", "F_T": "0 N"}
 TRUE = {"mu": 0.25, "EA": 5e4}
 NOISE = 1e-5  # [rad]
@@ -63,8 +61,7 @@ def fit(variant, sharpness, measured):
 
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
-    out = Path(out_dir) if out_dir else Path(__file__).resolve().parent / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     sharp = [30.0] if fast else [5.0, 10.0, 20.0, 50.0, 100.0, 200.0]
     n_curve, n_data = (21, 11) if fast else (2001, 41)
     ref = load_curve(scene("li"), 100.0, n_curve)
@@ -115,17 +112,9 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     ax.legend(h1 + h2, l1 + l2, fontsize=7)
     ax.set_title("identification of μ, EA by IPOPT")
     fig.tight_layout()
-    fig.savefig(out / f"{NAME}.png", dpi=100)
-    if not fast:
-        FIGURES.mkdir(exist_ok=True)
-        fig.savefig(FIGURES / f"{NAME}.png", dpi=100)
-    plt.close(fig)
+    save_figure(fig, __file__, out, NAME, fast, dpi=100)
     return table
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fast", action="store_true", help="one sharpness value, few points")
-    a = ap.parse_args()
-    pd.set_option("display.width", 200)
-    print(main(fast=a.fast).to_string(index=False))
+    cli(main, __doc__)

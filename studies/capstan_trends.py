@@ -12,7 +12,6 @@ variant is drawn dashed for F_p = 60 N, to show what the published slack-side ju
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
 import matplotlib
@@ -24,6 +23,7 @@ import pandas as pd  # noqa: E402
 
 import ropemodel as rm  # noqa: E402
 from ropemodel.capstan.curves import load_curve  # noqa: E402
+from ropemodel.studykit import cli, output_dir
 
 NAME = "capstan_trends"
 FIGURES = Path(__file__).resolve().parent / "figures"
@@ -113,8 +113,7 @@ def plot(data: pd.DataFrame, path_list):
 
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
-    out = Path(out_dir) if out_dir else Path(__file__).resolve().parent / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     data = curves(41 if fast else 401)
     data.to_csv(out / "curves.csv", index=False)
     table = checks(data)
@@ -128,7 +127,4 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fast", action="store_true", help="coarse curves, no figure for the README")
-    a = ap.parse_args()
-    print(main(fast=a.fast).to_string(index=False))
+    cli(main, __doc__, show=lambda df: df.to_string(index=False))

@@ -15,9 +15,7 @@ the drum limit, the catalogue sizes, the continuous optimum and the catalogue de
 
 from __future__ import annotations
 
-import argparse
 from importlib import resources
-from pathlib import Path
 
 import matplotlib
 
@@ -33,9 +31,9 @@ from optimisation.scenes import random_sizing_scene  # noqa: E402
 from ropemodel import ropes  # noqa: E402
 from ropemodel.problem import Problem  # noqa: E402
 from ropemodel.scene import from_toml  # noqa: E402
+from ropemodel.studykit import cli, output_dir, save_figure
 
 NAME = "discrete_design"
-FIGURES = Path(__file__).resolve().parent / "figures"
 
 
 def compare(n: int, seed: int = 7, timeout: float = 30.0) -> pd.DataFrame:
@@ -111,8 +109,7 @@ def design_space(ax):
 
 
 def main(out_dir=None, fast: bool = False) -> pd.Series:
-    out = Path(out_dir) if out_dir else Path(__file__).resolve().parent / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     df = compare(1 if fast else 30, timeout=5.0 if fast else 20.0)
     df.to_csv(out / f"{NAME}.csv", index=False)
     both = df[df["next_up_found"] & df["bonmin_found"]]
@@ -140,17 +137,9 @@ def main(out_dir=None, fast: bool = False) -> pd.Series:
     ax[1].set_title(f"{len(df)} random scenes: same answer in {100 * summary['same_answer_rate']:.0f}%, "
                     f"bonmin/next-up time {summary['time_ratio_bonmin_over_next_up']:.2g}", fontsize=9)
     fig.tight_layout()
-    fig.savefig(out / f"{NAME}.png", dpi=110)
-    if not fast:
-        FIGURES.mkdir(exist_ok=True)
-        fig.savefig(FIGURES / f"sizing_{NAME}.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, __file__, out, NAME, fast, readme_name=f"sizing_{NAME}")
     return summary
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fast", action="store_true")
-    ap.add_argument("--out", default=None)
-    a = ap.parse_args()
-    print(main(a.out, a.fast).to_string())
+    cli(main, __doc__)

@@ -15,11 +15,9 @@ grows with the drum and falls with friction.
 
 from __future__ import annotations
 
-import argparse
 import time
 import tomllib
 from importlib import resources
-from pathlib import Path
 
 import matplotlib
 
@@ -30,9 +28,9 @@ import pandas as pd  # noqa: E402
 
 import ropemodel as rm  # noqa: E402
 from ropemodel.dynamics import simulate  # noqa: E402
+from ropemodel.studykit import cli, output_dir, save_figure
 
 NAME = "drum_contact"
-FIGURES = Path(__file__).resolve().parent / "figures"
 DATA = resources.files("ropemodel.data")
 
 
@@ -82,8 +80,7 @@ def measure(t_end, diameters, frictions, repeats) -> tuple[pd.DataFrame, dict]:
 
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
-    out = Path(out_dir) if out_dir else Path(__file__).resolve().parent / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     if fast:
         df, hist = measure(8.0, [2.5, 25.0], [0.25], repeats=1)
     else:
@@ -112,17 +109,9 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     ax[1].legend(fontsize=8)
     ax[1].grid(True, alpha=0.3)
     fig.tight_layout()
-    fig.savefig(out / f"{NAME}.png", dpi=110)
-    if not fast:
-        FIGURES.mkdir(exist_ok=True)
-        fig.savefig(FIGURES / f"{NAME}.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, __file__, out, NAME, fast)
     return df
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fast", action="store_true")
-    ap.add_argument("--out", default=None)
-    a = ap.parse_args()
-    print(main(a.out, a.fast).to_string(index=False))
+    cli(main, __doc__, show=lambda df: df.to_string(index=False))

@@ -23,7 +23,6 @@ four start-up example scenes.
 
 from __future__ import annotations
 
-import argparse
 import time
 import tomllib
 from importlib import resources
@@ -39,6 +38,7 @@ import pandas as pd  # noqa: E402
 import ropemodel as rm  # noqa: E402
 from ropemodel.dynamics import simulate  # noqa: E402
 from ropemodel.dynamics.chain import G_N  # noqa: E402
+from ropemodel.studykit import cli, output_dir, save_figure
 
 NAME = "dynamic_factor"
 FIGURES = Path(__file__).resolve().parent / "figures"
@@ -90,8 +90,7 @@ def histories(t_end: float, segments: int) -> dict:
 
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
-    out = Path(out_dir) if out_dir else Path(__file__).resolve().parent / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     ramps = [2.0, 6.0] if fast else [1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 14.0, 20.0]
     dampings = [0.05] if fast else [0.0, 0.02, 0.05, 0.1, 0.2]
     segments = 4 if fast else 8
@@ -120,11 +119,7 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
                  "x a span went slack (simulation ends there: peak not reached)", transform=axes[1].transAxes,
                  fontsize=8, color="r")
     fig.tight_layout()
-    fig.savefig(out / f"{NAME}.png", dpi=110)
-    if not fast:
-        FIGURES.mkdir(exist_ok=True)
-        fig.savefig(FIGURES / f"{NAME}.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, __file__, out, NAME, fast)
 
     sims = histories(12.0 if fast else 40.0, segments)
     fig, ax = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
@@ -153,9 +148,4 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fast", action="store_true")
-    ap.add_argument("--out", default=None)
-    a = ap.parse_args()
-    df = main(a.out, a.fast)
-    print(df.drop(columns=["seconds"]).to_string(index=False))
+    cli(main, __doc__, show=lambda df: df.drop(columns=["seconds"]).to_string(index=False))

@@ -13,11 +13,9 @@ all measured in the same run.
 
 from __future__ import annotations
 
-import argparse
 import time
 import tomllib
 from importlib import resources
-from pathlib import Path
 
 import matplotlib
 
@@ -28,10 +26,10 @@ import pandas as pd  # noqa: E402
 
 import ropemodel as rm  # noqa: E402
 from ropemodel.dynamics import simulate  # noqa: E402
+from ropemodel.studykit import cli, output_dir, save_figure
 
 NAME = "dynamics_accuracy"
 FIGURE = "dynamic_accuracy"
-FIGURES = Path(__file__).resolve().parent / "figures"
 DATA = resources.files("ropemodel.data")
 
 
@@ -76,8 +74,7 @@ def measure(t_end, segments, rtols, ref_segments, ref_rtol, repeats) -> pd.DataF
 
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
-    out = Path(out_dir) if out_dir else Path(__file__).resolve().parent / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     if fast:
         df = measure(6.0, [2, 4], [1e-4, 1e-8], ref_segments=8, ref_rtol=1e-9, repeats=1)
     else:
@@ -107,17 +104,9 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     ax[1].legend(fontsize=8)
     ax[1].grid(True, which="both", alpha=0.3)
     fig.tight_layout()
-    fig.savefig(out / f"{FIGURE}.png", dpi=110)
-    if not fast:
-        FIGURES.mkdir(exist_ok=True)
-        fig.savefig(FIGURES / f"{FIGURE}.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, __file__, out, FIGURE, fast)
     return df
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fast", action="store_true")
-    ap.add_argument("--out", default=None)
-    a = ap.parse_args()
-    print(main(a.out, a.fast).to_string(index=False))
+    cli(main, __doc__, show=lambda df: df.to_string(index=False))

@@ -16,12 +16,10 @@ The switching functions are checked with their rates on a detection grid of sim_
 
 from __future__ import annotations
 
-import argparse
 import math
 import time
 import tomllib
 from importlib import resources
-from pathlib import Path
 
 import matplotlib
 
@@ -35,9 +33,9 @@ from scipy.optimize import brentq  # noqa: E402
 import ropemodel as rm  # noqa: E402
 from ropemodel.dynamics import simulate  # noqa: E402
 from ropemodel.dynamics.chain import G_N  # noqa: E402
+from ropemodel.studykit import cli, output_dir, save_figure
 
 NAME = "dynamics_events"
-FIGURES = Path(__file__).resolve().parent / "figures"
 DATA = resources.files("ropemodel.data")
 RTOL = 1e-12
 
@@ -118,8 +116,7 @@ def measure(eps_list, dts, repeats) -> pd.DataFrame:
 
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
-    out = Path(out_dir) if out_dir else Path(__file__).resolve().parent / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     if fast:
         df = measure([1e-3], [0.02, 0.7], repeats=1)
     else:
@@ -145,17 +142,9 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     ax[1].legend(fontsize=7)
     ax[1].grid(True, which="both", alpha=0.3)
     fig.tight_layout()
-    fig.savefig(out / f"{NAME}.png", dpi=110)
-    if not fast:
-        FIGURES.mkdir(exist_ok=True)
-        fig.savefig(FIGURES / f"{NAME}.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, __file__, out, NAME, fast)
     return df
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fast", action="store_true")
-    ap.add_argument("--out", default=None)
-    a = ap.parse_args()
-    print(main(a.out, a.fast).to_string(index=False))
+    cli(main, __doc__, show=lambda df: df.to_string(index=False))

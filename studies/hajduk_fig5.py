@@ -11,7 +11,6 @@ reference-table points are checked and marked.
 
 from __future__ import annotations
 
-import argparse
 import math
 from pathlib import Path
 
@@ -24,6 +23,7 @@ import pandas as pd  # noqa: E402
 
 import ropemodel as rm  # noqa: E402
 from ropemodel.lining import distribution  # noqa: E402
+from ropemodel.studykit import cli, output_dir  # noqa: E402
 
 NAME = "hajduk_fig5"
 FIGURES = Path(__file__).resolve().parent / "figures"
@@ -102,8 +102,7 @@ def plot(df: pd.DataFrame, check: pd.DataFrame, path: Path) -> None:
 
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
-    out = Path(out_dir) if out_dir else Path(__file__).resolve().parent / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     df = measure(13 if fast else 73, (0.01, 2.0) if fast else K_OVER_PI)
     check = table_check()
     df.to_csv(out / f"{NAME}.csv", index=False)
@@ -116,9 +115,5 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fast", action="store_true", help="a few curves and points (seconds)")
-    a = ap.parse_args()
-    d = main(fast=a.fast)
-    print(f"{NAME}: {len(d)} points; largest ODE deviation from the closed form "
-          f"{d['ode rel. error [-]'].max():.2e}")
+    cli(main, __doc__, show=lambda d: f"{NAME}: {len(d)} points; largest ODE deviation from the closed form "
+                                   f"{d['ode rel. error [-]'].max():.2e}")

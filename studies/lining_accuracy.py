@@ -16,7 +16,6 @@ plain ODE in α with Radau ("Radau, plain α").
 
 from __future__ import annotations
 
-import argparse
 import time
 from pathlib import Path
 
@@ -31,6 +30,7 @@ from scipy.integrate import solve_ivp  # noqa: E402
 from ropemodel.lining import closed_log_ratio, ode_log_ratio  # noqa: E402
 from ropemodel.lining import ode as lode  # noqa: E402
 from ropemodel.papers import hajduk1992 as hj  # noqa: E402
+from ropemodel.studykit import cli, output_dir  # noqa: E402
 
 NAME = "lining_accuracy"
 FIGURES = Path(__file__).resolve().parent / "figures"
@@ -171,8 +171,7 @@ def plot(df: pd.DataFrame, path: Path) -> None:
 
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
-    out = Path(out_dir) if out_dir else Path(__file__).resolve().parent / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     if fast:
         df = measure(16, (1e-5, 1e-7), (1e-5, 1e-7), repeats=1, scipy_n=4)
     else:
@@ -189,9 +188,4 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fast", action="store_true", help="few points and tolerances (seconds)")
-    a = ap.parse_args()
-    d = main(fast=a.fast)
-    with pd.option_context("display.width", 160, "display.max_columns", 10):
-        print(summary(d).to_string(index=False))
+    cli(main, __doc__, show=lambda d: summary(d).to_string(index=False))

@@ -11,10 +11,8 @@ relative in d, F_nwl and stroke), median wall time, the ratio of medians, and th
 
 from __future__ import annotations
 
-import argparse
 import time
 import warnings
-from pathlib import Path
 
 import matplotlib
 
@@ -28,9 +26,9 @@ from optimisation.infeasibility import diagnose  # noqa: E402
 from optimisation.ipopt import _solver  # noqa: E402
 from optimisation.problem import SizingProblem  # noqa: E402
 from optimisation.scenes import random_sizing_scene  # noqa: E402
+from ropemodel.studykit import cli, output_dir, save_figure  # noqa: E402
 
 NAME = "sizing_benchmark"
-FIGURES = Path(__file__).resolve().parent / "figures"
 
 
 def _ipopt(problem, x0):
@@ -63,8 +61,7 @@ def _slsqp(problem, x0):
 
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
-    out = Path(out_dir) if out_dir else Path(__file__).resolve().parent / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     n = 6 if fast else 120
     rng = np.random.default_rng(20261121)
     rows, tried = [], 0
@@ -121,17 +118,9 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     ax[1].legend(fontsize=8)
     ax[1].set_title("agreement of the optima")
     fig.tight_layout()
-    fig.savefig(out / f"{NAME}.png", dpi=110)
-    if not fast:
-        FIGURES.mkdir(exist_ok=True)
-        fig.savefig(FIGURES / f"{NAME}.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, __file__, out, NAME, fast)
     return pd.Series(summary)
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fast", action="store_true")
-    ap.add_argument("--out", default=None)
-    a = ap.parse_args()
-    print(main(a.out, a.fast).to_string())
+    cli(main, __doc__)

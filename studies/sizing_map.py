@@ -18,13 +18,14 @@ optimum (d, F_nwl) over uniform ranges of the three map axes.
 
 from __future__ import annotations
 
-import argparse
 import time
 from importlib import resources
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
+
+from ropemodel.studykit import cli, output_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 NAME = "sizing_map"
@@ -61,8 +62,7 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     from ropemodel.sensitivity import sobol_indices
     from ropemodel.sweep.sizing import sizing_function, sizing_sweep
 
-    out = Path(out_dir) if out_dir else ROOT / "studies" / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     scene = rm.load_scene(str(resources.files("ropemodel.data").joinpath("winch_sizing_fig9.toml")))
     n = 3 if fast else 21
     loads = [467.0] if fast else [200.0, 467.0, 800.0]
@@ -115,8 +115,4 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--fast", action="store_true")
-    parser.add_argument("--out", default=None)
-    a = parser.parse_args()
-    main(a.out, a.fast)
+    cli(main, __doc__, show=lambda df: f"{len(df)} points written")

@@ -14,10 +14,11 @@ where the output is nonlinear in the input, e.g. the inclination).
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
 import pandas as pd
+
+from ropemodel.studykit import cli, output_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 NAME = "tornado"
@@ -28,8 +29,7 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     import ropemodel as rm
     from ropemodel.sensitivity import elasticities, table, tornado
 
-    out = Path(out_dir) if out_dir else ROOT / "studies" / "out" / NAME
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(__file__, out_dir)
     scene = rm.load_scene()
     frame = elasticities(scene, outputs=OUTPUTS)
     frame.to_csv(out / "elasticities.csv", index=False)
@@ -64,8 +64,4 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--fast", action="store_true")
-    parser.add_argument("--out", default=None)
-    a = parser.parse_args()
-    main(a.out, a.fast)
+    cli(main, __doc__, show=lambda df: f"{len(df)} elasticities written")

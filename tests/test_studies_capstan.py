@@ -1,24 +1,14 @@
 """The capstan studies run in fast mode and their checks hold."""
 
-import importlib.util
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
-
-STUDIES = Path(__file__).resolve().parents[1] / "studies"
-
-
-def _load(name):
-    spec = importlib.util.spec_from_file_location(f"study_{name}", STUDIES / f"{name}.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+from _studies import load_study
 
 
 def test_capstan_trends_fast(tmp_path):
-    table = _load("capstan_trends").main(tmp_path, fast=True)
+    table = load_study("capstan_trends").main(tmp_path, fast=True)
     assert (tmp_path / "capstan_trends.png").stat().st_size > 5000
     assert table["holds"].all(), table[~table["holds"]]
     curves = pd.read_csv(tmp_path / "curves.csv")
@@ -29,7 +19,7 @@ def test_capstan_trends_fast(tmp_path):
 
 
 def test_capstan_smooth_cost_fast(tmp_path):
-    table = _load("capstan_smooth_cost").main(tmp_path, fast=True)
+    table = load_study("capstan_smooth_cost").main(tmp_path, fast=True)
     assert (tmp_path / "capstan_smooth_cost.png").stat().st_size > 5000
     smooth = table[table["variant"] == "smooth"]
     assert len(smooth) >= 1

@@ -2,23 +2,12 @@
 
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
-
 import pytest
-
-STUDIES = Path(__file__).resolve().parent.parent / "studies"
-
-
-def _load(name):
-    spec = importlib.util.spec_from_file_location(name, STUDIES / f"{name}.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+from _studies import load_study
 
 
 def test_dynamic_factor_study_fast(tmp_path):
-    df = _load("dynamic_factor").main(tmp_path, fast=True)
+    df = load_study("dynamic_factor").main(tmp_path, fast=True)
     assert (tmp_path / "dynamic_factor.csv").exists() and (tmp_path / "dynamic_factor.png").exists()
     assert (tmp_path / "dynamic_start.png").exists()
     for case, d in df.groupby("case"):
@@ -30,7 +19,7 @@ def test_dynamic_factor_study_fast(tmp_path):
 
 
 def test_dynamics_accuracy_study_fast(tmp_path):
-    df = _load("dynamics_accuracy").main(tmp_path, fast=True)
+    df = load_study("dynamics_accuracy").main(tmp_path, fast=True)
     assert (tmp_path / "dynamics_accuracy.csv").exists() and (tmp_path / "dynamic_accuracy.png").exists()
     cv = df[(df["integrator"] == "cvodes") & (df["rtol"] == df["rtol"].min())].sort_values("segments")
     assert cv["err_F_C_max [-]"].iloc[-1] < cv["err_F_C_max [-]"].iloc[0]     # converges with segments
@@ -39,7 +28,7 @@ def test_dynamics_accuracy_study_fast(tmp_path):
 
 
 def test_drum_contact_study_fast(tmp_path):
-    df = _load("drum_contact").main(tmp_path, fast=True)
+    df = load_study("drum_contact").main(tmp_path, fast=True)
     assert (tmp_path / "drum_contact.csv").exists() and (tmp_path / "drum_contact.png").exists()
     d = df.sort_values("D [m]")
     # Li et al. eq. (12): K_1 = mu EA F_C / (R (F_C - F_S)) is inversely proportional to the drum radius
@@ -50,7 +39,7 @@ def test_drum_contact_study_fast(tmp_path):
 
 
 def test_dynamics_events_study_fast(tmp_path):
-    df = _load("dynamics_events").main(tmp_path, fast=True)
+    df = load_study("dynamics_events").main(tmp_path, fast=True)
     assert (tmp_path / "dynamics_events.csv").exists() and (tmp_path / "dynamics_events.png").exists()
     # the slip is found at every output step, also when it lies inside one, at the same times
     assert df["found"].all() and df["inside_one_output_step"].any()

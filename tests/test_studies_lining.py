@@ -2,23 +2,12 @@
 
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
-
 import numpy as np
-
-STUDIES = Path(__file__).resolve().parent.parent / "studies"
-
-
-def _load(name):
-    spec = importlib.util.spec_from_file_location(name, STUDIES / f"{name}.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+from _studies import load_study
 
 
 def test_hajduk_fig5_fast(tmp_path):
-    mod = _load("hajduk_fig5")
+    mod = load_study("hajduk_fig5")
     df = mod.main(tmp_path, fast=True)
     assert (tmp_path / "hajduk_fig5.csv").exists() and (tmp_path / "hajduk_fig5.png").exists()
     table = mod.table_check()
@@ -29,7 +18,7 @@ def test_hajduk_fig5_fast(tmp_path):
 
 
 def test_lining_accuracy_fast(tmp_path):
-    mod = _load("lining_accuracy")
+    mod = load_study("lining_accuracy")
     df = mod.main(tmp_path, fast=True)
     assert (tmp_path / "lining_accuracy.csv").exists() and (tmp_path / "lining_accuracy.png").exists()
     ours = df[df["method"].str.startswith("ropemodel")]

@@ -1,23 +1,13 @@
 """The sizing studies run end to end in fast mode and their numbers are consistent."""
 
-import importlib.util
-from pathlib import Path
 
 import pandas as pd
 import pytest
-
-STUDIES = Path(__file__).resolve().parent.parent / "studies"
-
-
-def _load(name):
-    spec = importlib.util.spec_from_file_location(f"study_{name}", STUDIES / f"{name}.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+from _studies import load_study
 
 
 def test_sizing_benchmark_fast(tmp_path):
-    summary = _load("sizing_benchmark").main(tmp_path, fast=True)
+    summary = load_study("sizing_benchmark").main(tmp_path, fast=True)
     df = pd.read_csv(tmp_path / "sizing_benchmark.csv")
     assert len(df) == summary["scenes"] >= 5
     assert (tmp_path / "sizing_benchmark.png").stat().st_size > 0
@@ -31,7 +21,7 @@ def test_sizing_benchmark_fast(tmp_path):
 
 
 def test_discrete_design_fast(tmp_path):
-    summary = _load("discrete_design").main(tmp_path, fast=True)
+    summary = load_study("discrete_design").main(tmp_path, fast=True)
     df = pd.read_csv(tmp_path / "discrete_design.csv")
     assert len(df) == summary["scenes"] >= 1
     # the next size up is a catalogue size >= the continuous optimum

@@ -1,24 +1,17 @@
 """The sweep and sensitivity studies run in fast mode; the runner finds every study."""
 
-import importlib.util
 from pathlib import Path
 
 import pandas as pd
 import pytest
+from _studies import load_study
 
 ROOT = Path(__file__).resolve().parents[1]
 STUDIES = ROOT / "studies"
 
 
-def _load(name):
-    spec = importlib.util.spec_from_file_location(f"study_{name}", STUDIES / f"{name}.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
-
-
 def test_tornado_fast(tmp_path):
-    frame = _load("tornado").main(tmp_path, fast=True)
+    frame = load_study("tornado").main(tmp_path, fast=True)
     assert (tmp_path / "tornado.png").stat().st_size > 5000
     steps = pd.read_csv(tmp_path / "plus_minus_10.csv")
     # second method: for the linear inputs (G_m, F_nwl, q_lw, v_pj) the recomputed step is the linear one
@@ -28,7 +21,7 @@ def test_tornado_fast(tmp_path):
 
 
 def test_sweep_performance_fast(tmp_path):
-    res = _load("sweep_performance").main(tmp_path, fast=True)
+    res = load_study("sweep_performance").main(tmp_path, fast=True)
     head = res["cli_vs_numpy"]
     # the numpy peer written by hand from MODELS.md agrees with the CLI's file
     assert head["max_rel_diff"] < 1e-12
@@ -38,7 +31,7 @@ def test_sweep_performance_fast(tmp_path):
 
 def test_sizing_map_fast(tmp_path):
     pytest.importorskip("optimisation")
-    frame = _load("sizing_map").main(tmp_path, fast=True)
+    frame = load_study("sizing_map").main(tmp_path, fast=True)
     assert frame["feasible"].any()
     # more inclination never needs a thinner rope (same route and load)
     ok = frame[frame["feasible"]]
@@ -50,7 +43,7 @@ def test_sizing_map_fast(tmp_path):
 
 
 def test_run_all_finds_every_study_and_runs_one(tmp_path, capsys):
-    run_all = _load("run_all")
+    run_all = load_study("run_all")
     found = run_all.studies()
     assert {"tornado", "sweep_performance", "sizing_map"} <= set(found) and "run_all" not in found
     assert run_all.main(["--fast", "--only", "tornado", "--out", str(tmp_path)]) == 0
