@@ -34,3 +34,14 @@ def suggest(name: str, valid) -> str:
     """Return ``" (did you mean 'x'?)"`` for the nearest valid name, or ``""``."""
     close = difflib.get_close_matches(name, list(valid), n=1, cutoff=0.5)
     return f" (did you mean '{close[0]}'?)" if close else ""
+
+
+def require(module: str, extra: str):
+    """Import an optional dependency, or raise :class:`InputError` naming the extra that installs it."""
+    import importlib
+
+    try:
+        return importlib.import_module(module)
+    except ModuleNotFoundError:
+        raise InputError(f"this needs the optional package {module.split('.')[0]!r}: "
+                         f"pip install \"ropemodel[{extra}]\"") from None

@@ -116,3 +116,13 @@ def test_cli_warning_is_one_line(capsys):
     assert main(["run", "--set", "alpha_u=50deg", "--json"]) == 0
     err = capsys.readouterr().err
     assert err.startswith("warning: alpha_u = 50 deg") and err.count("\n") == 1
+
+
+def test_missing_optional_package_names_the_extra(monkeypatch):
+    import sys
+
+    from ropemodel.errors import require
+
+    monkeypatch.setitem(sys.modules, "SALib", None)  # as if SALib were not installed
+    with pytest.raises(rm.InputError, match=r'pip install "ropemodel\[sobol\]"'):
+        require("SALib.analyze.sobol", "sobol")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ropemodel.errors import require
 from ropemodel.units import label
 
 
@@ -13,8 +14,7 @@ def tornado(frame, outputs=None, path=None, title: str | None = None, top: int |
     frame: :func:`ropemodel.sensitivity.elasticities` output.  Returns the matplotlib Figure
     (saved to ``path`` when given).
     """
-    import matplotlib
-
+    matplotlib = require("matplotlib", "plots")
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 

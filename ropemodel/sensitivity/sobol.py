@@ -21,7 +21,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from ropemodel.errors import InputError
+from ropemodel.errors import InputError, require
 from ropemodel.problem import Problem
 from ropemodel.units import to_si
 
@@ -58,8 +58,8 @@ def sobol_indices(func, ranges: dict[str, tuple[float, float]], n: int = 1024, s
     Returns a tidy frame: ``output``, ``parameter``, ``S1``, ``S1_conf``, ``ST``, ``ST_conf``,
     ``defined``, ``note``.  ``n`` is rounded up to a power of two (the Sobol' sequence needs it).
     """
-    from SALib.analyze import sobol as analyze
-    from SALib.sample import sobol as sample
+    analyze = require("SALib.analyze.sobol", "sobol")
+    sample = require("SALib.sample.sobol", "sobol")
 
     if not ranges:
         raise InputError("no ranges for Sobol indices")
