@@ -12,7 +12,7 @@ from ropemodel.capstan.rotation import rotation
 from ropemodel.cli import main as cli
 from ropemodel.errors import InputError
 
-SCENE = "ropemodel/data/capstan_li_experiment.toml"
+SCENE = "capstan_li_experiment"
 TRUE = {"mu": 0.25, "EA": 5e4}
 NOISE = 1e-5  # [rad] standard deviation of the synthetic encoder noise (0.0006 deg)
 

@@ -17,7 +17,7 @@ from ropemodel.errors import InputError
 from ropemodel.papers import li_capstan as li
 from ropemodel.scene import load
 
-SCENE = "ropemodel/data/capstan_li_experiment.toml"
+SCENE = "capstan_li_experiment"
 KEYS = ("K", "K_ti", "K_sl", "theta_s1", "theta_s2", "alpha_1", "alpha_2", "regime", "delta", "delta_alpha")
 
 

@@ -91,7 +91,7 @@ stroke = "1000 mm"
 
 
 def test_shipped_paper_scene_flags_the_stroke(capsys):
-    assert cli(["run", "ropemodel/data/winch_sizing_paper_rope.toml", "--json"]) == 0
+    assert cli(["run", "winch_sizing_paper_rope", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["stroke_margin_up"] * 1e3 == pytest.approx(1000 - FIG9["dF_up"], abs=0.01)
     assert out["F_C_up"] / 1e3 == pytest.approx(FIG9["F_C_up"], abs=0.01)

@@ -16,7 +16,7 @@ from ropemodel.cli import main as cli
 from ropemodel.problem import run
 from ropemodel.scene import load
 
-SCENE = "ropemodel/data/winch_sizing_fig9.toml"
+SCENE = "winch_sizing_fig9"
 G = 9.80665
 K, W, C = 0.356, 4090.0, 0.460        # 6x36-IWRC, EN 12385-4
 
@@ -180,7 +180,7 @@ def test_size_cli_json(capsys):
 
 def test_size_bad_input_exit_2(capsys):
     assert cli(["size", SCENE, "--set", "mu_d=-1"]) == 2
-    assert cli(["size", "ropemodel/data/krauze2025_fig9.toml"]) == 2    # rope = "given": nothing to size
+    assert cli(["size", "krauze2025_fig9"]) == 2    # rope = "given": nothing to size
 
 
 def test_size_cli_json_when_infeasible(capsys):

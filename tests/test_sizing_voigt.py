@@ -5,12 +5,13 @@ import math
 import numpy as np
 import pytest
 from scipy.optimize import brentq
+from test_sizing import Hand
 
 from optimisation import SizingProblem
 from optimisation.ipopt import solve_continuous
 from ropemodel.scene import load
 
-SCENE = "ropemodel/data/winch_sizing_voigt.toml"
+SCENE = "winch_sizing_voigt"
 G = 9.80665
 K, W, C = 0.356, 4090.0, 0.460        # 6x36-IWRC, EN 12385-4
 
@@ -22,19 +23,12 @@ def traction(mu, alpha, q, k):
                   rtol=1e-15)
 
 
-class HandVoigt:
+class HandVoigt(Hand):
+    """The hand search of test_sizing with Hajduk's traction in place of Euler-Eytelwein."""
+
     def __init__(self, P):
         self.P = P
         self.k = P["lambda"] * 2 * P["v_pj"] / P["D"]
-
-    def parts(self, d):
-        P = self.P
-        q = G * W * d * d
-        a, L = P["alpha_u"], P["L_u"]
-        G_ls, T_ls = q * L * math.sin(a), P["mu_pl"] * q * L * math.cos(a)
-        G_lmC = (P["G_m"] + q * L) * math.sin(a)
-        T = P["mu_pm"] * P["G_m"] * math.cos(a) + P["mu_pl"] * q * L * math.cos(a)
-        return {"up": (G_ls - T_ls, G_lmC + T), "down": (G_ls + T_ls, G_lmC - T)}
 
     def F_lo(self, d):
         P = self.P
