@@ -105,7 +105,6 @@ class SizingProblem:
         args = {k: p[i] for i, k in enumerate(self.params)}
         args.update({k: x_si[i] for i, k in enumerate(VARIABLES)})
         out = fun.call(args)
-        self._out = out
         self.xs, self.p = xs, p
         self.g = ca.vertcat(*[out[c] / s for c, s in zip(self.constraints, self.g_scale)])
         # reference mass per metre: the scene's rope at d = 10 mm (fixed number: the weights are constants)
@@ -137,9 +136,6 @@ class SizingProblem:
     def to_si(self, xs) -> dict[str, float]:
         xs = np.asarray(xs, dtype=float).ravel()
         return {k: float(xs[i] * self.x_scale[i]) for i, k in enumerate(VARIABLES)}
-
-    def from_si(self, design: dict) -> np.ndarray:
-        return np.array([design[k] for k in VARIABLES], dtype=float) / self.x_scale
 
     def p_of(self, values: dict | None = None) -> np.ndarray:
         """Parameter vector with SI ``values`` overriding the scene's."""

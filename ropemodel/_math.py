@@ -28,7 +28,6 @@ def _unary(np_fun, ca_fun):
 
 sin = _unary(np.sin, ca.sin)
 cos = _unary(np.cos, ca.cos)
-tan = _unary(np.tan, ca.tan)
 exp = _unary(np.exp, ca.exp)
 log = _unary(np.log, ca.log)
 log1p = _unary(np.log1p, ca.log1p)

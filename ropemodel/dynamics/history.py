@@ -11,11 +11,6 @@ import pandas as pd
 from ropemodel.dynamics.system import OUT
 from ropemodel.errors import SolveError
 
-#: history columns (SI), in order
-COLUMNS = ("t [s]", "v_drum [m/s]", "v_load [m/s]", "slip_speed [m/s]", "slip [m]", "F_C [N]", "F_S [N]",
-           "T_sheave [N]", "take_up [m]", "carriage [m]", "W_drum [J]", "E [J]", "D [J]",
-           "energy_residual [J]", "T_min [N]", "drum", "tensioner", "drive")
-
 
 class Simulation:
     """A simulated start-up or braking of a winch scene.

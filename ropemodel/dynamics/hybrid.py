@@ -131,7 +131,6 @@ class HybridIntegrator:
         self.f_scale, self.v_scale = f_scale, v_scale
         self.opts = {"reltol": rtol, "abstol": atol_u, "max_num_steps": 200000}
         self._modes: dict = {}
-        self.false_alarms = 0           # Hermite dips that re-integration showed not to cross (statistics)
 
     def mode(self, k, mode) -> _Mode:
         """The compiled mode ``(drum, tensioner, drive)`` of phase ``k`` (built on first use only)."""
@@ -189,7 +188,6 @@ class HybridIntegrator:
                 if times[SUB - 1:j + 1:SUB].size:
                     self._record(m, times[SUB - 1:j + 1:SUB], X[:, SUB - 1:j + 1:SUB], on_record, mode)
                 x, t = X[:, j], times[j]
-                self.false_alarms += 1
                 continue
             if times[SUB - 1:j:SUB].size:
                 self._record(m, times[SUB - 1:j:SUB], X[:, SUB - 1:j:SUB], on_record, mode)
