@@ -54,7 +54,7 @@ class Problem:
         self.knowns = [p for p in model.parameters if p not in find] + given
         self.structure = analyse(model, self.unknowns, self.knowns)
         guesses = {n: scene.parameters[n] for n in find}
-        self.function = _compiled(scene, tuple(self.unknowns), tuple(self.knowns), tuple(sorted(guesses.items())))
+        self.function = _compiled(scene, self.structure, tuple(sorted(guesses.items())))
         self.given_values = {n: to_si(n, v, model.quantities[n].unit) for n, v in given_values.items()}
 
     def inputs(self, values: dict | None = None) -> dict[str, float]:
@@ -83,7 +83,8 @@ class Problem:
         self._check_found(sol)
         values_all = {**x, **sol}
         self._check_round_trip(values_all)
-        self.model.validate({k: values_all[k] for k in self.model.parameters})
+        if self.find:  # found parameters meet the cross-parameter rules too (e.g. a found L_u >= L_ul)
+            self.model.validate({k: values_all[k] for k in self.model.parameters})
         return Result(self.scene, self.model, values_all, self.given, self.find)
 
     def evaluate(self, columns: dict[str, np.ndarray], parallel: int = 1) -> dict[str, np.ndarray]:
@@ -110,9 +111,9 @@ class Problem:
         not exist) is a :class:`SolveError`, never a silently wrong answer."""
         if not self.given:
             return
-        params = tuple(self.model.parameters)
-        fwd = _compiled(self.scene, tuple(self.model.outputs), params, ())
-        out = fwd(**{k: values_all[k] for k in params})
+        ref = _Structural(self.scene)
+        fwd = _compiled_cached(ref, _forward_structure(ref), ())
+        out = fwd(**{k: values_all[k] for k in self.model.parameters})
         for n in self.given:
             got, want = float(out[n]), values_all[n]
             if not abs(got - want) <= 1e-6 * max(1.0, abs(want)):
@@ -133,8 +134,8 @@ class Problem:
                 )
 
 
-def _compiled(scene: Scene, unknowns, knowns, guesses) -> ca.Function:
-    return _compiled_cached(_Structural(scene), unknowns, knowns, guesses)
+def _compiled(scene: Scene, structure, guesses) -> ca.Function:
+    return _compiled_cached(_Structural(scene), structure, guesses)
 
 
 class _Structural:
@@ -152,9 +153,15 @@ class _Structural:
 
 
 @lru_cache(maxsize=64)
-def _compiled_cached(ref: _Structural, unknowns, knowns, guesses) -> ca.Function:
+def _compiled_cached(ref: _Structural, structure, guesses) -> ca.Function:
+    return compile_solver(ref.scene.built, structure, dict(guesses))
+
+
+@lru_cache(maxsize=64)
+def _forward_structure(ref: _Structural):
+    """The structure of the forward problem (every output from the parameters)."""
     model = ref.scene.built
-    return compile_solver(model, analyse(model, unknowns, knowns), dict(guesses))
+    return analyse(model, model.outputs, model.parameters)
 
 
 def run(scene: Scene, values: dict | None = None) -> Result:
