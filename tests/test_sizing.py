@@ -36,6 +36,18 @@ def optimum(problem):
     return solve_continuous(problem)
 
 
+def optimum_at_steps(problem, optimum, j, h):
+    """The optimum (SI) re-solved at parameter j + h and j - h, for central differences."""
+    xs = []
+    for sgn in (+1, -1):
+        p = problem.p0.copy()
+        p[j] += sgn * h
+        s = solve_continuous(problem, p=p, x0=optimum.xs)
+        assert s.success and s.polished
+        xs.append(problem.to_si(s.xs))
+    return xs
+
+
 class Hand:
     """The least design by hand (Krauze et al. 2025 eq. 12-13, 19-23 written out; Euler-Eytelwein)."""
 
@@ -85,7 +97,6 @@ def test_optimum_equals_one_dimensional_search(problem, optimum, scene):
 
 
 def test_kkt_conditions_hold_at_the_optimum(problem, optimum):
-    x, p = ca.MX.sym("x", 3), ca.MX.sym("p", len(problem.params))
     fun = ca.Function("kkt", [problem.xs, problem.p],
                       [ca.gradient(problem.f, problem.xs), problem.g, ca.jacobian(problem.g, problem.xs)])
     grad_f, g, J = (np.asarray(a) for a in fun(optimum.xs, problem.p0))
@@ -150,13 +161,7 @@ def test_sensitivities_match_finite_differences(problem, optimum, rel_step):
     for j, name in enumerate(problem.params):
         p0 = problem.p0[j]
         h = rel_step * max(abs(p0), 1e-3)
-        xs = []
-        for sgn in (+1, -1):
-            p = problem.p0.copy()
-            p[j] += sgn * h
-            s = solve_continuous(problem, p=p, x0=optimum.xs)
-            assert s.success and s.polished
-            xs.append(problem.to_si(s.xs))
+        xs = optimum_at_steps(problem, optimum, j, h)
         for v in ("d", "F_nwl", "stroke"):
             fd = (xs[0][v] - xs[1][v]) / (2 * h)
             elasticity = abs(fd) * max(abs(p0), 1e-3) / abs(x_star[v])

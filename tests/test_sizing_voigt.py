@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 from scipy.optimize import brentq
-from test_sizing import Hand
+from test_sizing import Hand, optimum_at_steps
 
 from optimisation import SizingProblem
 from optimisation.ipopt import solve_continuous
@@ -84,13 +84,7 @@ def test_voigt_sensitivities_match_finite_differences():
     for name in ("Q", "lambda", "mu_d", "G_m", "n_rope"):
         j = problem.params.index(name)
         h = 1e-5 * abs(problem.p0[j])
-        xs = []
-        for sgn in (+1, -1):
-            p = problem.p0.copy()
-            p[j] += sgn * h
-            s = solve_continuous(problem, p=p, x0=sol.xs)
-            assert s.success and s.polished
-            xs.append(problem.to_si(s.xs))
+        xs = optimum_at_steps(problem, sol, j, h)
         for v in ("d", "F_nwl", "stroke"):
             fd = (xs[0][v] - xs[1][v]) / (2 * h)
             if name == "lambda":
