@@ -109,7 +109,7 @@ def toy_model():
     name = "_test_toy"
     define_effect(name, "main", "on", "toy")
 
-    t, y0, k = ca.MX.sym("t"), ca.MX.sym("y0"), ca.MX.sym("k")
+    y0, k = ca.MX.sym("y0"), ca.MX.sym("k")
     y = ca.MX.sym("y")
     integ = ca.integrator("decay", "cvodes", {"x": y, "p": k, "ode": -k * y}, 0.0, 1.0,
                           {"abstol": 1e-12, "reltol": 1e-12})
