@@ -5,21 +5,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-import numpy as np
 
 from optimisation import discrete
 from optimisation.infeasibility import Diagnosis, diagnose
 from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import VARIABLES, SizingProblem
 from optimisation.sensitivity import sensitivities
-from ropemodel import ropes
+from ropemodel.papers import en12385 as ropes
 from ropemodel.scene import Scene
 
 #: default way to pick a catalogue diameter, chosen on the evidence of studies/discrete_design.py:
 #: on 30 random scenes bonmin returned the same design as next-size-up every time it finished,
 #: did not finish within 20 s on 3 of them (10 %), and took ~150x longer (median 3.6 s vs 25 ms).
 DEFAULT_DISCRETE = "next-size-up"
-FEAS_TOL = 1e-8
 #: wall-clock limit of a bonmin solve [s] (it can run far past its own time_limit option)
 BONMIN_TIMEOUT = 60.0
 
@@ -65,20 +63,16 @@ class Design:
         return out
 
 
-def _margins_ok(sol: Solution) -> bool:
-    return sol.success and bool(np.all(sol.g >= -FEAS_TOL))
-
-
 def solve_best(problem: SizingProblem, p=None) -> Solution:
     """IPOPT from the scene's design; if that fails, from a few other starts (mid-catalogue sizes)."""
     sol = solve_continuous(problem, p=p)
-    if _margins_ok(sol):
+    if sol.feasible:
         return sol
     for d0 in (0.02, 0.04, 0.06):
         x0 = problem.x0()
         x0[0] = d0 / problem.x_scale[0]
         s = solve_continuous(problem, p=p, x0=x0)
-        if _margins_ok(s):
+        if s.feasible:
             return s
     return sol
 
@@ -88,7 +82,7 @@ def size(scene: Scene, method: str = DEFAULT_DISCRETE, with_sensitivities: bool 
     problem = SizingProblem(scene)
     design = Design(scene, False, method=method, units=dict(problem.units))
     sol = solve_best(problem)
-    if not _margins_ok(sol):
+    if not sol.feasible:
         design.diagnosis = diagnose(problem)
         if design.diagnosis.feasible:   # IPOPT failed on a feasible problem: say so, do not guess
             design.message = f"IPOPT failed ({sol.status}) although a feasible design exists"

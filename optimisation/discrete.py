@@ -27,9 +27,8 @@ import numpy as np
 
 from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import SizingProblem
-from ropemodel import ropes
+from ropemodel.papers import en12385 as ropes
 
-FEAS_TOL = 1e-8
 
 
 @contextlib.contextmanager
@@ -61,10 +60,6 @@ class DiscreteDesign:
         return self.solution is not None
 
 
-def _feasible(problem, sol) -> bool:
-    return sol.success and bool(np.all(sol.g >= -FEAS_TOL))
-
-
 def next_size_up(problem: SizingProblem, d_star: float, p=None, catalogue=None) -> DiscreteDesign:
     """Smallest catalogue size >= d* (minus 1e-9 m) with a feasible F_nwl, stroke (re-optimised)."""
     catalogue = ropes.diameters() if catalogue is None else sorted(catalogue)
@@ -77,7 +72,7 @@ def next_size_up(problem: SizingProblem, d_star: float, p=None, catalogue=None) 
         x0 = problem.x0()
         x0[0] = dk / problem.x_scale[0]
         sol = solve_continuous(problem, p=p, x0=x0, fix_d=dk)
-        if _feasible(problem, sol):
+        if sol.feasible:
             return DiscreteDesign(sol, "next-size-up", time.perf_counter() - t0, tried)
     return DiscreteDesign(None, "next-size-up", time.perf_counter() - t0, tried)
 
@@ -134,7 +129,7 @@ def bonmin(problem: SizingProblem, p=None, catalogue=None, x0=None) -> DiscreteD
     # the same lexicographic answer at that size, with multipliers and active set (for the report)
     x0 = np.concatenate([[dk / problem.x_scale[0]], zopt[nk:]])
     sol = solve_continuous(problem, p=p, x0=x0, fix_d=dk)
-    if not _feasible(problem, sol):
+    if not sol.feasible:
         return DiscreteDesign(None, "bonmin", seconds, [dk])
     return DiscreteDesign(sol, "bonmin", seconds, [dk])
 
@@ -172,4 +167,4 @@ def bonmin_with_timeout(problem: SizingProblem, timeout: float, p=None, x0=None)
     start = problem.x0() if x0 is None else np.array(x0, dtype=float)
     start[0] = dk / problem.x_scale[0]
     sol = solve_continuous(problem, p=p, x0=start, fix_d=dk)
-    return DiscreteDesign(sol if _feasible(problem, sol) else None, "bonmin", seconds, [dk])
+    return DiscreteDesign(sol if sol.feasible else None, "bonmin", seconds, [dk])

@@ -21,6 +21,12 @@ IPOPT_OPTIONS = {"ipopt.tol": 1e-10, "ipopt.acceptable_tol": 1e-8, "ipopt.print_
                  "ipopt.sb": "yes", "ipopt.max_iter": 500}
 ACTIVE_G = 1e-7      # scaled margin below which a constraint counts as active
 ACTIVE_LAM = 1e-9    # multiplier above which it counts as binding
+#: scaled margin above which a design counts as meeting a check (IPOPT's own tolerance is 1e-10)
+FEAS_TOL = 1e-8
+#: IPOPT settings for a start from a neighbouring optimum and its multipliers (sizing maps): an
+#: interior-point method given only a primal start moves back to the central path and gains little
+WARM_OPTIONS = {"ipopt.warm_start_init_point": "yes", "ipopt.mu_init": 1e-6, "ipopt.warm_start_bound_push": 1e-9,
+                "ipopt.warm_start_slack_bound_push": 1e-9, "ipopt.warm_start_mult_bound_push": 1e-9}
 
 
 @dataclass
@@ -41,39 +47,72 @@ class Solution:
     polished: bool = False
     lexicographic_ok: bool | None = None
 
+    @property
+    def feasible(self) -> bool:
+        """IPOPT converged and every scaled margin is at least −:data:`FEAS_TOL`: a design."""
+        return self.success and bool(np.all(self.g >= -FEAS_TOL))
 
-def _solver(problem: SizingProblem) -> ca.Function:
-    if not hasattr(problem, "_ipopt"):
-        problem._ipopt = ca.nlpsol("sizing", "ipopt", problem.nlp(), IPOPT_OPTIONS)
-    return problem._ipopt
+    @property
+    def start(self) -> "Start":
+        """This optimum and its multipliers, as the warm start of a neighbouring problem."""
+        return Start(self.xs.copy(), self.lam_x.copy(), self.lam_g.copy())
+
+
+@dataclass(frozen=True)
+class Start:
+    """A warm start: scaled x and the multipliers of the bounds and of the constraints."""
+
+    x: np.ndarray
+    lam_x: np.ndarray
+    lam_g: np.ndarray
+
+
+_SOLVERS: dict[tuple[int, bool], tuple[SizingProblem, ca.Function]] = {}
+
+
+def solver(problem: SizingProblem, warm: bool = False) -> ca.Function:
+    """IPOPT on ``problem``'s NLP (built once per problem; ``warm``: with :data:`WARM_OPTIONS`)."""
+    key = (id(problem), warm)
+    hit = _SOLVERS.get(key)
+    if hit is None or hit[0] is not problem:
+        options = {**IPOPT_OPTIONS, **WARM_OPTIONS} if warm else IPOPT_OPTIONS
+        hit = _SOLVERS[key] = (problem, ca.nlpsol("sizing_warm" if warm else "sizing", "ipopt", problem.nlp(),
+                                                  options))
+    return hit[1]
 
 
 def solve_continuous(problem: SizingProblem, p=None, x0=None, d_range=None, fix_d: float | None = None,
-                     polish: bool = True) -> Solution:
+                     polish: bool = True, start: Start | None = None) -> Solution:
     """Least rope, then least pretension, then least stroke (see the objective in :mod:`optimisation.problem`).
 
     p: parameter vector (default: the scene's); x0: scaled start (default: the scene's design);
-    d_range: (low, high) bounds of d [m]; fix_d: solve for F_nwl and stroke at this d [m].
+    d_range: (low, high) bounds of d [m]; fix_d: solve for F_nwl and stroke at this d [m];
+    polish: identify the active set and refine a vertex by Newton (:func:`_polish`);
+    start: a warm start (a neighbour's :attr:`Solution.start`), used instead of ``x0``.
     """
     p = problem.p0 if p is None else np.asarray(p, dtype=float)
     lbx, ubx = problem.bounds(d_range)
     if fix_d is not None:
         lbx[0] = ubx[0] = fix_d / problem.x_scale[0]
-    x0 = problem.x0() if x0 is None else np.asarray(x0, dtype=float)
-    x0 = np.clip(x0, lbx, np.where(np.isfinite(ubx), ubx, x0))
-    solver = _solver(problem)
+    if start is not None:
+        ipopt = solver(problem, warm=True)
+        args = {"x0": start.x, "lam_x0": start.lam_x, "lam_g0": start.lam_g}
+    else:
+        ipopt = solver(problem)
+        x0 = problem.x0() if x0 is None else np.asarray(x0, dtype=float)
+        args = {"x0": np.clip(x0, lbx, np.where(np.isfinite(ubx), ubx, x0))}
     t0 = time.perf_counter()
-    res = solver(x0=x0, p=p, lbx=lbx, ubx=ubx, lbg=0.0, ubg=np.inf)
+    res = ipopt(p=p, lbx=lbx, ubx=ubx, lbg=0.0, ubg=np.inf, **args)
     seconds = time.perf_counter() - t0
-    stats = solver.stats()
+    stats = ipopt.stats()
     sol = Solution(np.asarray(res["x"]).ravel(), float(res["f"]), np.asarray(res["g"]).ravel(),
                    np.asarray(res["lam_g"]).ravel(), np.asarray(res["lam_x"]).ravel(),
                    bool(stats["success"]), str(stats["return_status"]), int(stats.get("iter_count", -1)), seconds)
-    _active_set(problem, sol, lbx, ubx)
-    if sol.success and polish:
-        _polish(problem, sol, p, lbx, ubx)
-    if sol.success:
-        sol.lexicographic_ok = _lexicographic_ok(problem, sol, p)
+    if polish:
+        _active_set(problem, sol, lbx, ubx)
+        if sol.success:
+            _polish(problem, sol, p, lbx, ubx)
+            sol.lexicographic_ok = _lexicographic_ok(problem, sol, p)
     return sol
 
 
@@ -155,4 +194,5 @@ def design_of(problem: SizingProblem, sol: Solution) -> dict[str, float]:
     return problem.to_si(sol.xs)
 
 
-__all__ = ["IPOPT_OPTIONS", "Solution", "VARIABLES", "design_of", "solve_continuous"]
+__all__ = ["FEAS_TOL", "IPOPT_OPTIONS", "Solution", "Start", "VARIABLES", "WARM_OPTIONS", "design_of",
+           "solve_continuous", "solver"]

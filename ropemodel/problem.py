@@ -15,6 +15,7 @@ import casadi as ca
 import numpy as np
 
 from ropemodel.core import analyse, compile_solver
+from ropemodel.core.evaluate import evaluate_columns
 from ropemodel.errors import InputError, SolveError
 from ropemodel.result import Result
 from ropemodel.scene import Scene
@@ -90,13 +91,11 @@ class Problem:
     def evaluate(self, columns: dict[str, np.ndarray], parallel: int = 1) -> dict[str, np.ndarray]:
         """Vectorised solve: arrays of SI inputs (missing ones from the scene) → arrays of unknowns.
 
-        Evaluated in chunks of 65536 points by :func:`ropemodel.sweep.evaluate.evaluate_columns`
+        Evaluated in chunks of 65536 points by :func:`ropemodel.core.evaluate.evaluate_columns`
         (``Function.map``, or the same Function compiled to C; ``parallel`` threads), so memory
         stays bounded and the Function is compiled once per process.  No range check is made
         here; callers validate their inputs (see :mod:`ropemodel.sweep`).
         """
-        from ropemodel.sweep.evaluate import evaluate_columns
-
         n = max((np.size(v) for v in columns.values()), default=1)
         base = self.inputs({k: v for k, v in columns.items() if not isinstance(v, np.ndarray)})
         arrays = {k: np.broadcast_to(np.asarray(columns[k], dtype=float), (n,)) for k in self.knowns

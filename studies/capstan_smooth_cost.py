@@ -25,7 +25,7 @@ import pandas as pd  # noqa: E402
 import ropemodel as rm  # noqa: E402
 from ropemodel.capstan.curves import load_curve  # noqa: E402
 from ropemodel.capstan.identify import identify  # noqa: E402
-from ropemodel.capstan.rotation import rotation  # noqa: E402
+from ropemodel.numerics.capstan_rotation import rotation  # noqa: E402
 from ropemodel.studykit import cli, output_dir, save_figure
 
 NAME = "capstan_smooth_cost"

@@ -22,7 +22,7 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
 import ropemodel as rm  # noqa: E402
-from ropemodel.lining import distribution  # noqa: E402
+from ropemodel.sheave import distribution  # noqa: E402
 from ropemodel.studykit import cli, output_dir  # noqa: E402
 
 NAME = "hajduk_fig5"

@@ -7,7 +7,7 @@ half isotropic, half anisotropic.  Error: max relative error of S at the end of 
 the exact solution (closed form, Newton in ln s).  Cost: wall time per point of a batched
 evaluation (one CasADi ``map`` call over all points of a case set; for scipy one ``solve_ivp``
 call per point, the same right side written in numpy), median of repeats, all measured in this
-run.  ropemodel integrates ln S in the stretched angle (``ropemodel.lining.ode``); scipy gets the
+run.  ropemodel integrates ln S in the stretched angle (``ropemodel.numerics.hajduk_ode``); scipy gets the
 same stretched right side (Radau, LSODA, DOP853), and, as a user would first write it, the
 plain ODE in α with Radau ("Radau, plain α").
 
@@ -27,8 +27,8 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402
 
-from ropemodel.lining import closed_log_ratio, ode_log_ratio  # noqa: E402
-from ropemodel.lining import ode as lode  # noqa: E402
+from ropemodel.sheave import closed_log_ratio, ode_log_ratio  # noqa: E402
+from ropemodel.numerics import hajduk_ode as lode  # noqa: E402
 from ropemodel.papers import hajduk1992 as hj  # noqa: E402
 from ropemodel.studykit import cli, output_dir  # noqa: E402
 

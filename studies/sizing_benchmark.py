@@ -23,7 +23,7 @@ import pandas as pd  # noqa: E402
 from scipy.optimize import minimize  # noqa: E402
 
 from optimisation.infeasibility import diagnose  # noqa: E402
-from optimisation.ipopt import _solver  # noqa: E402
+from optimisation.ipopt import solver  # noqa: E402
 from optimisation.problem import SizingProblem  # noqa: E402
 from optimisation.scenes import random_sizing_scene  # noqa: E402
 from ropemodel.studykit import cli, output_dir, save_figure  # noqa: E402
@@ -33,13 +33,13 @@ NAME = "sizing_benchmark"
 
 def _ipopt(problem, x0):
     lbx, ubx = problem.bounds()
-    solver = _solver(problem)
+    ipopt = solver(problem)
     t0 = time.perf_counter()
-    res = solver(x0=x0, p=problem.p0, lbx=lbx, ubx=ubx, lbg=0.0, ubg=np.inf)
+    res = ipopt(x0=x0, p=problem.p0, lbx=lbx, ubx=ubx, lbg=0.0, ubg=np.inf)
     dt = time.perf_counter() - t0
     x = np.asarray(res["x"]).ravel()
     g = np.asarray(res["g"]).ravel()
-    return x, g, bool(solver.stats()["success"]), dt
+    return x, g, bool(ipopt.stats()["success"]), dt
 
 
 def _slsqp(problem, x0):

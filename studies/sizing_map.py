@@ -3,7 +3,7 @@
 Every point is one continuous sizing optimisation (:mod:`optimisation`, IPOPT)
 of the scene ``ropemodel/data/winch_sizing_fig9.toml`` (Fig. 9 route, 6x36-IWRC
 catalogue rope, rigid drum, design checks), run through
-:func:`ropemodel.sweep.sizing.sizing_sweep`.  The grid is swept twice: warm
+:func:`optimisation.sweep.sizing_sweep`.  The grid is swept twice: warm
 (each optimisation starts from its neighbour's optimum and multipliers, with
 IPOPT's warm-start settings) and cold (from the scene's design); the answers
 must agree, and on the points feasible in both the ratio of solver time per
@@ -60,7 +60,7 @@ def _plot(frame, loads, path):
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     import ropemodel as rm
     from ropemodel.sensitivity import sobol_indices
-    from ropemodel.sweep.sizing import sizing_function, sizing_sweep
+    from optimisation.sweep import sizing_function, sizing_sweep
 
     out = output_dir(__file__, out_dir)
     scene = rm.load_scene(str(resources.files("ropemodel.data").joinpath("winch_sizing_fig9.toml")))

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from ropemodel.capstan.laws import LAWS, regime_number
+from ropemodel.numerics.capstan_laws import LAWS, regime_number
 from ropemodel.papers import li_capstan as li
 
 MU, EA, R, L, F_P = 0.25, 5e4, 0.075, 0.36, 60.0

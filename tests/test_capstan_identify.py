@@ -8,7 +8,7 @@ import pytest
 
 import ropemodel as rm
 from ropemodel.capstan.identify import identify, read_data
-from ropemodel.capstan.rotation import rotation
+from ropemodel.numerics.capstan_rotation import rotation
 from ropemodel.cli import main as cli
 from ropemodel.errors import InputError
 

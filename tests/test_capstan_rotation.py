@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad, solve_ivp
 
-from ropemodel.capstan.rotation import regime1_rotation, rotation, unwrap_load
+from ropemodel.numerics.capstan_rotation import regime1_rotation, rotation, unwrap_load
 from ropemodel.papers import li_capstan as li
 
 P = dict(mu=0.25, EA=5e4, R=0.075, L=0.36, alpha_0=math.radians(64.0), F_p=60.0)
@@ -80,7 +80,7 @@ def test_parameter_derivatives_through_located_switches(variant):
     # differences of the rotation, at a load past all three switches
     import casadi as ca
 
-    from ropemodel.capstan.rotation import ARGS, rotation_function
+    from ropemodel.numerics.capstan_rotation import ARGS, rotation_function
 
     fun = rotation_function(variant)
     x = ca.SX.sym("x", len(ARGS))

@@ -131,14 +131,17 @@ VOIGT = {"Q": "2e-6 1/N", "lambda": "0.05 s", "D": "2.5 m"}
 
 def test_voigt_lining_without_compliance_is_the_rigid_drum():
     """Q = 0: Hajduk's eq. (19) is Euler–Eytelwein, so the transient is the rigid drum's."""
-    rigid = simulate(scene("winch_start_slip.toml", effects={"lining": "rigid"}, params={"t_end": "12 s"}))
+    tight = {"sim_rtol": 1e-10}
+    rigid = simulate(scene("winch_start_slip.toml", effects={"lining": "rigid"}, params={"t_end": "12 s"},
+                           numerics=tight))
     voigt = simulate(scene("winch_start_slip.toml", effects={"lining": "voigt"},
-                           params={**VOIGT, "Q": "0 1/N", "t_end": "12 s"}))
+                           params={**VOIGT, "Q": "0 1/N", "t_end": "12 s"}, numerics=tight))
     assert voigt.summary["slip_events"][0]["t_start"] == pytest.approx(rigid.summary["slip_events"][0]["t_start"],
                                                                        rel=1e-12)
-    # the same model through two expression graphs: equal to the integrator's tolerance (rtol 1e-8)
+    # the same model through two expression graphs: they differ by the integrator's global error,
+    # which grows with sim_rtol (2.5e-7 at the default 1e-8); at 1e-10 both are within 1e-9
     h_v, h_r = voigt.history, rigid.history
-    np.testing.assert_allclose(np.interp(h_r["t [s]"], h_v["t [s]"], h_v["F_C [N]"]), h_r["F_C [N]"], rtol=1e-7)
+    np.testing.assert_allclose(np.interp(h_r["t [s]"], h_v["t [s]"], h_v["F_C [N]"]), h_r["F_C [N]"], rtol=1e-9)
 
 
 def test_voigt_lining_slip_onset_matches_an_independent_solve():

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from scipy.special import lambertw
 
-from ropemodel.lining import closed_log_ratio, ode_log_ratio
-from ropemodel.lining.integrators import INTEGRATORS
+from ropemodel.sheave import closed_log_ratio, ode_log_ratio
+from ropemodel.numerics.hajduk_integrators import INTEGRATORS
 
 MU = [0.05, 0.3, 0.6]
 ALPHA = [0.0, 1e-4, math.pi / 4, math.pi, 10 * math.pi]

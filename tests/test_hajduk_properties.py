@@ -9,7 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import ropemodel as rm
-from ropemodel.lining import closed_log_ratio, ode_log_ratio
+from ropemodel.sheave import closed_log_ratio, ode_log_ratio
 from ropemodel.papers import hajduk1992 as hj
 
 mus = st.floats(0.05, 0.6)

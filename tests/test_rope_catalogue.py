@@ -1,11 +1,11 @@
-"""Rope catalogue (effect rope = "catalogue", ropemodel.ropes) against published tables and Hooke's law."""
+"""Rope catalogue (effect rope = "catalogue", ropemodel.papers.en12385) against published tables and Hooke's law."""
 
 import math
 
 import numpy as np
 import pytest
 
-from ropemodel import ropes
+from ropemodel.papers import en12385 as ropes
 from ropemodel.errors import InputError
 from ropemodel.problem import run
 from ropemodel.scene import from_dict, load

@@ -13,7 +13,7 @@ from scipy.special import lambertw
 import ropemodel as rm
 from ropemodel.cli import main as cli_main
 from ropemodel.errors import InputError
-from ropemodel.lining import distribution
+from ropemodel.sheave import distribution
 from ropemodel.papers import hajduk1992 as hj
 
 FIG5 = str(resources.files("ropemodel.data").joinpath("sheave_hajduk_fig5.toml"))

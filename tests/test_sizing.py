@@ -11,7 +11,7 @@ from scipy.optimize import brentq
 from optimisation import SizingProblem, size
 from optimisation.ipopt import solve_continuous
 from optimisation.sensitivity import sensitivities
-from ropemodel import ropes
+from ropemodel.papers import en12385 as ropes
 from ropemodel.cli import main as cli
 from ropemodel.problem import run
 from ropemodel.scene import load

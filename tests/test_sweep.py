@@ -169,7 +169,7 @@ def test_inverse_sweep_through_newton_catches_non_convergence():
 @pytest.mark.parametrize("scene", ["fig9", "voigt"])
 def test_evaluate_columns_equals_problem_evaluate(fig9, scene):
     """The chunked engine offered as the body of Problem.evaluate gives Problem.evaluate's numbers."""
-    from ropemodel.sweep.evaluate import evaluate_columns
+    from ropemodel.core.evaluate import evaluate_columns
 
     s = fig9 if scene == "fig9" else _voigt_winch()
     problem = rm.Problem(s)

@@ -16,7 +16,7 @@ def sizing_scene():
 
 
 def test_points_equal_single_sizings_and_warm_equals_cold(sizing_scene):
-    from ropemodel.sweep.sizing import sizing_sweep
+    from optimisation.sweep import sizing_sweep
 
     vary = {"alpha_u": "10deg:20deg:3", "G_m": ["400 kN", "467 kN"]}
     warm = sizing_sweep(sizing_scene, vary, warm=True, progress=False)
@@ -32,7 +32,7 @@ def test_points_equal_single_sizings_and_warm_equals_cold(sizing_scene):
 
 
 def test_infeasible_points_are_kept_and_marked(sizing_scene):
-    from ropemodel.sweep.sizing import sizing_sweep
+    from optimisation.sweep import sizing_sweep
 
     frame = sizing_sweep(sizing_scene, {"alpha_u": ["16 deg", "40 deg"]}, progress=False)
     assert frame["feasible"].tolist() == [True, False]
@@ -41,7 +41,7 @@ def test_infeasible_points_are_kept_and_marked(sizing_scene):
 
 
 def test_design_variables_cannot_be_swept(sizing_scene):
-    from ropemodel.sweep.sizing import sizing_sweep
+    from optimisation.sweep import sizing_sweep
 
     with pytest.raises(rm.InputError, match="design variable"):
         sizing_sweep(sizing_scene, {"d": [0.03]})
@@ -51,7 +51,7 @@ def test_cli_sizing_sweep(sizing_scene, tmp_path):
     import pandas as pd
 
     from ropemodel.cli import main as cli
-    from ropemodel.sweep.sizing import sizing_sweep
+    from optimisation.sweep import sizing_sweep
 
     path = str(resources.files("ropemodel.data").joinpath("winch_sizing_fig9.toml"))
     out = tmp_path / "s.csv"
@@ -66,7 +66,7 @@ def test_sobol_of_the_sizing_optimum(sizing_scene):
     """One varied input explains all the variance of the optimum: S1 = ST = 1 for d and F_nwl
     (exactly, up to the estimator's error); an input that does not enter leaves ST = 0."""
     from ropemodel.sensitivity import sobol_indices
-    from ropemodel.sweep.sizing import sizing_function
+    from optimisation.sweep import sizing_function
 
     res = sobol_indices(sizing_function(sizing_scene), {"alpha_u": (0.2, 0.3), "v_pj": (2.0, 3.0)}, n=16, seed=2)
     r = res.set_index(["output", "parameter"])

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ropemodel.capstan.rotation import check_wrap
+from ropemodel.numerics.capstan_rotation import check_wrap
 from ropemodel.errors import InputError, SolveError
 from ropemodel.problem import Problem
 from ropemodel.units import label, to_si
@@ -13,18 +13,6 @@ from ropemodel.units import label, to_si
 #: columns of a load curve, in this order (the load first)
 CURVE_OUTPUTS = ("T", "K", "K_ti", "K_sl", "delta", "delta_alpha", "alpha_1", "alpha_2", "theta_s1", "theta_s2",
                  "regime")
-
-
-def evaluate(problem: Problem, columns: dict) -> dict:
-    """Every unknown of ``problem`` at the points of ``columns`` (name → SI array of one length; other
-    knowns from the scene), by ``Function.map`` of the compiled solver: one call, no caching."""
-    n = len(next(iter(columns.values())))
-    base = problem.inputs()
-    args = [np.broadcast_to(np.asarray(columns.get(k, base[k]), dtype=float), (n,)).reshape(1, n)
-            for k in problem.knowns]
-    res = problem.function.map(n)(*args)
-    res = res if isinstance(res, (list, tuple)) else [res]
-    return {u: np.asarray(r).ravel() for u, r in zip(problem.unknowns, res)}
 
 
 def load_curve(scene, F_max, n: int = 201, F_min=0.0, display: bool = False) -> pd.DataFrame:
@@ -51,7 +39,7 @@ def load_curve(scene, F_max, n: int = 201, F_min=0.0, display: bool = False) -> 
     problem = Problem(scene)
     columns = {"T": 2.0 * p["R"] * F} if torque else {"F_T": F}
     scene.built.validate({**p, **{k: v[-1] for k, v in columns.items()}})  # ranges and the unwrap check at F_max
-    out = evaluate(problem, columns)
+    out = problem.evaluate(columns)
     values = {**columns, "F_T": F, **{k: np.asarray(v) for k, v in out.items()}}
     bad = [k for k, v in values.items() if not np.all(np.isfinite(v))]
     if bad:

@@ -1,6 +1,6 @@
 """Identify μ and EA (optionally F_p, L) of a capstan drive from measured (F_T, Δα) points.
 
-Least squares on the rotation, Δα_i = δ(F_T,i; θ)/R (:mod:`ropemodel.capstan.rotation`,
+Least squares on the rotation, Δα_i = δ(F_T,i; θ)/R (:mod:`ropemodel.numerics.capstan_rotation`,
 event-located and differentiable), solved with IPOPT through CasADi ``nlpsol`` in
 the variables ln(θ_j/θ_j,0) (θ_0, the start, from the scene; bounds θ_0·10^{±6}).  Standard errors come from the
 Gauss–Newton covariance s²(JᵀJ)⁻¹ at the optimum (IPOPT is given the same
@@ -26,7 +26,7 @@ import casadi as ca
 import numpy as np
 import pandas as pd
 
-from ropemodel.capstan.rotation import ARGS, rotation_function
+from ropemodel.numerics.capstan_rotation import ARGS, rotation_function
 from ropemodel.errors import InputError, SolveError
 from ropemodel.units import factor
 

@@ -58,7 +58,7 @@ def main(args) -> int:
         if args.plot:
             raise InputError("--plot draws elasticities; it does not combine with --sobol")
         if args.sizing:
-            from ropemodel.sweep.sizing import sizing_function
+            from optimisation.sweep import sizing_function
 
             scene.built.check_names(ranges)
             q = scene.built.quantities

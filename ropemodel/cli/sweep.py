@@ -100,7 +100,7 @@ def _summary(path, as_json: bool) -> None:
 def _sizing(scene, vary, points, args) -> int:
     from pathlib import Path
 
-    from ropemodel.sweep.sizing import sizing_sweep
+    from optimisation.sweep import sizing_sweep
     from ropemodel.sweep.store import check_format
 
     if args.given or args.find or args.outputs:

@@ -37,7 +37,7 @@ on where sticking ends.  The slack span's tangent point lies in the stick arc at
 load is zero): Li's slack part K_2 (eq. 18) is infinite at zero load, so the slack span stays
 rigidly attached.  Li's slack-side jump (eq. 21 is e^{μα2} times eq. 18 where θ_s2 = α2, see
 MODELS.md §3) therefore never arises here: with this mapping the slack side has no slip zone
-(and the continuous variant of :mod:`ropemodel.capstan.laws` would give the same results).
+(and the continuous variant of :mod:`ropemodel.numerics.capstan_laws` would give the same results).
 
 Linearisation (a limitation, stated): eq. (12) is a *tangent* stiffness that depends on the
 forces.  The contact spring is linear, with K_1 taken at the steady state of the transient's

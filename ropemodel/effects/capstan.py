@@ -1,7 +1,7 @@
 """Capstan cable drive (``model = "capstan"``): stiffness, slip regime and rotation under load.
 
 Equations: Li, Liang, Dong, Qiu, eq. (6), (12)-(26), see :mod:`ropemodel.papers.li_capstan`;
-the rotation δ(F_T) = ∫dF/K is :mod:`ropemodel.capstan.rotation` (not in the paper).
+the rotation δ(F_T) = ∫dF/K is :mod:`ropemodel.numerics.capstan_rotation` (not in the paper).
 
 Effects and variants
 --------------------
@@ -38,8 +38,8 @@ from __future__ import annotations
 
 import math
 
-from ropemodel.capstan.laws import LAWS, regime_number
-from ropemodel.capstan.rotation import ARGS, check_wrap, rotation_function
+from ropemodel.numerics.capstan_laws import LAWS, regime_number
+from ropemodel.numerics.capstan_rotation import ARGS, check_wrap, rotation_function
 from ropemodel.effects.base import Equation, Submodel, define_effect, define_numerics, positive_number, register
 from ropemodel.errors import InputError
 from ropemodel.papers import li_capstan as li
@@ -172,7 +172,7 @@ class ContinuousStiffness(_Stiffness):
 class SmoothStiffness(_Stiffness):
     """The published law with logistic switches σ(s·z) (``[numerics] sharpness`` s): smooth in every input.
 
-    z are dimensionless switching functions (:func:`ropemodel.capstan.laws.switching_functions`):
+    z are dimensionless switching functions (:func:`ropemodel.numerics.capstan_laws.switching_functions`):
     μ(θ_s1 − α1), (F_T − F_p(1 − e^{−μα2}))/F_p and (F_T − F_p)/F_p, so each transition is
     about F_p/s wide in load.  At F_T = 0 the slack weight is σ(−s(1 − e^{−μα0})), so K(0)
     misses 2EA/L by that fraction of the jump (1e-4 at s = 30 in the experiment).  ``regime`` is reported by the

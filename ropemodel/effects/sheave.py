@@ -3,7 +3,7 @@
 Hajduk (1992), :mod:`ropemodel.papers.hajduk1992`; MODELS.md §2.  Outputs: ``S``
 (tension where the rope leaves the sheave, after the wrap ``alpha``) and
 ``S_ratio`` = S/S_0; the distribution S(α) along the arc is the table
-"tension along the arc" (``Result.frames``, and :func:`ropemodel.lining.distribution`).
+"tension along the arc" (``Result.frames``, and :func:`ropemodel.sheave.distribution`).
 
 Effects and variants
 --------------------
@@ -22,7 +22,7 @@ Numerics
 ``method``      ``"closed"`` (default): the exact implicit solution by Newton in ln s;
                 ``"ode"``: integrate the ODE (the only way for ``friction = "thirion"``).
 ``integrator``  ``"rk4"`` (default), ``"rk"``, ``"cvodes"``, ``"idas"``, ``"collocation"``
-                (:mod:`ropemodel.lining.integrators`).
+                (:mod:`ropemodel.numerics.hajduk_integrators`).
 ``rtol``        target relative error of S for the ODE (default 1e-7).
 ``state``       ``"log"`` (default: ln S in a stretched angle) or ``"invariant"``.
 ``points``      number of angles in the distribution table (default 37).
@@ -42,7 +42,7 @@ import pandas as pd
 from ropemodel.effects.base import (Equation, Submodel, choice, define_effect, define_numerics,
                                     positive_number, register)
 from ropemodel.errors import InputError
-from ropemodel.lining.integrators import INTEGRATORS, log_ratio_function, segment_function
+from ropemodel.numerics.hajduk_integrators import INTEGRATORS, log_ratio_function, segment_function
 from ropemodel.papers import friction as fr
 from ropemodel.papers import hajduk1992 as hj
 from ropemodel.quantity import Quantity

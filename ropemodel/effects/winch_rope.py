@@ -8,14 +8,14 @@
                      into the force and elongation equations.  The factors are the parameters
                      ``rope_K``, ``rope_W``, ``rope_C``.
 ``6x36-IWRC`` …      one variant per named construction of ``ropemodel/data/ropes.toml`` (see
-                     :mod:`ropemodel.ropes`): the same equations with the class's factors as
+                     :mod:`ropemodel.papers.en12385`): the same equations with the class's factors as
                      constants, e.g. ``[effects] rope = "6x36-IWRC"``.
 ``rope_grade`` (R_r) and ``rope_E`` are parameters of every catalogue variant.
 """
 
 from __future__ import annotations
 
-from ropemodel import ropes
+from ropemodel.papers import en12385 as ropes
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.effects.winch import MODEL, Q
 
@@ -51,7 +51,7 @@ class RopeCatalogue(Submodel):
     """Rope properties from the diameter and the EN 12385-4 construction factors.
 
     F_min = K·d²·R_r, m_l = W·d², q_l = g·W·d², A_m = C·d², q_lw = L_u/(E·C·d²)
-    (see :mod:`ropemodel.ropes`).  Not in Krauze et al. (2025), who give q_l and q_lw;
+    (see :mod:`ropemodel.papers.en12385`).  Not in Krauze et al. (2025), who give q_l and q_lw;
     "needed by a real sizing tool" (MODELS.md §1).
     """
 

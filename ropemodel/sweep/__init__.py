@@ -12,8 +12,8 @@
 The package module itself is callable (``ropemodel.sweep(...)`` is
 :func:`ropemodel.sweep.runner.sweep`).  Layout: :mod:`.points` (grids and
 tables of points), :mod:`.validate` (every point checked before computing),
-:mod:`.evaluate` (one chunk: CasADi map with threads, or the same Function
-compiled to C), :mod:`.store` (chunks on disk, resume), :mod:`.runner` (the
+:mod:`.chunk` (one chunk evaluated by :mod:`ropemodel.core.evaluate` and
+checked), :mod:`.store` (chunks on disk, resume), :mod:`.runner` (the
 loop, executors, progress bar).
 """
 

@@ -26,7 +26,8 @@ from tqdm.auto import tqdm
 
 from ropemodel.errors import InputError
 from ropemodel.problem import Problem
-from ropemodel.sweep.evaluate import COMPILE_MIN, ChunkJob, run_chunk
+from ropemodel.core.evaluate import COMPILE_MIN, Job
+from ropemodel.sweep.chunk import ChunkJob, run_chunk
 from ropemodel.sweep.points import grid, table
 from ropemodel.sweep.store import ChunkStore
 from ropemodel.sweep.validate import check_ranges, check_rules
@@ -167,7 +168,7 @@ def _job(problem, varied, base, outputs, si, errors, backend, threads) -> ChunkJ
     checks = {n: (q[n].low, q[n].high, q[n].low_open, q[n].high_open,
                   f"{q[n].range_text()}, {q[n].description}") for n in problem.find if n in outputs}
     constants = {k: float(base[k]) for k in order[len(varied):]}
-    return ChunkJob(sel, list(varied), constants, outputs, columns, checks, errors, backend, threads, roundtrip)
+    return ChunkJob(Job(sel, list(varied), constants, backend, threads), outputs, columns, checks, errors, roundtrip)
 
 
 def _signature(scene, problem, pts, base, outputs, chunk_size, si, errors) -> dict:

@@ -1,10 +1,11 @@
-"""Evaluate a compiled problem at a chunk of points.
+"""The one evaluator over arrays: a compiled Function at many points, in chunks.
 
-A :class:`ChunkJob` is everything a worker needs to turn a chunk of input
-points into a table of results: the CasADi Function restricted to the swept
-outputs (it pickles, so a job can travel to a dask worker or another process),
-the values of the inputs held constant, the column labels and unit factors.
+A :class:`Job` is everything a worker needs to evaluate a CasADi Function at a
+chunk of points: the Function (it pickles, so a job can travel to a dask worker
+or another process), which inputs vary and the values of those held constant.
 It is compiled into an evaluator once per process (:func:`evaluator`).
+:func:`evaluate_columns` is the entry point for whole arrays
+(:meth:`ropemodel.problem.Problem.evaluate`, load curves, sweeps).
 
 Two backends evaluate the same Function:
 
@@ -34,13 +35,12 @@ import subprocess
 import tempfile
 import threading
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
 
 import casadi as ca
 import numpy as np
-import pyarrow as pa
 
 from ropemodel.errors import InputError, SolveError
 
@@ -50,33 +50,31 @@ COMPILE_MIN = 20000  # "auto" compiles to C only for at least this many points (
 
 
 @dataclass
-class ChunkJob:
-    """A picklable description of how to evaluate chunks of one sweep.
+class Job:
+    """A picklable description of how to evaluate one Function at chunks of points.
 
-    function: one scalar input per name in ``varied + constant_names``, one output per ``outputs``.
+    function: one scalar input per name in ``varied`` then per constant, scalar outputs.
+    varied: names of the inputs given as arrays (the first inputs of ``function``).
     constants: SI values of the inputs that do not vary (passed at each call; not part of ``key``).
-    columns: (label, name, factor) of every column written: the varied inputs, then the outputs.
-    checks: output name → (low, high, low_open, high_open, description) ranges a solution must meet.
-    roundtrip: extra output → given output it must reproduce (the forward model at the solution).
-    errors: ``"raise"`` (SolveError naming the first bad point) or ``"mark"`` (a ``solved`` column).
+    backend: ``"auto"``, ``"casadi"`` or ``"compiled"``; threads: threads per chunk.
     """
 
     function: ca.Function
     varied: list[str]
     constants: dict[str, float]
-    outputs: list[str]
-    columns: list[tuple[str, str, float]]
-    checks: dict[str, tuple] = field(default_factory=dict)
-    errors: str = "raise"
     backend: str = "auto"
     threads: int = 1
-    roundtrip: dict[str, str] = field(default_factory=dict)
 
     @cached_property
     def key(self) -> str:
         h = hashlib.sha256(self.function.serialize().encode())
-        h.update(repr((self.varied, sorted(self.constants), self.outputs, self.backend, self.threads)).encode())
+        h.update(repr((self.varied, sorted(self.constants), self.backend, self.threads)).encode())
         return h.hexdigest()
+
+    def __call__(self, inputs: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """Every output at the points ``inputs`` (SI arrays of the varied inputs, one length)."""
+        n = len(next(iter(inputs.values())))
+        return evaluator(self)([np.asarray(inputs[k], dtype=float) for k in self.varied], n, _constants(self))
 
 
 _EVALUATORS: dict[str, object] = {}
@@ -84,7 +82,7 @@ MAX_EVALUATORS = 64
 _LOCK = threading.Lock()
 
 
-def evaluator(job: ChunkJob):
+def evaluator(job: Job):
     """The evaluator of ``job``, compiled once per process."""
     key = job.key
     with _LOCK:
@@ -96,53 +94,13 @@ def evaluator(job: ChunkJob):
     return ev
 
 
-def run_chunk(job: ChunkJob, start: int, inputs: dict[str, np.ndarray]) -> pa.Table:
-    """Evaluate the points ``inputs`` (SI arrays of the varied inputs; first point has index ``start``)."""
-    n = len(next(iter(inputs.values())))
-    outs = evaluator(job)([np.asarray(inputs[k], dtype=float) for k in job.varied], n, _constants(job))
-    ok = np.ones(n, dtype=bool)
-    for y in outs.values():
-        ok &= np.isfinite(y)
-    failures = {}
-    if not ok.all():
-        failures["no finite solution (an implicit block did not converge or a division by zero)"] = ~ok
-    for extra, given in job.roundtrip.items():
-        want = np.broadcast_to(inputs[given] if given in inputs else job.constants[given], (n,))
-        with np.errstate(invalid="ignore"):
-            bad = ok & ~(np.abs(outs[extra] - want) <= 1e-6 * np.maximum(1.0, np.abs(want)))
-        if bad.any():
-            failures[f"the solution does not reproduce the given {given} (no such solution, or the "
-                     f"Newton iteration did not converge)"] = bad
-            ok &= ~bad
-    for name, (lo, hi, lo_open, hi_open, desc) in job.checks.items():
-        y = outs[name]
-        with np.errstate(invalid="ignore"):
-            bad = ok & ((y < lo) | (y > hi) | (lo_open & (y == lo)) | (hi_open & (y == hi)))
-        if bad.any():
-            failures[f"{name} found outside its valid range ({desc})"] = bad
-            ok &= ~bad
-    if failures and job.errors == "raise":
-        why, mask = next(iter(failures.items()))
-        i = int(np.flatnonzero(mask)[0])
-        at = ", ".join(f"{k} = {inputs[k][i]:.6g}" for k in job.varied)
-        raise SolveError(f"point {start + i} ({at}, SI): {why}; {int((~ok).sum())} of the {n} points "
-                         f"from {start} fail (errors='mark' keeps them with solved = False)")
-    data = {}
-    for label, name, f in job.columns:
-        v = inputs[name] if name in inputs else outs[name]
-        data[label] = v * f if f != 1.0 else np.ascontiguousarray(v, dtype=float)
-    if job.errors == "mark":
-        data["solved"] = ok
-    return pa.table(data)
-
-
-def _constants(job: ChunkJob) -> list[float]:
+def _constants(job: Job) -> list[float]:
     """Values of the constant inputs in the Function's input order (passed at every call: the
     evaluator is shared by every job with the same Function, whatever their values)."""
     return [job.constants[k] for k in job.function.name_in()[len(job.varied):]]
 
 
-def _make(job: ChunkJob):
+def _make(job: Job):
     backend = job.backend
     if backend not in BACKENDS:
         raise InputError(f"backend {backend!r}: valid backends: {', '.join(BACKENDS)}")
@@ -179,7 +137,7 @@ class _Mapped:
             if self.threads > 1:
                 fm = self.fun.map(n, "thread", self.threads)
             else:
-                fm = self.fun.map("sweep_map", "serial", n, list(range(self.n_var, self.fun.n_in())), [])
+                fm = self.fun.map("eval_map", "serial", n, list(range(self.n_var, self.fun.n_in())), [])
             self.maps[n] = fm
         args = [ca.DM(v.reshape(1, n)) for v in inputs]
         if self.threads > 1:
@@ -197,12 +155,12 @@ class _Compiled:
         self.n_var, self.threads = n_var, max(1, threads)
         self.names = fun.name_out()
         reduce_in = list(range(n_var, fun.n_in()))
-        fm = fun.map("sweep_block", "serial", BLOCK, reduce_in, [])
-        cg = ca.CodeGenerator("sweep_block.c", {"with_header": False})
+        fm = fun.map("eval_block", "serial", BLOCK, reduce_in, [])
+        cg = ca.CodeGenerator("eval_block.c", {"with_header": False})
         cg.add(fm)
         code = cg.dump()
         self.lib = ctypes.CDLL(str(_build(code)))
-        self.entry = self.lib.sweep_block
+        self.entry = self.lib.eval_block
         self.entry.restype = ctypes.c_int
         self.sz = (fm.sz_arg(), fm.sz_res(), fm.sz_iw(), fm.sz_w())
         self.local = threading.local()
@@ -227,7 +185,7 @@ class _Compiled:
         for j in range(out.shape[0]):
             res[j] = out[j, s:s + BLOCK].ctypes.data_as(P)
         if self.entry(arg, res, iw, w.ctypes.data_as(P), 0):
-            raise SolveError("the compiled sweep function failed")
+            raise SolveError("the compiled function failed")
 
     def __call__(self, inputs, n, const):
         const = [np.array([c], dtype=float) for c in const]
@@ -262,11 +220,11 @@ def _build(code: str) -> Path:
         raise RuntimeError("no C compiler (set CC)")
     flags = ["-O2", "-shared", "-fPIC"]
     digest = hashlib.sha256((code + " ".join(flags)).encode()).hexdigest()[:24]
-    lib = _cache_dir() / f"sweep_{digest}.so"
+    lib = _cache_dir() / f"eval_{digest}.so"
     if lib.exists():
         return lib
     with tempfile.TemporaryDirectory(dir=_cache_dir()) as tmp:
-        src = Path(tmp) / "sweep_block.c"
+        src = Path(tmp) / "eval_block.c"
         src.write_text(code)
         out = Path(tmp) / "lib.so"
         subprocess.run([cc, *flags, str(src), "-o", str(out), "-lm"], check=True,
@@ -308,12 +266,10 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     if missing:
         raise InputError(f"no value for {', '.join(missing)}")
     fun = reordered(function, order)
-    job = ChunkJob(fun, list(columns), constants, list(fun.name_out()), [], backend=backend, threads=threads)
-    ev = evaluator(job)
+    job = Job(fun, list(columns), constants, backend=backend, threads=threads)
     out = {o: np.empty(n) for o in fun.name_out()}
     for s in range(0, n, chunk):
         e = min(n, s + chunk)
-        res = ev([columns[k][s:e] for k in columns], e - s, _constants(job))
-        for o, v in res.items():
+        for o, v in job({k: c[s:e] for k, c in columns.items()}).items():
             out[o][s:e] = v
     return out

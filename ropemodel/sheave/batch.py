@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ropemodel.lining.integrators import RATIO_INPUTS, mapped_log_ratio_function
+from ropemodel.numerics.hajduk_integrators import RATIO_INPUTS, mapped_log_ratio_function
 from ropemodel.papers import hajduk1992 as hj
 
 

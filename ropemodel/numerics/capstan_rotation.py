@@ -6,7 +6,7 @@ rotation follows from the load.  Since K depends on the wraps α1 = α0 + δ/R a
 
     dδ/dF = 1/K(F, α0 + δ/R, α0 − δ/R),   δ(0) = 0,
 
-whose right side switches regime (:mod:`ropemodel.capstan.laws`).  It is
+whose right side switches regime (:mod:`ropemodel.numerics.capstan_laws`).  It is
 integrated in u = ln(1 + F/F_p) (the slip angles are linear in u), so
 dδ/du = (F_p + F)/K, u from 0 to ln(1 + F_T/F_p), in ``steps`` equal steps of the
 classical Runge–Kutta method.
@@ -38,7 +38,7 @@ import casadi as ca
 import numpy as np
 from scipy.optimize import brentq
 
-from ropemodel.capstan.laws import LAWS, switching_functions
+from ropemodel.numerics.capstan_laws import LAWS, switching_functions
 from ropemodel.errors import InputError
 from ropemodel.papers import li_capstan as li
 
@@ -146,7 +146,7 @@ def _regular_step(variant: str, sharpness: float) -> ca.Function:
 def rotation_function(variant: str = "li", steps: int = 32, sharpness: float = 30.0) -> ca.Function:
     """CasADi Function ``capstan_delta(F_T, mu, EA, R, L, alpha_0, F_p) -> delta`` [m], event-located RK4.
 
-    variant: a key of :data:`ropemodel.capstan.laws.LAWS`; steps: RK4 steps in u = ln(1 + F/F_p);
+    variant: a key of :data:`ropemodel.numerics.capstan_laws.LAWS`; steps: RK4 steps in u = ln(1 + F/F_p);
     sharpness [-]: of the ``smooth`` law.  Inputs in SI: F_T [N] ≥ 0, mu [-], EA [N], R [m], L [m],
     alpha_0 [rad], F_p [N].  Output δ [m], the cable's displacement at the capstan rim (Δα = δ/R).
     """

@@ -1,6 +1,6 @@
 """CasADi integrators for the lining ODE, wrapped as differentiable Functions.
 
-Every integrator integrates the stretched ODE of :mod:`ropemodel.lining.ode`
+Every integrator integrates the stretched ODE of :mod:`ropemodel.numerics.hajduk_ode`
 over σ ∈ [0, 1].  ``INTEGRATORS`` maps the ``[numerics] integrator`` name to a
 function ``rtol → CasADi options``:
 
@@ -9,7 +9,7 @@ function ``rtol → CasADi options``:
   expanded), so a point costs only arithmetic and a batch is one SX ``map``.
   The same scheme as CasADi's ``rk`` plugin; that plugin cannot be expanded to
   SX and measured 3-5x slower per point (``studies/lining_accuracy.py``).  In
-  the stretched variable the ODE is not stiff (see :mod:`ropemodel.lining.ode`),
+  the stretched variable the ODE is not stiff (see :mod:`ropemodel.numerics.hajduk_ode`),
   so an explicit fixed-step method is the right tool; it cannot fail.
 * ``rk`` — CasADi's RK4 plugin, same N;
 * ``cvodes`` — SUNDIALS CVODES, variable-order BDF, adaptive steps,
@@ -35,7 +35,7 @@ from functools import lru_cache
 
 import casadi as ca
 
-from ropemodel.lining import ode
+from ropemodel.numerics import hajduk_ode as ode
 
 RK_C = 8.75
 COLLOCATION_C = 4.65

@@ -22,60 +22,25 @@ F_nwl, stroke.
 from __future__ import annotations
 
 import math
-import time
 
-import casadi as ca
 import numpy as np
 import pandas as pd
 from tqdm.auto import tqdm
 
+from optimisation.design import solve_best
+from optimisation.ipopt import solve_continuous
+from optimisation.problem import VARIABLES, SizingProblem
 from ropemodel.errors import InputError
 from ropemodel.sweep.points import grid, table
 from ropemodel.sweep.validate import check_ranges, check_rules
 from ropemodel.units import label
 
 DESIGN_UNITS = {"d": "mm", "F_nwl": "kN", "stroke": "mm"}
-#: IPOPT settings for a start from a neighbour's optimum and multipliers
-WARM = {"ipopt.warm_start_init_point": "yes", "ipopt.mu_init": 1e-6, "ipopt.warm_start_bound_push": 1e-9,
-        "ipopt.warm_start_slack_bound_push": 1e-9, "ipopt.warm_start_mult_bound_push": 1e-9}
-
-
-class _Solvers:
-    """IPOPT on the package's NLP, cold (from the scene's design) and warm (from a neighbour)."""
-
-    def __init__(self, problem):
-        from optimisation.design import FEAS_TOL
-        from optimisation.ipopt import IPOPT_OPTIONS
-
-        self.problem, self.tol = problem, FEAS_TOL
-        self.cold = ca.nlpsol("sizing_sweep_cold", "ipopt", problem.nlp(), IPOPT_OPTIONS)
-        self.warm = ca.nlpsol("sizing_sweep_warm", "ipopt", problem.nlp(), {**IPOPT_OPTIONS, **WARM})
-        self.lbx, self.ubx = problem.bounds()
-
-    def solve(self, p, start=None):
-        """(x, lam_x, lam_g, ok, iterations, seconds); ``start`` = a previous (x, lam_x, lam_g)."""
-        if start is None:
-            solver = self.cold
-            x0 = self.problem.x0()
-            args = {"x0": np.clip(x0, self.lbx, np.where(np.isfinite(self.ubx), self.ubx, x0))}
-        else:
-            solver = self.warm
-            args = {"x0": start[0], "lam_x0": start[1], "lam_g0": start[2]}
-        t = time.perf_counter()
-        r = solver(p=p, lbx=self.lbx, ubx=self.ubx, lbg=0.0, ubg=np.inf, **args)
-        secs = time.perf_counter() - t
-        st = solver.stats()
-        ok = bool(st["success"]) and bool(np.all(np.asarray(r["g"]) >= -self.tol))
-        return (np.asarray(r["x"]).ravel(), np.asarray(r["lam_x"]).ravel(), np.asarray(r["lam_g"]).ravel(),
-                ok, int(st.get("iter_count", 0)), secs)
 
 
 def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, progress: bool | None = None) -> pd.DataFrame:
     """Continuous sizing optimum at every point; columns: the varied inputs, ``d [mm]``, ``F_nwl [kN]``,
     ``stroke [mm]``, ``feasible``, ``iterations`` (IPOPT, all attempts) and ``seconds`` (solver time)."""
-    from optimisation.design import _margins_ok, solve_best
-    from optimisation.problem import VARIABLES, SizingProblem
-
     problem = SizingProblem(scene)
     q = scene.built.quantities
     inputs = {k: q[k] for k in problem.params}
@@ -89,7 +54,6 @@ def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, progress: 
     pts = grid(vary, inputs) if vary is not None else table(points, inputs)
     check_ranges(pts, inputs)
     check_rules(scene.built, pts, dict(scene.parameters))
-    solvers = _Solvers(problem)
     rows = []
     prev = None
     bar = tqdm(total=pts.n, unit="opt", desc="sizing", disable=(not progress) if progress is not None else None)
@@ -98,14 +62,15 @@ def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, progress: 
         for i in range(len(chunk[pts.names[0]])):
             values = {k: float(chunk[k][i]) for k in pts.names}
             p = problem.p_of(values)
-            x, lx, lg, ok, iters, secs = solvers.solve(p, prev if warm else None)
-            if not ok:  # the package's multi-start (from the scene's design first)
+            sol = solve_continuous(problem, p, polish=False, start=prev if warm else None)
+            iters, secs = sol.iterations, sol.seconds
+            if not sol.feasible:  # the package's multi-start (from the scene's design first)
                 sol = solve_best(problem, p)
-                x, lx, lg, ok = sol.xs, sol.lam_x, sol.lam_g, _margins_ok(sol)
                 iters, secs = iters + sol.iterations, secs + sol.seconds
+            ok = sol.feasible
             if ok:
-                prev = (x, lx, lg)
-            design = problem.to_si(x) if ok else dict.fromkeys(VARIABLES, math.nan)
+                prev = sol.start
+            design = problem.to_si(sol.xs) if ok else dict.fromkeys(VARIABLES, math.nan)
             row = {label(k, q[k].display_unit): float(q[k].to_display(v)) for k, v in values.items()}
             for k in VARIABLES:
                 row[label(k, DESIGN_UNITS[k])] = design[k] * (1e3 if DESIGN_UNITS[k] == "mm" else 1e-3)
