@@ -25,8 +25,7 @@ def main(args) -> int:
 
     scene = scene_from_args(args)
     fit = [n.strip() for n in args.fit.split(",") if n.strip()]
-    sigma = to_si("--sigma", args.sigma if not _is_number(args.sigma) else float(args.sigma), "rad") \
-        if args.sigma else None
+    sigma = to_si("--sigma", args.sigma, "rad", "deg") if args.sigma else None
     res = identify(scene, args.data, fit, sigma=sigma)
     if args.json:
         print(json.dumps(res.to_dict(), indent=2, allow_nan=False))
@@ -40,10 +39,3 @@ def main(args) -> int:
         raise SolveError(f"identification did not converge: {res.status}")
     return 0
 
-
-def _is_number(text) -> bool:
-    try:
-        float(text)
-        return True
-    except (TypeError, ValueError):
-        return False

@@ -23,6 +23,6 @@ def main(args) -> int:
     find = [n.strip() for item in args.find for n in item.split(",") if n.strip()]
     if not given and not find:
         raise InputError("solve needs --given NAME=VALUE and --find NAME (use 'run' for the forward problem)")
-    result = solve(scene_from_args(args), given, find)
+    result = solve(scene_from_args(args), given, find, bare="refuse")
     print(result.to_json() if args.json else result.table())
     return 0

@@ -207,10 +207,7 @@ class PhysicalVoigtLining(AnisotropicVoigtLining):
         Quantity("G", "Pa", "shear modulus of the lining", "MPa", guess=2e7, **_pos),
         Quantity("eta_R", "Pa*s", "viscosity of the lining in compression", "MPa*s", guess=1e5, **_nonneg),
         Quantity("eta_T", "Pa*s", "viscosity of the lining in shear", "MPa*s", guess=1e5, **_nonneg),
-        *(Quantity(q.name, q.unit, q.description, q.display, low=0.0, equation=eq)
-          for q, eq in zip(AnisotropicVoigtLining.quantities[4:8],
-                           (f"{SRC}, eq. (6): h/(E R^2 a)", f"{SRC}, eq. (6): mu/(G R a)",
-                            f"{SRC}, eq. (1): eta_R/E", f"{SRC}, eq. (1): eta_T/G"))),
+        *AnisotropicVoigtLining.quantities[4:8],   # computed here (eq. (1), (6)): the same quantities
         S_OUT, S_RATIO,
     )
 

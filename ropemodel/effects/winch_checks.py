@@ -21,8 +21,7 @@ from __future__ import annotations
 import pandas as pd
 
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
-from ropemodel.effects.winch import DIRECTIONS, MODEL, Q, per_direction
-from ropemodel.effects.winch_lining import D_DRUM
+from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, STROKE, Q, per_direction
 from ropemodel.effects.winch_rope import D_ROPE, F_MIN
 
 SRC = "Krauze et al. 2025"
@@ -71,7 +70,7 @@ class DesignChecks(Submodel):
         D_DRUM,
         Q("n_rope", "1", "required safety factor of the rope F_min / F_C", low=1.0, guess=5.0),
         Q("F_S_min", "N", "least tension allowed in the unwinding rope", "kN", low=0.0, default=0.0),
-        Q("stroke", "m", "installed stroke of the tensioner (return sheave)", "mm", low=0.0, guess=1.0),
+        STROKE,
         Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", low=1.0, default=30.0,
           equation=f"{SRC}, introduction: D >= 30 d"),
         *per_direction("safety_margin", "1", "margin of rope safety F_min/(n_rope F_C) - 1 (>= 0 passes)",

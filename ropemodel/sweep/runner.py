@@ -80,7 +80,7 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
         points, vary = vary, None
     if (vary is None) == (points is None):
         raise InputError("give either vary={name: axis} (a grid) or a table of points")
-    pts = grid(vary, inputs) if vary is not None else table(points, inputs)
+    pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=model.outputs)
     if pts.n == 0:
         raise InputError("no points to sweep")
     outputs = _outputs(problem, outputs, pts.names)
