@@ -173,7 +173,8 @@ def builtin_scenes() -> list[str]:
                   if f.name.endswith(".toml") and "[scene]" in f.read_text())
 
 
-def load(path: str | Path | None = None, optional=(), emit: bool = True) -> Scene:
+def load(path: str | Path | None = None, optional=(), emit: bool = True, values: dict | None = None,
+         bare: str = "si", origin: str = "api") -> Scene:
     """Load a scene file.
 
     path: a TOML file; ``None`` or ``"example"`` is the built-in example (Krauze et al. 2025,
@@ -181,7 +182,10 @@ def load(path: str | Path | None = None, optional=(), emit: bool = True) -> Scen
         loads that one when no such file exists.
     optional: parameters the scene may leave out (a command that chooses them itself, e.g. sizing).
     emit: issue the scene's warnings as :class:`SceneWarning` (the command line prints them itself).
-    Raises :class:`InputError` listing every problem of the file.
+    values: parameters to set (they replace or complete the file's), checked with the file's;
+        numbers follow ``bare`` (``"si"`` in Python, ``"refuse"`` for the command line's ``--set``),
+        and ``origin`` says where they came from.
+    Raises :class:`InputError` listing every problem of the file and of ``values``.
     """
     name = EXAMPLE if path is None or str(path) == "example" else None
     p = Path(path) if name is None else Path(f"{EXAMPLE}.toml")
@@ -190,7 +194,7 @@ def load(path: str | Path | None = None, optional=(), emit: bool = True) -> Scen
         name = stem
     if name is not None:
         text = resources.files("ropemodel.data").joinpath(f"{name}.toml").read_text()
-        return from_toml(text, source=f"built-in scene {name}", optional=optional, emit=emit)
+        return from_toml(text, f"built-in scene {name}", optional, emit, values, bare, origin)
     try:
         data = p.read_bytes()
     except FileNotFoundError:
@@ -205,10 +209,11 @@ def load(path: str | Path | None = None, optional=(), emit: bool = True) -> Scen
     except UnicodeDecodeError:
         raise InputError(f"scene file {p} is not UTF-8 text (a binary file, or another encoding): "
                          f"save it as UTF-8 TOML") from None
-    return from_toml(text, source=str(p), optional=optional, emit=emit)
+    return from_toml(text, str(p), optional, emit, values, bare, origin)
 
 
-def from_toml(text: str, source: str | None = None, optional=(), emit: bool = True) -> Scene:
+def from_toml(text: str, source: str | None = None, optional=(), emit: bool = True, values: dict | None = None,
+              bare: str = "si", origin: str = "api") -> Scene:
     """Parse and validate a scene from TOML text (see :func:`from_dict`)."""
     if "\x00" in text:
         raise InputError(f"{source or 'scene'} is a binary file, not TOML text")
@@ -216,16 +221,22 @@ def from_toml(text: str, source: str | None = None, optional=(), emit: bool = Tr
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"invalid TOML in {source or 'scene'}: {exc}") from None
-    return from_dict(data, source, optional=optional, emit=emit,
-                     digest=hashlib.sha256(text.encode()).hexdigest())
+    scene = from_dict(data, source, optional=optional, emit=False, digest=hashlib.sha256(text.encode()).hexdigest(),
+                      values=values, values_bare=bare, values_origin=origin)
+    if emit:
+        for note in scene.warnings:
+            warnings.warn(note, SceneWarning, stacklevel=3)
+    return scene
 
 
 def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", optional=(), emit: bool = True,
-              digest: str | None = None) -> Scene:
+              digest: str | None = None, values: dict | None = None, values_bare: str = "si",
+              values_origin: str = "api") -> Scene:
     """Validate a scene given as nested dicts (the TOML structure); every problem at once.
 
     bare: ``"refuse"`` (a file's rule: a dimensional value needs its unit) or ``"si"`` (numbers are
-    SI, for scenes built in Python).  optional, emit: as in :func:`load`.
+    SI, for scenes built in Python).  optional, emit, values (read with ``values_bare``, from
+    ``values_origin``): as in :func:`load`.
     """
     where = f" in {source}" if source else ""
     found, notes = Problems(where), []
@@ -244,6 +255,8 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
         found.raise_if_any()
     model = Model(model_name, effects, numerics)
     params, checks, unused, origin = _parameters(model, given, bare, found, notes)
+    if values:
+        _set_values(model, values, values_bare, values_origin, params, origin, found, notes)
     defaults, absent = _missing(model, params, origin, tuple(optional), found)
     for problem in model.problems(params):
         found.add(problem)
@@ -326,6 +339,30 @@ def _parameters(model: Model, given: dict, bare: str, found: Problems, notes: li
             unused[key] = " or ".join(owners) or "no effect of this model"
             notes.append(f"{key} is not used: it belongs to {unused[key]}")
     return params, checks, unused, origin
+
+
+def _set_values(model: Model, values: dict, bare: str, origin_label: str, params: dict, origin: dict,
+                found: Problems, notes: list) -> None:
+    """Parameters set on top of the file (``--set``): they replace the file's values."""
+    for key, value in values.items():
+        problem = _settable(model, key, origin_label)
+        if problem and not (key in all_quantities(model.name) and key not in model.symbols):
+            found.add(problem)
+            continue
+        q = all_quantities(model.name)[key]
+        try:
+            si = q.to_si(value, bare)
+        except InputError as exc:
+            found.add(str(exc))
+            origin[key] = f"{origin_label} (refused)"
+            continue
+        if key not in model.parameters:
+            notes.append(f"{key} is not used: it belongs to {' or '.join(model.owners(key)) or 'no effect'}")
+            continue
+        params[key], origin[key] = si, origin_label
+        note = q.unusual(si)
+        if note:
+            notes.append(note)
 
 
 def _half_digit(q, value, si: float, bare: str) -> float:

@@ -45,10 +45,8 @@ def scene_from_args(args, optional=(), announce: bool = True):
     """Load the scene named on the command line and apply ``--set``; print its warnings on stderr."""
     from ropemodel.scene import load
 
-    scene = load(args.scene, optional=optional, emit=False)
-    values = assignments(args.set, "--set")
-    if values:
-        scene = scene.with_values(values, bare="refuse", origin="--set")
+    scene = load(args.scene, optional=optional, emit=False, values=assignments(args.set, "--set"),
+                 bare="refuse", origin="--set")
     if announce:
         warn(scene.warnings)
     return scene
