@@ -26,6 +26,7 @@ import casadi as ca
 import numpy as np
 
 from optimisation.problem import SizingProblem
+from ropemodel.papers import en12385 as ropes
 
 #: check → the scene parameters that relax it, and in which direction ("min": the least value that lets
 #: a design exist is asked for; "max": the largest)
@@ -136,8 +137,10 @@ def diagnose(problem: SizingProblem, p=None, d_range=None, fix_d: float | None =
 
 
 def remedies(problem: SizingProblem, conflicting, p, lbx, ubx, x0) -> list[str]:
-    """"needs NAME >= value" for each scene parameter that relaxes a conflicting check (:data:`REMEDIES`):
-    the parameter is freed (within its valid range) and the NLP finds the value at which a design just exists."""
+    """"NAME >= value" for each scene parameter that relaxes a conflicting check (:data:`REMEDIES`): the
+    parameter is freed (within its valid range) and, for each catalogue diameter in turn (d fixed: the
+    design must be a catalogue rope), the NLP finds the value at which a design just exists; the best
+    over the catalogue is named."""
     q = problem.scene.built.quantities
     gfun = ca.Function("g", [problem.xs, problem.p], [problem.g])
     out = []
@@ -146,11 +149,24 @@ def remedies(problem: SizingProblem, conflicting, p, lbx, ubx, x0) -> list[str]:
         for name, sense in REMEDIES.get(base, ()):
             if name not in problem.params:
                 continue
-            value = _free(problem, gfun, problem.params.index(name), sense, q[name], p, lbx, ubx, x0)
+            found = []
+            for d in _diameters(lbx, ubx, problem):
+                lo, hi = lbx.copy(), ubx.copy()
+                lo[0] = hi[0] = d / problem.x_scale[0]
+                start = np.array([lo[0], *x0[1:]])
+                found.append(_free(problem, gfun, problem.params.index(name), sense, q[name], p, lo, hi, start))
+            found = [v for v in found if v is not None]
+            value = (min(found) if sense == "min" else max(found)) if found else None
             if value is not None:
                 shown = _safe_round(q[name].to_display(value), up=sense == "min")
                 out.append(f"{name} {'>=' if sense == 'min' else '<='} {shown:.4g}{q[name].unit_text}")
     return out
+
+
+def _diameters(lbx, ubx, problem) -> list[float]:
+    """The catalogue diameters [m] within the bounds of d (one fixed diameter if d is fixed)."""
+    lo, hi = lbx[0] * problem.x_scale[0], ubx[0] * problem.x_scale[0]
+    return [d for d in ropes.diameters() if lo - 1e-12 <= d <= hi + 1e-12]
 
 
 def _safe_round(x: float, up: bool) -> float:
