@@ -88,6 +88,10 @@ class Quantity:
     def usual_text(self) -> str:
         """The usual range in display units, e.g. ``0.1 to 1000 mm/kN``."""
         f = factor(self.unit, self.display_unit)
+        if self.warn_low == -math.inf:
+            return f"up to {_fmt(self.warn_high * f)}{self.unit_text}"
+        if self.warn_high == math.inf:
+            return f"from {_fmt(self.warn_low * f)}{self.unit_text}"
         return f"{_fmt(self.warn_low * f)} to {_fmt(self.warn_high * f)}{self.unit_text}"
 
     def in_range(self, value: float) -> bool:
