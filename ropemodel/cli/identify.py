@@ -6,6 +6,7 @@ import json
 
 from ropemodel.cli._common import add_scene_arguments, scene_from_args
 from ropemodel.errors import SolveError
+from ropemodel.progress import status
 from ropemodel.units import to_si
 
 NAME = "identify"
@@ -26,7 +27,8 @@ def main(args) -> int:
     scene = scene_from_args(args)
     fit = [n.strip() for n in args.fit.split(",") if n.strip()]
     sigma = to_si("--sigma", args.sigma, "rad", "deg") if args.sigma else None
-    res = identify(scene, args.data, fit, sigma=sigma)
+    with status(f"identifying {', '.join(fit)} from {args.data}"):
+        res = identify(scene, args.data, fit, sigma=sigma)
     if args.json:
         print(json.dumps(res.to_dict(), indent=2, allow_nan=False))
     else:

@@ -12,6 +12,7 @@ import json
 import math
 
 from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn
+from ropemodel.progress import status
 
 NAME = "size"
 HELP = "size the winch: least rope d, then least pretension F_nwl, then least stroke, every check met"
@@ -67,7 +68,8 @@ def main(args) -> int:
 
     scene = prepare(scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False))
     warn(scene.warnings)
-    design = size(scene, method=args.discrete or DEFAULT_DISCRETE)
+    with status(f"sizing {scene.name}: rope, pretension and stroke"):
+        design = size(scene, method=args.discrete or DEFAULT_DISCRETE)
     if args.json:
         print(json.dumps(_num(design.to_dict()), indent=2, allow_nan=False))
     else:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from ropemodel.cli._common import add_scene_arguments, assignments, scene_from_args
 from ropemodel.errors import InputError
-from ropemodel.problem import solve
 
 NAME = "solve"
 HELP = "solve a scene for parameters (--find) from given outputs (--given)"
@@ -19,6 +18,8 @@ def add_arguments(parser) -> None:
 
 
 def main(args) -> int:
+    from ropemodel.problem import solve
+
     given = assignments(args.given, "--given")
     find = [n.strip() for item in args.find for n in item.split(",") if n.strip()]
     if not given and not find:

@@ -11,8 +11,6 @@ from __future__ import annotations
 
 from ropemodel.cli._common import add_scene_arguments, assignments, scene_from_args
 from ropemodel.errors import InputError
-from ropemodel.sweep import read_points, sweep
-from ropemodel.sweep.runner import CHUNK
 
 NAME = "sweep"
 HELP = "evaluate a scene over grids or a table of points; write CSV or Parquet (resumable)"
@@ -31,7 +29,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--find", action="append", metavar="NAME", default=[],
                         help="a parameter to solve for at every point, freed by a --given")
     parser.add_argument("-o", "--output", required=True, metavar="FILE", help="FILE.csv or FILE.parquet")
-    parser.add_argument("--chunk-size", type=int, default=CHUNK, help=f"points per chunk (default {CHUNK})")
+    parser.add_argument("--chunk-size", type=int, default=65536, help="points per chunk (default 65536)")
     parser.add_argument("--threads", type=int, default=None, help="threads (default: number of CPUs)")
     parser.add_argument("--backend", default="auto", choices=["auto", "casadi", "compiled"],
                         help="evaluation backend (default auto: compiled C if a compiler works)")
@@ -51,6 +49,8 @@ def _names(items):
 
 
 def main(args) -> int:
+    from ropemodel.sweep import read_points, sweep
+
     scene = scene_from_args(args)
     vary = {}
     for item in args.vary:

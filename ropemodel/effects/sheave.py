@@ -37,7 +37,6 @@ import math
 
 import casadi as ca
 import numpy as np
-import pandas as pd
 
 from ropemodel.effects.base import (Equation, Submodel, choice, define_effect, define_numerics,
                                     positive_number, register)
@@ -267,7 +266,7 @@ def _lining_of(scene) -> _Lining:
     return next(sm for sm in scene.built.submodels if isinstance(sm, _Lining))
 
 
-def distribution_frame(values: dict, scene, points: int | None = None) -> pd.DataFrame:
+def distribution_frame(values: dict, scene, points: int | None = None):
     """S along the arc at ``points`` equally spaced angles 0 … alpha for the SI ``values`` of a
     solved sheave point (columns with units); by the scene's method."""
     sm = _lining_of(scene)
@@ -285,5 +284,7 @@ def distribution_frame(values: dict, scene, points: int | None = None) -> pd.Dat
     else:
         y = np.asarray(hj.log_tension_ratio(values["mu"], alpha, q_R, k_R, q_T, k_T), float)
     s = np.exp(y)
+    import pandas as pd
+
     return pd.DataFrame({"alpha [deg]": np.degrees(alpha), "S [kN]": values["S_0"] * s / 1e3, "S/S_0 [-]": s,
                          "e^(mu alpha) [-]": np.exp(values["mu"] * alpha)})

@@ -19,8 +19,6 @@ applies (mine haulage regulations differ by country and duty).
 
 from __future__ import annotations
 
-import pandas as pd
-
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, STROKE, Q, per_direction
 from ropemodel.effects.winch_rope import D_ROPE, F_MIN
@@ -111,8 +109,11 @@ class DesignChecks(Submodel):
         return {"design checks": checks_frame(values, scene.built.quantities)}
 
 
-def checks_frame(values: dict, quantities: dict) -> pd.DataFrame:
-    """Table of every margin present in ``values``: check, direction, margin (display unit), pass/fail."""
+def checks_frame(values: dict, quantities: dict):
+    """Table of every margin present in ``values`` (a pandas DataFrame): check, direction, margin
+    (display unit), pass/fail."""
+    import pandas as pd
+
     text = {base: t for base, t, _ in CHECKS}
     rows = []
     for n in margin_names(values):
