@@ -43,9 +43,11 @@ from ropemodel.core.compile import forward_of
 from ropemodel.core.model import Model
 from ropemodel.effects import all_quantities, effects_of, misplaced, models, numerics_of, resolve_effects
 from ropemodel.errors import InputError, Problems, suggest
-from ropemodel.units import last_digit, split_value
+from ropemodel.units import last_digit, split_value, to_si
 
-TABLES = ("scene", "effects", "parameters", "numerics")
+TABLES = ("scene", "effects", "parameters", "numerics", "route")
+#: keys of a ``[[route]]`` segment → the parameter each becomes (``{i}``: the segment's number from the drive)
+ROUTE_KEYS = {"length": "L_{i}", "inclination": "alpha_{i}", "mu_winding": "mu_w{i}"}
 SCENE_KEYS = ("name", "model", "description")
 EXAMPLE = "krauze2025_fig9"
 
@@ -96,11 +98,13 @@ class Scene:
     origin: dict[str, str] = field(default_factory=dict)
     digest: str | None = None
     raw: dict = field(default_factory=dict, repr=False, compare=False)
+    #: the route's structure (``[[route]]``): per segment, whether it gives its own mu_winding
+    route: tuple[bool, ...] = ()
 
     @cached_property
     def built(self) -> Model:
         """The model with this scene's effects (only their equations are built)."""
-        return Model(self.model, self.effects, self.numerics)
+        return Model(self.model, self.effects, _options(self.numerics, self.route, "L_ul" in self.parameters))
 
     def with_values(self, values: dict, bare: str = "si", origin: str = "api") -> "Scene":
         """A copy with parameters replaced, every problem checked and listed at once.
@@ -113,9 +117,9 @@ class Scene:
         defaults = dict(self.defaults)
         unused, notes = dict(self.unused), []
         for name, value in values.items():
-            if name in all_quantities(model.name) and name not in model.symbols:
+            if name in model.universe and name not in model.symbols:
                 with found.collect():
-                    model_q = all_quantities(model.name)[name]
+                    model_q = model.universe[name]
                     model_q.to_si(value, bare)
                     unused[name] = " or ".join(model.owners(name)) or "no effect of this model"
                     notes.append(f"{name} is not used: it belongs to {unused[name]}")
@@ -243,6 +247,7 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
     if not isinstance(data, dict):
         raise InputError(f"a scene is a table of tables, got {type(data).__name__}")
     name, model_name = _head(data, found)
+    data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
     known = model_name in models()
     effects = resolve_effects(model_name, _table(data, "effects", found), found) if known else {}
     numerics = _numerics(model_name, _table(data, "numerics", found), found) if known else {}
@@ -253,8 +258,10 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
             if key not in universe:
                 found.add(f"unknown parameter {key!r}{suggest(key, universe)}")
         found.raise_if_any()
-    model = Model(model_name, effects, numerics)
+    route, route_values = _route(data, effects, given, found)
+    model = Model(model_name, effects, _options(numerics, route, "L_ul" in given))
     params, checks, unused, origin = _parameters(model, given, bare, found, notes)
+    _route_parameters(model, route_values, bare, params, origin, found)
     if values:
         _set_values(model, values, values_bare, values_origin, params, origin, found, notes)
     defaults, absent = _missing(model, params, origin, tuple(optional), found)
@@ -262,7 +269,7 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
         found.add(problem)
     scene = Scene(str(name if name is not None else source or "unnamed"), model_name, effects, params, numerics,
                   source, defaults, unused, checks, absent, tuple(notes), origin, digest,
-                  {k: v for k, v in data.items()})
+                  {k: v for k, v in data.items()}, route)
     scene.__dict__["built"] = model
     _verify_checks(scene, found)
     found.raise_if_any()
@@ -270,6 +277,56 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
         for note in scene.warnings:
             warnings.warn(note, SceneWarning, stacklevel=2)
     return scene
+
+
+def _options(numerics: dict, route: tuple, point_A: bool = False) -> dict:
+    """The model's options: the scene's numerics and the structure of its route (if it has one)."""
+    return {**numerics, "route": route, "point_A": point_A} if route else dict(numerics)
+
+
+def _route(data: dict, effects: dict, given: dict, found: Problems):
+    """The ``[[route]]`` segments: (structure, {parameter name: value as typed, with the segment's label})."""
+    segments = data.get("route")
+    wanted = effects.get("route") == "segments"
+    if segments is None:
+        if wanted:
+            found.add('route = "segments" needs the segments: one [[route]] table each, listed from the drive, '
+                      'with length and inclination (e.g. length = "400 m", inclination = "22 deg")')
+        return (), {}
+    if not wanted:
+        found.add('[[route]] segments are given but the route effect is "straight": set [effects] route = "segments"')
+        return (), {}
+    if not isinstance(segments, list) or not segments or not all(isinstance(s, dict) for s in segments):
+        found.add("[[route]] must be a list of tables, one per segment (write [[route]] before each segment); "
+                  "an empty route has no segment")
+        return (), {}
+    if "L_u" in given:
+        found.add("L_u is the sum of the [[route]] segments' lengths: remove it from [parameters]")
+        given.pop("L_u")
+    values = {}
+    for i, seg in enumerate(segments, start=1):
+        for key, value in seg.items():
+            if key not in ROUTE_KEYS:
+                found.add(f"[[route]] segment {i}: unknown key {key!r}; valid: {', '.join(ROUTE_KEYS)}"
+                          f"{suggest(key, ROUTE_KEYS)}")
+                continue
+            values[ROUTE_KEYS[key].format(i=i)] = (f"[[route]] segment {i}: {key}", value)
+        for key in ("length", "inclination"):
+            if key not in seg:
+                found.add(f"[[route]] segment {i} has no {key} (e.g. {key} = "
+                          f"{chr(34)}{'400 m' if key == 'length' else '10 deg'}{chr(34)})")
+    return tuple("mu_winding" in seg for seg in segments), values
+
+
+def _route_parameters(model: Model, values: dict, bare: str, params: dict, origin: dict, found: Problems) -> None:
+    for name, (label, value) in values.items():
+        q = model.quantities[name]
+        try:
+            params[name] = to_si(label, value, q.unit, q.display_unit, bare)
+            origin[name] = "route"
+        except InputError as exc:
+            found.add(str(exc))
+            origin[name] = "route (refused)"
 
 
 def _table(data: dict, key: str, found: Problems) -> dict:
@@ -314,7 +371,7 @@ def _numerics(model: str, given: dict, found: Problems) -> dict:
 def _parameters(model: Model, given: dict, bare: str, found: Problems, notes: list):
     """SI values of the given parameters; checks (computed quantities given); unused ones."""
     params, checks, unused, origin = {}, {}, {}, {}
-    quantities = all_quantities(model.name)
+    quantities = model.universe
     for key, value in given.items():
         if key not in quantities:
             found.add(misplaced(model.name, key, "[parameters]") or
@@ -346,10 +403,10 @@ def _set_values(model: Model, values: dict, bare: str, origin_label: str, params
     """Parameters set on top of the file (``--set``): they replace the file's values."""
     for key, value in values.items():
         problem = _settable(model, key, origin_label)
-        if problem and not (key in all_quantities(model.name) and key not in model.symbols):
+        if problem and not (key in model.universe and key not in model.symbols):
             found.add(problem)
             continue
-        q = all_quantities(model.name)[key]
+        q = model.universe[key]
         try:
             si = q.to_si(value, bare)
         except InputError as exc:

@@ -161,8 +161,11 @@ def _toml(data) -> str:
     def value(v):
         return "true" if v is True else f'"{v}"' if isinstance(v, str) else repr(v)
 
-    return "\n".join(f"[{t}]\n" + "\n".join(f"{k} = {value(v)}" for k, v in table.items())
-                     for t, table in data.items()) + "\n"
+    def block(header, table):
+        return f"{header}\n" + "\n".join(f"{k} = {value(v)}" for k, v in table.items() if v is not None)
+
+    return "\n".join(block(f"[{t}]", table) if isinstance(table, dict) else
+                     "\n".join(block(f"[[{t}]]", row) for row in table) for t, table in data.items()) + "\n"
 
 
 @pytest.mark.parametrize("seed", range(120))
@@ -199,6 +202,10 @@ def _scene_data_using(model: str, effect: str, variant: str) -> dict:
     data = {"scene": {"model": model}, "effects": {effect: variant}, "parameters": params}
     if "x_m" in params:
         params["x_m"] = "500 m"                 # the guesses would put the load at the return sheave
+    if (effect, variant) == ("route", "segments"):   # the segment's values come from its [[route]] table
+        segment = {"length": params.pop("L_1"), "inclination": params.pop("alpha_1")}
+        params.pop("mu_w1", None)
+        return {"scene": {"model": model}, "effects": {effect: variant}, "parameters": params, "route": [segment]}
     if (effect, variant) == ("friction", "thirion"):
         data["numerics"] = {"method": "ode"}    # Thirion's friction has no closed form
     return data
@@ -219,6 +226,7 @@ def _dimensional_parameters():
 
 
 PARAMETERS = _dimensional_parameters()
+ROUTE_PARAMETERS = {"L_1": "length", "alpha_1": "inclination"}
 
 
 def test_every_dimensional_parameter_is_walked():
@@ -229,11 +237,16 @@ def test_every_dimensional_parameter_is_walked():
 @pytest.mark.parametrize("model, effect, variant, name", PARAMETERS)
 def test_bare_number_refused_in_a_file_and_in_set(model, effect, variant, name, tmp_path, capsys):
     data = _scene_data_using(model, effect, variant)
-    number = data["parameters"][name].split()[0]
-    data["parameters"][name] = float(number)
-    with pytest.raises(rm.InputError, match=rf"{name} = \S+ has no unit; write e\.g\. \""):
+    table, key, label = data["parameters"], name, name
+    if name in ROUTE_PARAMETERS:   # a segment's value is typed in its [[route]] table
+        table, key = data["route"][0], ROUTE_PARAMETERS[name]
+        label = rf"\[\[route\]\] segment 1: {key}"
+    number = table[key].split()[0]
+    table[key] = float(number)
+    with pytest.raises(rm.InputError, match=rf"{label} = \S+ has no unit; write e\.g\. \""):
         rm.from_dict(data)
-    data["parameters"].pop(name)
+    table[key] = f"{number} {'m' if key == 'length' else 'deg'}" if table is not data["parameters"] else None
+    data["parameters"].pop(name, None)
     f = tmp_path / "s.toml"
     f.write_text(_toml(data), encoding="utf-8")
     assert main(["run", str(f), "--set", f"{name}={number}"]) == 2

@@ -29,7 +29,7 @@ class Model:
         self.options = dict(options or {})
         self.effects = resolve_effects(model, effects)
         specs = effects_of(model)
-        self.submodels = [specs[e].variants[v](options) for e, v in self.effects.items()]
+        self.submodels = [specs[e].variants[v](options, self.effects) for e, v in self.effects.items()]
         self.symbols = Symbols()
         self.equations: list[Equation] = []
         defined: dict[str, str] = {}
@@ -46,7 +46,9 @@ class Model:
                 self.equations.append(eq)
         self.outputs = [eq.defines for eq in self.equations]
         self.parameters = [n for n in self.symbols if n not in defined]
-        known = all_quantities(model)
+        known = {**all_quantities(model), **{q.name: q for sm in self.submodels for q in sm.quantities}}
+        #: every quantity this model could know: every variant's, and this instance's own (a route's segments)
+        self.universe = known
         missing = [n for n in self.symbols if n not in known]
         if missing:
             raise RuntimeError(f"no Quantity declared for {missing} in model {model}")
@@ -102,12 +104,12 @@ class Model:
         """Why ``name`` is not a quantity of this model (a suggestion, or the variant that uses it), or None."""
         if name in self.symbols:
             return None
-        if name in all_quantities(self.name):
+        if name in self.universe:
             owners = self.owners(name)
             hint = f"; it belongs to {' or '.join(owners)}" if owners else ""
             return f"{what} {name!r} is not used by this scene's effects{hint}"
         return misplaced(self.name, name, "") or (
-            f"unknown {what} {name!r} for model {self.name!r}{suggest(name, list(all_quantities(self.name)))}")
+            f"unknown {what} {name!r} for model {self.name!r}{suggest(name, list(self.universe))}")
 
     def check_names(self, names, what: str = "parameter") -> None:
         """:class:`InputError` naming every name that is not a quantity of this model."""

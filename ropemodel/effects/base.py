@@ -88,8 +88,11 @@ class Submodel:
     citations: ClassVar[tuple[str, ...]] = ()
     quantities: ClassVar[tuple[Quantity, ...]] = ()
 
-    def __init__(self, options: dict | None = None):
+    def __init__(self, options: dict | None = None, effects: dict | None = None):
+        #: the scene's ``[numerics]`` (and structural options such as the route's segments)
         self.options = dict(options or {})
+        #: every effect of the model with its chosen variant (a submodel may adapt to the others)
+        self.effects = dict(effects or {})
 
     def equations(self, v: Symbols) -> list[Equation]:
         """Residual equations of this submodel (none for an "off" variant)."""

@@ -22,15 +22,16 @@ import numpy as np
 
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.papers import krauze2025 as kr
+from ropemodel.papers import route as rt
 from ropemodel.quantity import Quantity
 
 MODEL = "winch"
 DIRECTIONS = {"up": kr.UP, "down": kr.DOWN}
 SRC = "Krauze et al. 2025"
 
-_pos = dict(low=0.0, low_open=True, positive=True)
-_nonneg = dict(low=0.0)
-_coef = dict(low=0.0, high=1.0)
+POSITIVE = dict(low=0.0, low_open=True, positive=True)
+NONNEGATIVE = dict(low=0.0)
+COEFFICIENT = dict(low=0.0, high=1.0)
 
 #: where the usual ranges come from (warnings outside them; README, "Writing a scene")
 JUDGEMENT = "engineering judgement, a wide margin around the paper's example"
@@ -48,16 +49,17 @@ def usual(low, high, source) -> dict:
 
 # quantities several winch effects share, declared once (the registry refuses a second declaration)
 V_PJ = Q("v_pj", "m/s", "haulage speed of the load", "m/s", guess=2.5,
-         **usual(0.1, 8.0, f"rope-winch haulage speeds; {JUDGEMENT} (2.5 m/s)"), **_pos)
+         **usual(0.1, 8.0, f"rope-winch haulage speeds; {JUDGEMENT} (2.5 m/s)"), **POSITIVE)
 ETA = Q("eta", "1", "efficiency of the drive train", low=0.0, high=1.0, low_open=True, guess=0.85, default=1.0,
         default_note="no efficiency given: the power is the power at the drum rim",
         **usual(0.5, 1.0, "gear-motor drive trains (judgement)"))
 STROKE = Q("stroke", "m", "installed stroke of the tensioner (return sheave): the rope take-up it allows", "mm",
            low=0.0, low_open=True, positive=True, unlimited=True, guess=1.0, default=math.inf,
            default_note="not given: unlimited (the take-up needed is reported)")
+X_M = Q("x_m", "m", "distance of the load from the drive along the route", "m", guess=500.0, low=0.0)
 D_DRUM = Q("D", "m", "diameter of the driving drum (at the rope centre line)", "mm", guess=3.0,
            **usual(0.2, 8.0, "drums of 30 d for ropes of 8-60 mm, with margin (Krauze et al. 2025, introduction: "
-                             "D >= 30 d)"), **_pos)
+                             "D >= 30 d)"), **POSITIVE)
 
 
 def per_direction(name, unit, description, display=None, **kw) -> tuple[Quantity, ...]:
@@ -68,86 +70,52 @@ def per_direction(name, unit, description, display=None, **kw) -> tuple[Quantity
     )
 
 
-define_effect(MODEL, "forces", "krauze2025", "haulage forces of both directions, eq. (1)-(14)")
+define_effect(MODEL, "route", "straight", "the route: the paper's single incline, or a list of straight segments")
+define_effect(MODEL, "forces", "krauze2025", "haulage forces of both directions, eq. (12)-(14)")
 define_effect(MODEL, "resistance", "case1", "resistance coefficients of the winding rope, eq. (15)-(18)")
 define_effect(MODEL, "elongation", "krauze2025", "rope elongation and tensioner stroke, eq. (19)-(23)")
 define_effect(MODEL, "power", "none", "drive power per direction")
 
 
+F_NWL = Q("F_nwl", "N", "initial tension from the tensioner", "kN", guess=2e4,
+          **usual(500.0, 5e5, f"{JUDGEMENT} (20 kN)"), **NONNEGATIVE)
+G_LMC = Q("G_lmC", "N", "weight along the incline of load and winding rope", "kN", equation=f"{SRC}, eq. (14)")
 _FORCES = ("F_S_up", "F_S_down", "F_C_up", "F_C_down")
 _ROPE = {"S": "unwinding", "C": "winding"}
 _TRAVEL = {"up": "upward travel", "down": "downward travel"}
-_ROPE_MU = usual(0.01, 0.5, f"{JUDGEMENT} (0.05): a rope on rollers to a rope dragging on the floor")
+ROPE_MU = usual(0.01, 0.5, f"{JUDGEMENT} (0.05): a rope on rollers to a rope dragging on the floor")
 
 
 @register(MODEL, "forces", "krauze2025")
 class HaulageForces(Submodel):
-    """Forces of an endless-rope winch haulage on an incline, Krauze et al. (2025) eq. (1)-(14)."""
+    """Forces in the winding (F_C) and unwinding (F_S) rope, Krauze et al. (2025) eq. (12)-(14).
+
+    The weights and resistances of eq. (1)-(11) come from the ``route`` effect (the paper's single
+    incline, or a route of segments).  With ``inertia = "rigid"`` a haulage speeding up at a_h adds
+    the inertia of each side like a resistance (:mod:`ropemodel.papers.route`); without it (the
+    default, the paper's) the forces are those of steady motion.
+    """
 
     description = "static forces in the winding (F_C) and unwinding (F_S) rope, both directions"
     citations = ("krauze2025",)
     quantities = (
-        Q("G_m", "N", "weight of the transported load", "kN", guess=4e5,
-          **usual(1e3, 5e6, f"{JUDGEMENT} (467 kN): from one light car to a heavy train"), **_pos),
-        Q("L_u", "m", "length of the inclined route", "m", guess=1000.0,
-          **usual(20.0, 5000.0, f"{JUDGEMENT} (1150 m): rope-winch routes are tens of metres to a few km"),
-          **_pos),
-        Q("L_ul", "m", "distance of point A from the guiding sheave K_K", "m", guess=500.0, **_nonneg),
-        Q("alpha_u", "rad", "inclination of the route", "deg", low=-math.pi / 2, high=math.pi / 2,
-          low_open=True, high_open=True, guess=0.3,
-          **usual(-math.pi / 4, math.pi / 4, f"{SRC}, introduction: rope winches serve workings inclined up to 45 deg")),
-        Q("mu_pm", "1", "coefficient of resistance of the load", guess=0.05,
-          **usual(0.005, 0.2, f"{JUDGEMENT} (0.05): mine cars roll at about 0.01, a sliding load up to 0.2"),
-          **_coef),
-        Q("mu_pl", "1", "coefficient of resistance of the unwinding rope", guess=0.05, **_ROPE_MU, **_coef),
-        Q("mu_pl1", "1", "coefficient of resistance of the winding rope from K_ZN to point A", guess=0.05,
-          **_ROPE_MU, **_coef),
-        Q("mu_pl2", "1", "coefficient of resistance of the winding rope from point A to the drive", guess=0.05,
-          **_ROPE_MU, **_coef),
-        Q("q_l", "N/m", "weight of the rope per metre", "kN/m", guess=80.0,
-          **usual(1.0, 200.0, "EN 12385-4 ropes of 8 to 60 mm, q_l = g W d^2 (the paper's 42 mm rope: 0.08 kN/m)"),
-          **_pos),
-        Q("F_nwl", "N", "initial tension from the tensioner", "kN", guess=2e4,
-          **usual(500.0, 5e5, f"{JUDGEMENT} (20 kN)"), **_nonneg),
-        Q("G_ml", "N", "load weight along the incline", "kN", equation=f"{SRC}, eq. (1)"),
-        Q("G_l1", "N", "weight along the incline of the winding rope from K_ZN to A", "kN", equation=f"{SRC}, eq. (3)"),
-        Q("G_l2", "N", "weight along the incline of the winding rope from A to the drive", "kN",
-          equation=f"{SRC}, eq. (4)"),
-        Q("G_l", "N", "weight along the incline of the winding rope", "kN", equation=f"{SRC}, eq. (2)"),
-        Q("G_mo", "N", "load weight normal to the incline", "kN", equation=f"{SRC}, eq. (5)"),
-        Q("G_ls", "N", "weight along the incline of the unwinding rope", "kN", equation=f"{SRC}, eq. (6)"),
-        Q("T_m", "N", "travel resistance of the load", "kN", equation=f"{SRC}, eq. (7)"),
-        Q("T_l1", "N", "resistance of the winding rope from K_ZN to A", "kN", equation=f"{SRC}, eq. (8)"),
-        Q("T_l2", "N", "resistance of the winding rope from A to the drive", "kN", equation=f"{SRC}, eq. (9)"),
-        Q("T_l", "N", "resistance of the winding rope", "kN", equation=f"{SRC}, eq. (10)"),
-        Q("T_ls", "N", "resistance of the unwinding rope", "kN", equation=f"{SRC}, eq. (11)"),
-        Q("G_lmC", "N", "weight along the incline of load and winding rope", "kN", equation=f"{SRC}, eq. (14)"),
+        F_NWL,
+        G_LMC,
         *per_direction("F_S", "N", "force in the unwinding rope", "kN", equation=f"{SRC}, eq. (12)"),
         *per_direction("F_C", "N", "force in the winding rope", "kN", equation=f"{SRC}, eq. (13)"),
     )
 
     def equations(self, v):
-        a = v["alpha_u"]
-        eqs = [
-            Equation("G_ml", v["G_ml"] - kr.load_weight_along_incline(v["G_m"], a), "eq. (1)"),
-            Equation("G_l1", v["G_l1"] - kr.rope_weight_along_incline(v["q_l"], v["L_u"] - v["L_ul"], a), "eq. (3)"),
-            Equation("G_l2", v["G_l2"] - kr.rope_weight_along_incline(v["q_l"], v["L_ul"], a), "eq. (4)"),
-            Equation("G_l", v["G_l"] - (v["G_l1"] + v["G_l2"]), "eq. (2)"),
-            Equation("G_mo", v["G_mo"] - kr.load_weight_normal(v["G_m"], a), "eq. (5)"),
-            Equation("G_ls", v["G_ls"] - kr.rope_weight_along_incline(v["q_l"], v["L_u"], a), "eq. (6)"),
-            Equation("T_m", v["T_m"] - kr.load_resistance(v["mu_pm"], v["G_m"], a), "eq. (7)"),
-            Equation("T_l1", v["T_l1"] - kr.rope_resistance(v["mu_pl1"], v["q_l"], v["L_u"] - v["L_ul"], a),
-                     "eq. (8)"),
-            Equation("T_l2", v["T_l2"] - kr.rope_resistance(v["mu_pl2"], v["q_l"], v["L_ul"], a), "eq. (9)"),
-            Equation("T_l", v["T_l"] - (v["T_l1"] + v["T_l2"]), "eq. (10)"),
-            Equation("T_ls", v["T_ls"] - kr.rope_resistance(v["mu_pl"], v["q_l"], v["L_u"], a), "eq. (11)"),
-            Equation("G_lmC", v["G_lmC"] - (v["G_ml"] + v["G_l"]), "eq. (14)"),
-        ]
+        eqs = [Equation("G_lmC", v["G_lmC"] - (v["G_ml"] + v["G_l"]), "eq. (14)")]
+        rigid = self.effects.get("inertia") == "rigid"
         for d, sign in DIRECTIONS.items():
-            eqs.append(Equation(f"F_S_{d}", v[f"F_S_{d}"] - kr.unwinding_rope_force(v["F_nwl"], v["G_ls"],
-                                                                                      v["T_ls"], sign), "eq. (12)"))
-            eqs.append(Equation(f"F_C_{d}", v[f"F_C_{d}"] - kr.winding_rope_force(
-                v["F_nwl"], v["G_lmC"], v["T_m"], v["T_l"], sign), "eq. (13)"))
+            T_S, T_C = v["T_ls"], v["T_m"] + v["T_l"]
+            if rigid:   # the inertia of a ramp acts like a resistance: with the sign of travel
+                T_S, T_C = T_S + v["I_S"], T_C + v["I_C"]
+            eqs.append(Equation(f"F_S_{d}", v[f"F_S_{d}"] - kr.unwinding_rope_force(v["F_nwl"], v["G_ls"], T_S, sign),
+                                "eq. (12)" + (" + inertia" if rigid else "")))
+            eqs.append(Equation(f"F_C_{d}", v[f"F_C_{d}"] - kr.winding_rope_force(v["F_nwl"], v["G_lmC"], T_C, 0.0, sign),
+                                "eq. (13)" + (" + inertia" if rigid else "")))
         return eqs
 
     def invalid_mask(self, values):
@@ -170,11 +138,40 @@ class HaulageForces(Submodel):
                 f"({_TRAVEL[worst[4:]]}); a rope cannot, it is slack and the model no longer holds. "
                 f"Every rope stays taut with F_nwl > {need / 1e3:.6g} kN (now {values.get('F_nwl', 0.0) / 1e3:.6g} kN)"]
 
-    def rules(self, values):
-        if "L_ul" in values and "L_u" in values and values["L_ul"] > values["L_u"]:
-            return [f"L_ul = {values['L_ul']:g} m is beyond L_u = {values['L_u']:g} m: point A must lie on the "
-                    f"route, 0 <= L_ul <= L_u"]
-        return []
+
+define_effect(MODEL, "inertia", "none", "inertia of a haulage speeding up or slowing down (rigid rope)")
+
+
+@register(MODEL, "inertia", "none")
+class SteadyMotion(Submodel):
+    """Steady motion: no inertia force (the paper's forces)."""
+
+    description = "steady motion: no inertia force"
+
+
+@register(MODEL, "inertia", "rigid")
+class RigidInertia(Submodel):
+    """A haulage speeding up at ``a_h`` in its direction of travel (negative: slowing down), the rope
+    inextensible: the winding side gains (G_m + q_l L_u)/g·a_h, the unwinding side loses q_l L_u/g·a_h
+    (:mod:`ropemodel.papers.route`).  The trip (:mod:`ropemodel.trip`) and sizing through the ramps use it."""
+
+    description = "rigid-body inertia of the load and both rope sides at acceleration a_h"
+    citations = ("krauze2025",)
+    quantities = (
+        Q("a_h", "m/s^2", "acceleration of the haulage in its direction of travel (< 0: slowing down)", "m/s^2",
+          guess=0.5),
+        Q("I_C", "N", "inertia force of the winding side (load and winding rope), (G_m + q_l L_u)/g a_h", "kN",
+          equation="rigid-body inertia (not in the paper)"),
+        Q("I_S", "N", "inertia force of the unwinding rope, q_l L_u/g a_h", "kN",
+          equation="rigid-body inertia (not in the paper)"),
+    )
+
+    def equations(self, v):
+        return [
+            Equation("I_C", v["I_C"] - rt.winding_side_mass(v["G_m"], v["q_l"], v["L_u"]) * v["a_h"],
+                     "(G_m + q_l L_u)/g a_h"),
+            Equation("I_S", v["I_S"] - rt.unwinding_side_mass(v["q_l"], v["L_u"]) * v["a_h"], "q_l L_u/g a_h"),
+        ]
 
 
 @register(MODEL, "resistance", "case1")
@@ -185,6 +182,8 @@ class ResistanceCase1(Submodel):
     citations = ("krauze2025",)
 
     def equations(self, v):
+        if self.effects.get("route") == "segments":   # each segment carries its own coefficient
+            return []
         return [
             Equation("mu_pl1", v["mu_pl1"] - v["mu_pl"], "eq. (15)"),
             Equation("mu_pl2", v["mu_pl2"] - v["mu_pl"], "eq. (15)"),
@@ -212,7 +211,7 @@ class Elongation(Submodel):
     quantities = (
         Q("q_lw", "m/N", "unit elongation of the installed rope", "mm/kN", guess=5.8e-6,
           **usual(3e-7, 1.2e-3, "q_lw = L_u/(E C d^2) for routes of 100-3000 m and EN 12385-4 ropes of 8-60 mm "
-                                "(E C of 40-70 GPa); the paper's rope: 5.8 mm/kN"), **_pos),
+                                "(E C of 40-70 GPa); the paper's rope: 5.8 mm/kN"), **POSITIVE),
         Q("dF_nwl", "m", "elongation under the initial tension", "mm", equation=f"{SRC}, eq. (22)"),
         *per_direction("dF_C", "m", "elongation of the winding rope", "mm", equation=f"{SRC}, eq. (19)"),
         *per_direction("dF_S", "m", "elongation of the unwinding rope", "mm", equation=f"{SRC}, eq. (20)"),

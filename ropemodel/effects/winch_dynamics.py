@@ -70,7 +70,7 @@ from ropemodel.effects.base import (
     positive_number,
     register,
 )
-from ropemodel.effects.winch import D_DRUM, STROKE
+from ropemodel.effects.winch import D_DRUM, STROKE, X_M
 from ropemodel.errors import InputError
 from ropemodel.quantity import Quantity
 
@@ -107,7 +107,7 @@ _pos = dict(low=0.0, low_open=True, positive=True)
 DYNAMIC = (
     Quantity("t_ramp", "s", "duration of the drive's linear speed ramp", "s", guess=5.0, **_pos),
     Quantity("t_end", "s", "end of the simulated transient", "s", guess=60.0, **_pos),
-    Quantity("x_m", "m", "distance of the load from the drive along the winding rope", "m", guess=1000.0, **_pos),
+    X_M,
     Quantity("v_eps", "m/s", "speed scale of the smoothed Coulomb resistance tanh(v/v_eps)", "m/s",
              default=0.01, warn_high=0.1, guess=0.01, **_pos),
 )
