@@ -107,17 +107,15 @@ def _refined(name, runs, rtol):
     level with err_l ≤ rtol gives x_{l+1}; none: err = inf."""
     x0, p = ca.MX.sym("x0"), ca.MX.sym("p", len(ode.PARAMS))
 
-    def level(l, prev):
-        x_next = runs[l + 1](x0, p)
+    def level(lv, prev):  # [x, err] of the first level from lv on that meets rtol (one switch per level)
+        x_next = runs[lv + 1](x0, p)
         err = ca.fabs(x_next - prev)
-        if l + 2 == len(runs):
-            return x_next, ca.if_else(err <= rtol, err, ca.inf)
-        deeper = level(l + 1, x_next)
-        ok = err <= rtol
-        return (ca.if_else(ok, x_next, deeper[0], True), ca.if_else(ok, err, deeper[1], True))
+        if lv + 2 == len(runs):
+            return ca.vertcat(x_next, ca.if_else(err <= rtol, err, ca.inf))
+        return ca.if_else(err <= rtol, ca.vertcat(x_next, err), level(lv + 1, x_next), True)
 
-    xf, err = level(0, runs[0](x0, p))
-    return ca.Function(name, [x0, p], [xf, err], ["x0", "p"], ["xf", "err"])
+    out = level(0, runs[0](x0, p))
+    return ca.Function(name, [x0, p], [out[0], out[1]], ["x0", "p"], ["xf", "err"])
 
 
 def _doubling(make, c, exponent):
