@@ -45,7 +45,7 @@ from ropemodel.papers import li_capstan as li
 ARGS = ("F_T", "mu", "EA", "R", "L", "alpha_0", "F_p")
 RTOL = 1e-7   # default relative error of δ to meet
 STEPS = 16    # default RK4 steps of the first level
-LEVELS = 6    # step doublings at most (16 → 2048 steps)
+LEVELS = 9    # step doublings at most (16 → 8192 steps)
 NEWTON_ITERATIONS = 3
 ALPHA_FLOOR = 1e-9  # [rad] floor of the wraps inside the integrand (outside the valid domain only)
 F_FLOOR = 1e-13     # [-] floor of F/F_p inside the integrand: finite 1/K when L = 0 at F = 0

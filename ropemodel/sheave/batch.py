@@ -15,6 +15,8 @@ from ropemodel.errors import SolveError
 from ropemodel.numerics.hajduk_integrators import CODEGEN, DEFAULT, RATIO_INPUTS, log_ratio_function
 from ropemodel.papers import hajduk1992 as hj
 
+#: points per call of the compiled map (padding the last block costs little)
+BLOCK = 64
 #: below this many points "auto" stays on the virtual machine (no C compile for a handful of points)
 COMPILE_MIN = 64
 
@@ -51,7 +53,8 @@ def ode_log_ratio(mu, alpha, q_R, k_R, q_T=0.0, k_T=1.0, beta=0.0, plugin=DEFAUL
     f = log_ratio_function(plugin, state, float(rtol))
     columns = {name: np.resize(c.ravel(), n) for name, c in zip(RATIO_INPUTS, cols)}
     try:
-        out = evaluate_columns(f, columns, {}, threads=int(parallel), backend=pick_backend(backend, n, plugin in CODEGEN))
+        out = evaluate_columns(f, columns, {}, threads=int(parallel), backend=pick_backend(backend, n, plugin in CODEGEN),
+                               block=BLOCK)
     except RuntimeError as exc:  # a SUNDIALS run that failed outright
         raise SolveError(f"the lining ODE ({plugin}) failed: {str(exc).splitlines()[-1]}") from None
     y, err = out["y"].reshape(shape), out["err"].reshape(shape)
