@@ -104,7 +104,8 @@ def test_published_jump_in_the_scene(scene):
 def test_torque_and_force_scenes_agree(scene):
     p = scene.parameters
     torque = rm.from_dict({"scene": {"model": "capstan"}, "effects": {"load": "torque"},
-                           "parameters": {**{k: v for k, v in p.items() if k != "F_T"}, "T": 2 * p["R"] * 37.0}}, bare="si")
+                           "parameters": {**{k: v for k, v in p.items() if k != "F_T"}, "T": 2 * p["R"] * 37.0},
+                           "numerics": dict(scene.numerics)}, bare="si")
     a = rm.run(scene.with_values({"F_T": 37.0})).to_dict()
     b = rm.run(torque).to_dict()
     for k in KEYS:

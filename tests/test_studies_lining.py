@@ -1,4 +1,4 @@
-"""The lined-sheave studies run in --fast mode and their results hold their physics."""
+"""The lined-sheave studies run in --fast mode and their results hold their physics and claims."""
 
 from __future__ import annotations
 
@@ -18,10 +18,11 @@ def test_hajduk_fig5_fast(tmp_path):
 
 
 def test_lining_accuracy_fast(tmp_path):
+    """README claims: the default ODE path meets rtol 1e-7 and is >= 10x faster per point than the cheapest
+    scipy solve_ivp (plain numpy right side) at least as accurate; asserted with margin as >= 5x here."""
     mod = load_study("lining_accuracy")
     df = mod.main(tmp_path, fast=True)
     assert (tmp_path / "lining_accuracy.csv").exists() and (tmp_path / "lining_accuracy.png").exists()
-    ours = df[df["method"].str.startswith("ropemodel")]
-    assert (ours["failures"] == 0).all() and np.isfinite(ours["max rel. error"]).all()
-    s = mod.summary(df)
-    assert s.iloc[0]["max rel. error"] < 1e-6
+    assert df.iloc[0]["max rel. error"] <= 1e-7 and np.isfinite(df["time per point [s]"]).all()
+    s = mod.summary(df).iloc[0]
+    assert s["peer time / ropemodel time"] >= 5.0, s

@@ -5,14 +5,14 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ropemodel.numerics.capstan_rotation import check_wrap
+from ropemodel.numerics.capstan_rotation import RTOL, STEPS, check_wrap
 from ropemodel.errors import InputError, SolveError
 from ropemodel.problem import Problem
 from ropemodel.units import label, to_si
 
 #: columns of a load curve, in this order (the load first)
 CURVE_OUTPUTS = ("T", "K", "K_ti", "K_sl", "delta", "delta_alpha", "alpha_1", "alpha_2", "theta_s1", "theta_s2",
-                 "regime")
+                 "regime", "delta_error")
 
 
 def load_curve(scene, F_max, n: int = 201, F_min=0.0, display: bool = False) -> pd.DataFrame:
@@ -47,7 +47,8 @@ def load_curve(scene, F_max, n: int = 201, F_min=0.0, display: bool = False) -> 
     last = int(np.argmin(values["alpha_2"]))
     if values["alpha_2"][last] <= 0:
         check_wrap(F[last], values["delta"][last], p["mu"], p["EA"], p["R"], p["L"], p["alpha_0"], p["F_p"],
-                   scene.effects["stiffness"], scene.numerics.get("steps", 32), scene.numerics.get("sharpness", 30.0))
+                   scene.effects["stiffness"], scene.numerics.get("steps", STEPS), scene.numerics.get("sharpness", 30.0),
+                   scene.numerics.get("rtol", RTOL))
     q = scene.built.quantities
     data = {}
     for name in ("F_T",) + CURVE_OUTPUTS:

@@ -26,7 +26,7 @@ import casadi as ca
 import numpy as np
 import pandas as pd
 
-from ropemodel.numerics.capstan_rotation import ARGS, rotation_function
+from ropemodel.numerics.capstan_rotation import ARGS, RTOL, STEPS, rotation_function
 from ropemodel.errors import InputError, SolveError
 from ropemodel.units import factor
 
@@ -148,7 +148,8 @@ def identify(scene, data, fit=("mu", "EA"), sigma: float | None = None, variant:
     if n <= k:
         raise InputError(f"{n} data points cannot determine {k} parameters")
     variant = variant or scene.effects["stiffness"]
-    fun = rotation_function(variant, scene.numerics.get("steps", 32), scene.numerics.get("sharpness", 30.0))
+    fun = rotation_function(variant, scene.numerics.get("steps", STEPS), scene.numerics.get("sharpness", 30.0),
+                            scene.numerics.get("rtol", RTOL))
     theta0 = np.array([p0[name] for name in fit])
     if np.any(theta0 <= 0):
         raise InputError("starting values (the scene's) of fitted parameters must be > 0")
@@ -156,7 +157,7 @@ def identify(scene, data, fit=("mu", "EA"), sigma: float | None = None, variant:
     theta = ca.exp(x) * ca.DM(theta0)
     env = {name: ca.MX(p0[name]) for name in ARGS[1:]}
     env.update({name: theta[j] for j, name in enumerate(fit)})
-    delta = fun.map(n, "thread", 2)(ca.DM(F).T, *[env[a] for a in ARGS[1:]])
+    delta = fun.map(n, "thread", 2)(ca.DM(F).T, *[env[a] for a in ARGS[1:]])[0]
     pred = (delta / env["R"]).T
     y_scale = max(float(np.sqrt(np.mean(meas ** 2))), 1e-300)
     r = (pred - ca.DM(meas)) / y_scale

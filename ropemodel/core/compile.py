@@ -16,7 +16,9 @@ knowns and of the blocks before it:
   and makes the lining's ``ln s + c s = μα`` convex and monotone.
 
 When no block is implicit and no call equation is used, the Function is expanded
-to SX (fastest for sweeps).  The rootfinder is differentiable (implicit function
+to SX (fastest for sweeps); otherwise common subexpressions of the MX graph are merged
+(``ca.cse``), so call equations that are outputs of one Function (e.g. a quantity and
+its error estimate, each wrapped ``always_inline``) evaluate that Function once.  The rootfinder is differentiable (implicit function
 theorem), so sensitivities of inverse solves come out of the same Function.
 """
 
@@ -64,7 +66,11 @@ def compile_solver(model, structure: Structure, guesses: dict[str, float] | None
                 out = _newton(model, block, ca.Function(f"res{b}", [x, p], [res]), deps, guesses, b)(p_val)
         for k, u in enumerate(block.unknowns):
             value[u] = out[k]
-    fun = ca.Function(name, [value[k] for k in structure.knowns], [value[u] for u in structure.unknowns],
+    outputs = [value[u] for u in structure.unknowns]
+    if not expandable:
+        # identical calls (two call equations slicing one integrator, inlined) are evaluated once
+        outputs = ca.cse(outputs)
+    fun = ca.Function(name, [value[k] for k in structure.knowns], outputs,
                       list(structure.knowns), list(structure.unknowns))
     return fun.expand() if expandable else fun
 

@@ -56,7 +56,9 @@ class Job:
     function: one scalar input per name in ``varied`` then per constant, scalar outputs.
     varied: names of the inputs given as arrays (the first inputs of ``function``).
     constants: SI values of the inputs that do not vary (passed at each call; not part of ``key``).
-    backend: ``"auto"``, ``"casadi"`` or ``"compiled"``; threads: threads per chunk.
+    backend: ``"auto"``, ``"casadi"`` or ``"compiled"``; threads: threads per chunk;
+    block: points per call of the compiled map (the last block is padded with copies of a point:
+    keep it small for expensive Functions, such as error-controlled integrators).
     """
 
     function: ca.Function
@@ -64,11 +66,12 @@ class Job:
     constants: dict[str, float]
     backend: str = "auto"
     threads: int = 1
+    block: int = BLOCK
 
     @cached_property
     def key(self) -> str:
         h = hashlib.sha256(self.function.serialize().encode())
-        h.update(repr((self.varied, sorted(self.constants), self.backend, self.threads)).encode())
+        h.update(repr((self.varied, sorted(self.constants), self.backend, self.threads, self.block)).encode())
         return h.hexdigest()
 
     def __call__(self, inputs: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
@@ -110,7 +113,7 @@ def _make(job: Job):
         backend = "compiled" if fun.is_a("SXFunction") and compiler() else "casadi"
     if backend == "compiled":
         try:
-            return _Compiled(fun, n_var, job.threads)
+            return _Compiled(fun, n_var, job.threads, job.block)
         except (OSError, RuntimeError, subprocess.CalledProcessError) as exc:
             if job.backend == "compiled":
                 raise InputError(f"backend 'compiled' is not available: {exc}") from None
@@ -151,11 +154,11 @@ class _Mapped:
 class _Compiled:
     """The mapped Function as C, compiled and called through ctypes on numpy buffers."""
 
-    def __init__(self, fun, n_var, threads):
-        self.n_var, self.threads = n_var, max(1, threads)
+    def __init__(self, fun, n_var, threads, block=BLOCK):
+        self.n_var, self.threads, self.block = n_var, max(1, threads), int(block)
         self.names = fun.name_out()
         reduce_in = list(range(n_var, fun.n_in()))
-        fm = fun.map("eval_block", "serial", BLOCK, reduce_in, [])
+        fm = fun.map("eval_block", "serial", self.block, reduce_in, [])
         cg = ca.CodeGenerator("eval_block.c", {"with_header": False})
         cg.add(fm)
         code = cg.dump()
@@ -177,20 +180,20 @@ class _Compiled:
     def _block(self, ins, const, out, b):
         P = ctypes.POINTER(ctypes.c_double)
         arg, res, iw, w = self._work()
-        s = b * BLOCK
+        s = b * self.block
         for i, x in enumerate(ins):
-            arg[i] = x[s:s + BLOCK].ctypes.data_as(P)
+            arg[i] = x[s:s + self.block].ctypes.data_as(P)
         for i, c in enumerate(const):
             arg[self.n_var + i] = c.ctypes.data_as(P)
         for j in range(out.shape[0]):
-            res[j] = out[j, s:s + BLOCK].ctypes.data_as(P)
+            res[j] = out[j, s:s + self.block].ctypes.data_as(P)
         if self.entry(arg, res, iw, w.ctypes.data_as(P), 0):
             raise SolveError("the compiled function failed")
 
     def __call__(self, inputs, n, const):
         const = [np.array([c], dtype=float) for c in const]
-        blocks = -(-n // BLOCK)
-        m = blocks * BLOCK
+        blocks = -(-n // self.block)
+        m = blocks * self.block
         ins = []
         for v in inputs:
             x = np.empty(m)
@@ -243,12 +246,13 @@ def reordered(function: ca.Function, order, outputs=None) -> ca.Function:
 
 
 def evaluate_columns(function: ca.Function, columns: dict, constants: dict, threads: int = 1,
-                     backend: str = "auto", chunk: int = 65536) -> dict[str, np.ndarray]:
+                     backend: str = "auto", chunk: int = 65536, block: int = BLOCK) -> dict[str, np.ndarray]:
     """Every output of ``function`` at many points, in chunks: ``columns`` name → SI array (all one
     length) vary, ``constants`` name → SI float do not; together they name every input.
 
     The same engine as a sweep (compiled once per process, threads, bounded memory), without
-    validation or files: a drop-in body for ``Problem.evaluate``.
+    validation or files: a drop-in body for ``Problem.evaluate``.  ``block``: points per call of
+    the compiled map (:class:`Job`).
     """
     columns = {k: np.ascontiguousarray(v, dtype=float).ravel() for k, v in columns.items()}
     n_points = len(next(iter(columns.values()))) if columns else 1
@@ -266,7 +270,7 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     if missing:
         raise InputError(f"no value for {', '.join(missing)}")
     fun = reordered(function, order)
-    job = Job(fun, list(columns), constants, backend=backend, threads=threads)
+    job = Job(fun, list(columns), constants, backend=backend, threads=threads, block=block)
     out = {o: np.empty(n) for o in fun.name_out()}
     for s in range(0, n, chunk):
         e = min(n, s + chunk)

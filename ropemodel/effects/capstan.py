@@ -31,17 +31,25 @@ regime meaning
 6      completed case: F_T ≥ F_p with the tight side not yet saturated (large wraps)
 ====== ==========================================================================
 
-``[numerics]``: ``steps`` (RK4 steps of the rotation, default 32), ``sharpness`` (smooth law, default 30).
+``[numerics]``: ``rtol`` (relative error of the rotation δ to meet, default 1e-7), ``steps`` (RK4 steps
+of the rotation's first level, doubled until the error estimate meets rtol; default 16),
+``sharpness`` (smooth law, default 30).  Output ``delta_error`` is the estimated relative error
+of δ (step doubling, :func:`ropemodel.numerics.capstan_rotation.rotation_function`); a point
+that cannot meet rtol is a :class:`~ropemodel.errors.SolveError`.  Documented range, tested on
+10⁴ random points against an independent integration: μ ≤ 1, α0 ≤ 40 rad, 0 ≤ F_T ≤ 2F_p,
+EA 10³–10⁷ N, R 0.01–1 m, L 0–10 m, F_p 1–10⁴ N, except loads that unwrap the slack side.
 """
 
 from __future__ import annotations
 
 import math
 
+import casadi as ca
+
 from ropemodel.numerics.capstan_laws import LAWS, regime_number
-from ropemodel.numerics.capstan_rotation import ARGS, check_wrap, rotation_function
+from ropemodel.numerics.capstan_rotation import ARGS, RTOL, STEPS, check_wrap, rotation_function
 from ropemodel.effects.base import Equation, Submodel, define_effect, define_numerics, positive_number, register
-from ropemodel.errors import InputError
+from ropemodel.errors import InputError, SolveError
 from ropemodel.papers import li_capstan as li
 from ropemodel.quantity import Quantity
 
@@ -60,7 +68,9 @@ def _steps(key, value):
     return value
 
 
-define_numerics(MODEL, "steps", 32, "RK4 steps in ln(1 + F/F_p) for the rotation (switches are located)", _steps)
+define_numerics(MODEL, "steps", STEPS, "RK4 steps in ln(1 + F/F_p) of the rotation's first level (doubled until "
+                "rtol is met; switches are located)", _steps)
+define_numerics(MODEL, "rtol", RTOL, "relative error of the rotation delta to meet", positive_number(1e-12, 1e-2))
 define_numerics(MODEL, "sharpness", 30.0, "sharpness s of the smooth law's logistic switches (width ~ F_p/s)",
                 positive_number(0.0, 1e6))
 
@@ -93,6 +103,8 @@ OUTPUTS = (
     Q("K_sl", "N/m", "stiffness of the slack side", "N/mm", "eq. (25), (26)"),
     Q("K", "N/m", "equivalent stiffness of the drive", "N/mm", "eq. (23), (26)"),
     Q("regime", "1", "slip regime (1-6, see ropemodel.effects.capstan)", None, "eq. (26)"),
+    Quantity("delta_error", "1", "estimated relative error of delta (step doubling of the event-located RK4; "
+             "at most [numerics] rtol)", equation="ropemodel.numerics.capstan_rotation: |delta_2N - delta_N|/delta_2N"),
 )
 
 
@@ -102,8 +114,23 @@ class _Stiffness(Submodel):
     citations = ("li_capstan",)
     quantities = PARAMS + (F_T_PARAM,) + OUTPUTS
 
+    def _settings(self):
+        o = self.options
+        return o.get("steps", STEPS), float(o.get("sharpness", 30.0)), float(o.get("rtol", RTOL))
+
     def _rotation(self):
-        return rotation_function(self.variant, self.options.get("steps", 32), self.options.get("sharpness", 30.0))
+        return rotation_function(self.variant, *self._settings())
+
+    def _rotation_equations(self):
+        """delta and delta_error as two call equations of one rotation Function (inlined: the core merges them)."""
+        fun = self._rotation()
+        src = ("eq. (11): delta = integral of dF/K(F, alpha(delta))", "error estimate of the rotation (step doubling)")
+        eqs = []
+        for k, (out, text) in enumerate(zip(("delta", "delta_error"), src)):
+            part = ca.Function(f"capstan_{out}", fun.mx_in(), [fun.call(fun.mx_in())[k]], fun.name_in(), [out],
+                               {"always_inline": True})
+            eqs.append(Equation.from_call(out, part, ARGS, text))
+        return eqs
 
     def equations(self, v):
         law = LAWS[self.variant]
@@ -111,8 +138,7 @@ class _Stiffness(Submodel):
         a1, a2 = v["alpha_1"], v["alpha_2"]
         w1, w2 = li.wrap_angles(a0, v["delta"], R)
         k_ti, k_sl = law.parts(F, F_p, mu, EA, R, L, a1, a2, self.options.get("sharpness", 30.0))
-        return [
-            Equation.from_call("delta", self._rotation(), ARGS, "eq. (11): delta = integral of dF/K(F, alpha(delta))"),
+        return self._rotation_equations() + [
             Equation("delta_alpha", v["delta_alpha"] - v["delta"] / R, "eq. (13), (19): rotation delta/R"),
             Equation("alpha_1", a1 - w1, "eq. (13)"),
             Equation("alpha_2", a2 - w2, "eq. (19)"),
@@ -138,9 +164,15 @@ class _Stiffness(Submodel):
         if L == 0 and F == 0:
             raise InputError("L = 0 with F_T = 0: the drive has no compliant length and K = 2EA/L is infinite; "
                              "give a free length L > 0 or a load F_T > 0")
-        delta = float(self._rotation()(F, mu, EA, R, L, a0, F_p))
-        check_wrap(F, delta, mu, EA, R, L, a0, F_p, self.variant, self.options.get("steps", 32),
-                   self.options.get("sharpness", 30.0))
+        delta, err = (float(v) for v in self._rotation()(F, mu, EA, R, L, a0, F_p))
+        steps, sharpness, rtol = self._settings()
+        if not math.isfinite(delta) or a0 - delta / R <= 0:
+            # unwrapped (the integrand is not physical past α2 = 0): names the largest valid load
+            check_wrap(F, delta if math.isfinite(delta) else math.inf, mu, EA, R, L, a0, F_p, self.variant,
+                       steps, sharpness, rtol)
+        if not math.isfinite(err):
+            raise SolveError(f"the capstan rotation cannot meet rtol = {rtol:g} at F_T = {F:.6g} N (step doubling "
+                             f"up to the limit); loosen [numerics] rtol")
 
 
 @register(MODEL, "stiffness", "li")

@@ -42,6 +42,9 @@ from ropemodel.errors import InputError
 from ropemodel.papers import li_capstan as li
 
 ARGS = ("F_T", "mu", "EA", "R", "L", "alpha_0", "F_p")
+RTOL = 1e-7   # default relative error of δ to meet
+STEPS = 16    # default RK4 steps of the first level
+LEVELS = 9    # step doublings at most (16 → 8192 steps)
 NEWTON_ITERATIONS = 3
 ALPHA_FLOOR = 1e-9  # [rad] floor of the wraps inside the integrand (outside the valid domain only)
 F_FLOOR = 1e-13     # [-] floor of F/F_p inside the integrand: finite 1/K when L = 0 at F = 0
@@ -141,40 +144,81 @@ def _regular_step(variant: str, sharpness: float) -> ca.Function:
     return ca.Function("capstan_step", [u0, d0, h, *p], [d1])
 
 
-@lru_cache(maxsize=32)
-def rotation_function(variant: str = "li", steps: int = 32, sharpness: float = 30.0) -> ca.Function:
-    """CasADi Function ``capstan_delta(F_T, mu, EA, R, L, alpha_0, F_p) -> delta`` [m], event-located RK4.
-
-    variant: a key of :data:`ropemodel.numerics.capstan_laws.LAWS`; steps: RK4 steps in u = ln(1 + F/F_p);
-    sharpness [-]: of the ``smooth`` law.  Inputs in SI: F_T [N] ≥ 0, mu [-], EA [N], R [m], L [m],
-    alpha_0 [rad], F_p [N].  Output δ [m], the cable's displacement at the capstan rim (Δα = δ/R).
-    """
+@lru_cache(maxsize=8)
+def _grid_step(variant: str, sharpness: float) -> ca.Function:
+    """One step ([u, δ], h, params) → [u + h, δ'] (event-located for the crisp laws); shared by every level."""
     law = LAWS[variant]
-    sym = {n: ca.SX.sym(n) for n in ARGS}
-    p = tuple(sym[n] for n in ARGS[1:])
-    F_p = sym["F_p"]
-    U = ca.log1p(sym["F_T"] / F_p)
-    delta = ca.SX(0.0)
+    z, h = ca.SX.sym("z", 2), ca.SX.sym("h")
+    p = [ca.SX.sym(n_) for n_ in ARGS[1:]]
     if law.crisp:
-        h = U / steps
-        step = _regular_step(variant, sharpness)
-        for i in range(steps):
-            delta = step(i * h, delta, h, *p)
+        d1 = _regular_step(variant, sharpness)(z[0], z[1], h, *p)
     else:
-        n = max(steps, math.ceil(6 * sharpness))
-        h = U / n
-        rate = lambda u, d: _rate(law, sharpness, u, d, None, p)  # noqa: E731
-        for i in range(n):
-            delta, _ = _rk4(rate, i * h, delta, h)
-    return ca.Function("capstan_delta", [sym[n] for n in ARGS], [delta], list(ARGS), ["delta"])
+        d1, _ = _rk4(lambda u, d: _rate(law, sharpness, u, d, None, p), z[0], z[1], h)
+    return ca.Function(f"capstan_step_{variant}", [z, h, ca.vertcat(*p)], [ca.vertcat(z[0] + h, d1)])
 
 
-def rotation(F_T, mu, EA, R, L, alpha_0, F_p, variant="li", steps=32, sharpness=30.0):
-    """δ [m] at load(s) F_T [N] (float or array); the other inputs SI floats.  Δα = δ/R [rad]."""
-    fun = rotation_function(variant, steps, sharpness)
+def grid_function(variant: str, sharpness: float, n: int) -> ca.Function:
+    """δ(F_T) with n equal steps in u: a CasADi loop (mapaccum) of one step."""
+    loop = _grid_step(variant, sharpness).mapaccum(f"capstan_steps_{n}", n, [0], [0])
+    sym = [ca.MX.sym(a) for a in ARGS]
+    U = ca.log1p(sym[0] / sym[-1])
+    out = loop(ca.vertcat(0.0, 0.0), U / n, ca.vertcat(*sym[1:]))[1, -1]
+    return ca.Function(f"capstan_delta_{n}", sym, [out], list(ARGS), ["delta"])
+
+
+def initial_steps(variant: str, steps: int, sharpness: float) -> int:
+    """Steps of the first level: ``steps``, and for the smooth law enough to resolve its logistic
+    transitions (width ≈ 1/sharpness in u): max(steps, 6·sharpness)."""
+    return steps if LAWS[variant].crisp else max(steps, math.ceil(6 * sharpness))
+
+
+@lru_cache(maxsize=32)
+def rotation_function(variant: str = "li", steps: int = STEPS, sharpness: float = 30.0,
+                      rtol: float = RTOL) -> ca.Function:
+    """CasADi Function ``capstan_delta(F_T, mu, EA, R, L, alpha_0, F_p) -> (delta, error)``, error-controlled.
+
+    Event-located RK4 (module doc) with N = ``steps`` (smooth law: :func:`initial_steps`), then 2N,
+    4N, … (step doubling, at most :data:`LEVELS` doublings).  The error estimate is
+    |δ_2N − δ_N|/|δ_2N|, the relative error of the coarser run: with the error ∝ h⁴ (the located
+    switches keep the order) it over-estimates that of δ_2N, which is returned, about 15-fold.
+    (Richardson's /15 estimate of δ_2N's own error was measured to fall below the true error on
+    random drives, so it is not used.)  The first level whose estimate is ≤ ``rtol`` gives the
+    result; if none does, both outputs are NaN (callers report :class:`~ropemodel.errors.SolveError`).
+
+    variant: a key of :data:`ropemodel.numerics.capstan_laws.LAWS`; steps: RK4 steps in u = ln(1 + F/F_p)
+    of the first level; sharpness [-]: of the ``smooth`` law; rtol [-]: relative error of δ to meet.
+    Inputs in SI: F_T [N] ≥ 0, mu [-], EA [N], R [m], L [m], alpha_0 [rad], F_p [N].  Outputs: δ [m],
+    the cable's displacement at the capstan rim (Δα = δ/R), and its estimated relative error [-].
+    """
+    n0 = initial_steps(variant, steps, sharpness)
+    runs = [grid_function(variant, sharpness, n0 * 2**lv) for lv in range(LEVELS + 1)]
+    sym = [ca.MX.sym(a) for a in ARGS]
+
+    def level(lv, prev):  # [δ, err] of the first level from lv on that meets rtol (one switch per level)
+        fine = runs[lv + 1](*sym)
+        err = ca.fabs(fine - prev) / ca.fmax(ca.fabs(fine), 1e-300)
+        here = ca.vertcat(fine, err)
+        ok = err <= rtol
+        if lv + 2 == len(runs):
+            return ca.if_else(ok, here, ca.DM([math.nan, math.nan]))
+        return ca.if_else(ok, here, level(lv + 1, fine), True)
+
+    out = level(0, runs[0](*sym))
+    return ca.Function("capstan_delta", sym, [out[0], out[1]], list(ARGS), ["delta", "error"])
+
+
+def rotation(F_T, mu, EA, R, L, alpha_0, F_p, variant="li", steps=STEPS, sharpness=30.0, rtol=RTOL,
+             with_error=False):
+    """δ [m] at load(s) F_T [N] (float or array); the other inputs SI floats.  Δα = δ/R [rad].
+
+    With ``with_error``: (δ, estimated relative error).  NaN where ``rtol`` cannot be met.
+    """
+    fun = rotation_function(variant, steps, sharpness, rtol)
     F = np.atleast_1d(np.asarray(F_T, dtype=float))
-    out = np.asarray(fun.map(F.size)(F.reshape(1, -1), mu, EA, R, L, alpha_0, F_p)).ravel()
-    return out if np.ndim(F_T) else float(out[0])
+    d, e = (np.asarray(v).ravel() for v in fun.map(F.size)(F.reshape(1, -1), mu, EA, R, L, alpha_0, F_p))
+    if not np.ndim(F_T):
+        d, e = float(d[0]), float(e[0])
+    return (d, e) if with_error else d
 
 
 def regime1_rotation(F_T, mu, EA, R, L, F_p):
@@ -202,12 +246,13 @@ def regime1_rotation(F_T, mu, EA, R, L, F_p):
     return (c0 * F + A * np.log1p(-F / r1) + B * np.log1p(-F / r2)) / (2.0 * EA)
 
 
-def unwrap_load(mu, EA, R, L, alpha_0, F_p, variant="li", steps=32, sharpness=30.0) -> float:
+def unwrap_load(mu, EA, R, L, alpha_0, F_p, variant="li", steps=STEPS, sharpness=30.0, rtol=RTOL) -> float:
     """The load F_T [N] at which the rotation reaches α0 (slack side unwrapped, α2 = 0)."""
     from scipy.optimize import brentq
 
     def excess(F):
-        return rotation(F, mu, EA, R, L, alpha_0, F_p, variant, steps, sharpness) / R - alpha_0
+        d = rotation(F, mu, EA, R, L, alpha_0, F_p, variant, steps, sharpness, rtol)
+        return d / R - alpha_0 if math.isfinite(d) else 1.0  # past the unwrap the integrand is not physical
 
     hi = max(F_p, 1.0)
     while excess(hi) < 0:
@@ -217,11 +262,12 @@ def unwrap_load(mu, EA, R, L, alpha_0, F_p, variant="li", steps=32, sharpness=30
     return brentq(excess, 0.0, hi, xtol=1e-12 * hi, rtol=1e-12)
 
 
-def check_wrap(F_T, delta, mu, EA, R, L, alpha_0, F_p, variant="li", steps=32, sharpness=30.0) -> None:
+def check_wrap(F_T, delta, mu, EA, R, L, alpha_0, F_p, variant="li", steps=STEPS, sharpness=30.0,
+               rtol=RTOL) -> None:
     """:class:`InputError` if the rotation δ/R at load F_T has unwrapped the slack side (α2 ≤ 0)."""
     if alpha_0 - delta / R > 0:
         return
-    limit = unwrap_load(mu, EA, R, L, alpha_0, F_p, variant, steps, sharpness)
+    limit = unwrap_load(mu, EA, R, L, alpha_0, F_p, variant, steps, sharpness, rtol)
     raise InputError(
         f"F_T = {F_T:.6g} N rotates the capstan by {math.degrees(delta / R):.4g} deg, at least the initial "
         f"wrap alpha_0 = {math.degrees(alpha_0):.4g} deg: the slack side unwraps (alpha_2 <= 0) and the model "

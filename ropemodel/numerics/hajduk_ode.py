@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import casadi as ca
 
-from ropemodel._math import exp, expm1, fmax, fmin, log1p
+from ropemodel._math import exp, expm1, fmax, fmin, if_else, log1p
 from ropemodel.papers import hajduk1992 as hj
 
 #: parameter vector of the right side, in order
@@ -44,8 +44,15 @@ KAPPA = 1e-12
 
 
 def friction(mu, beta, s):
-    """Friction coefficient at tension ratio s: μ/(1 + β s) [-] (β = 0: constant μ)."""
-    return mu / (1.0 + beta * s)
+    """Friction coefficient at tension ratio s: μ/(1 + β s) [-] (β = 0: constant μ).
+
+    β < 0 is unphysical, but a Newton iterate of an outer solve (e.g. for p_c) may visit it:
+    there μ(2 − 1/(1 − β s)) continues the law with equal value and slope at β = 0, stays in
+    [μ, 2μ) (no blow-up of the ODE) and keeps a derivative that leads Newton back.
+    """
+    physical = mu / (1.0 + fmax(beta, 0.0) * s)
+    continued = mu * (2.0 - 1.0 / (1.0 - fmin(beta, 0.0) * s))
+    return if_else(beta >= 0, physical, continued)
 
 
 def stretch(q_R, k_R, q_T, k_T, alpha_a, alpha_b):

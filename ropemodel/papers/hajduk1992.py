@@ -26,7 +26,7 @@ Limits handled as limits, not errors
 
 from __future__ import annotations
 
-from ropemodel._math import exp, expm1, fmax, if_else, log, log1p
+from ropemodel._math import exp, expm1, fabs, fmax, if_else, log, log1p
 
 #: exponent beyond which e^{-x} is treated as 0 (e^{-700} ≈ 1e-304)
 _XMAX = 700.0
@@ -159,6 +159,29 @@ def _log_ratio(mu_alpha, c):
         ce = c * exp(u)
         u = u - (u + ce - mu_alpha) / (1.0 + ce)
     return u
+
+
+#: rounding allowance of the closed form, in units of (1 + μα): a few ulps of the terms of eq. (19)
+ROUNDING = 8 * 2.0**-52
+
+
+def _log_ratio_error(mu_alpha, c):
+    """Estimate of the error of :func:`_log_ratio` [-]: the size of the next Newton step from its
+    result (Newton converges quadratically, so this bounds the remaining error) plus rounding."""
+    c = if_else(c < 0, 0.0 * c, c)
+    u = _log_ratio(mu_alpha, c)
+    ce = c * exp(u)
+    return fabs((u + ce - mu_alpha) / (1.0 + ce)) + ROUNDING * (1.0 + fabs(mu_alpha))
+
+
+def log_tension_ratio_error(mu, alpha, q_R, k_R, q_T=0.0, k_T=1.0):
+    """Estimated error of :func:`log_tension_ratio`, i.e. the relative error of S [-].
+
+    The next Newton step of eq. (19) from the returned ln s, plus a rounding allowance of
+    8 ulp·(1 + μα).  Arguments as :func:`log_tension_ratio`.
+    """
+    c = q_R * creep_factor(alpha, k_R) + q_T * creep_factor(alpha, k_T)
+    return _log_ratio_error(mu * alpha, c)
 
 
 def log_tension_ratio(mu, alpha, q_R, k_R, q_T=0.0, k_T=1.0):

@@ -65,11 +65,16 @@ def tight_slip_angle_limited(F_T, F_p, mu, alpha_1):
 def slack_slip_angle_limited(F_T, F_p, mu, alpha_2):
     """min(θ_s2, α2) [rad]: eq. (16) limited by the wrap as eq. (19) states.
 
-    Evaluated as −ln(1 − min(F_T/F_p, 1 − e^{−μα2}))/μ: finite for every F_T ≥ 0,
-    including F_T ≥ F_p where eq. (16) has no value (the slip zone is then the
-    whole slack wrap, θ = α2).  alpha_2 [rad] slack-side wrap angle, > 0.
+    Where F_T ≥ F_p(1 − e^{−μα2}) — in particular at and beyond F_T = F_p, where eq. (16)
+    has no value — the slip zone fills the slack wrap and the result is θ = α2 itself
+    (not eq. 16 at the switch load: with a long, grippy wrap 1 − e^{−μα2} rounds to 1
+    and ln(1 − 1) would be −∞).  Below, −ln(1 − F_T/F_p)/μ with F_T/F_p < 1.  Every branch
+    is finite with finite derivatives.  alpha_2 [rad] slack-side wrap angle, > 0.
     """
-    return -log1p(-fmin(F_T / F_p, -expm1(-mu * alpha_2))) / mu
+    x = F_T / F_p
+    saturated = x >= -expm1(-mu * alpha_2)
+    slipping = -log1p(-if_else(saturated, 0.0 * x, x)) / mu  # argument < 1 where it is selected
+    return if_else(saturated, alpha_2 + 0.0 * x, slipping)
 
 
 def tight_switch_load(F_p, mu, alpha_1):
