@@ -214,20 +214,23 @@ def _verified(tmp: Path, path: Path, rows: int, columns: list[str]) -> tuple[int
     return shape
 
 
-def write_atomic(path: Path, write, check=None):
-    """``write(tmp)`` writes the file, ``check(tmp)`` (if given) reads it back; then it is flushed and
-    renamed to ``path``.  Returns what ``check`` returned.  OSError propagates, the temporary file
-    removed."""
+def write_atomic(path: Path, write, check=None, durable: bool = True):
+    """``write(tmp)`` writes the file, ``check(tmp)`` (if given) reads it back; then it is renamed to
+    ``path``, flushed to disk first if ``durable`` (the output, so that a file reported written
+    survives a power cut; not the bookkeeping files, whose loss only costs a recompute).  Returns
+    what ``check`` returned.  OSError propagates, the temporary file removed."""
     tmp = _tmp_of(path)
     try:
         write(tmp)
         checked = check(tmp) if check is not None else None
-        _fsync(tmp)
+        if durable:
+            _fsync(tmp)
         os.replace(tmp, path)
     except BaseException:
         _remove(tmp)
         raise
-    _fsync(path.parent)
+    if durable:
+        _fsync(path.parent)
     return checked
 
 
@@ -334,7 +337,7 @@ class ChunkStore:
     def _start(self) -> None:
         self.parts.mkdir()
         write_atomic(self.parts / "manifest.json",
-                     lambda tmp: tmp.write_text(json.dumps(self.signature, indent=1, sort_keys=True)))
+                     lambda tmp: tmp.write_text(json.dumps(self.signature, indent=1, sort_keys=True)), durable=False)
 
     @property
     def resumable(self) -> bool:
@@ -414,7 +417,7 @@ class ChunkStore:
                 side = {"signature": self.signature, "rows": rows,
                         "bytes": self.path.stat().st_size, "sha256": _sha256(self.path)}
                 write_atomic(self.path.with_name(self.path.name + SIDECAR),
-                             lambda tmp: tmp.write_text(json.dumps(side, indent=1, sort_keys=True)))
+                             lambda tmp: tmp.write_text(json.dumps(side, indent=1, sort_keys=True)), durable=False)
         except OSError as exc:
             raise self._failed(exc, self.path) from None
         _remove(self.parts)
