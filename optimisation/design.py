@@ -3,7 +3,10 @@ sensitivities — or, when no design exists, which checks conflict and by how mu
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
+
+import numpy as np
 
 
 from optimisation import discrete
@@ -35,6 +38,7 @@ class Design:
     margins: dict[str, float] = field(default_factory=dict)     # at the recommended design
     margins_continuous: dict[str, float] = field(default_factory=dict)
     power: dict[str, float] = field(default_factory=dict)       # N_p_up, N_p_down at the recommended design
+    least_drum: float | None = None    # D_ratio_min * d [m] when the scene gives no drum diameter
     sensitivities: dict[str, dict[str, float]] = field(default_factory=dict)
     method: str = DEFAULT_DISCRETE
     diagnosis: Diagnosis | None = None
@@ -53,19 +57,47 @@ class Design:
         out["active"] = self.active
         out["margins"] = self.margins
         out.update(self.power)
+        if self.least_drum is not None:
+            out["D_min"] = self.least_drum
         out["sensitivities"] = self.sensitivities
         if self.diagnosis is not None and not self.diagnosis.feasible:
             out["infeasible"] = {"conflicting": self.diagnosis.conflicting,
                                  "max_violation_scaled": self.diagnosis.max_violation,
                                  "relax_alone": self.diagnosis.alone, "elastic": self.diagnosis.elastic,
-                                 "where": self.diagnosis.where.strip()}
+                                 "where": self.diagnosis.where.strip(), "needs": self.diagnosis.needs}
         out["message"] = self.message
         return out
 
 
-def solve_best(problem: SizingProblem, p=None) -> Solution:
-    """IPOPT from the scene's design; if that fails, from a few other starts (mid-catalogue sizes)."""
-    sol = solve_continuous(problem, p=p)
+#: steps the recommended F_nwl [N] and stroke [m] are rounded up to, coarsest first
+ROUNDING = ((100.0, 1e-3), (10.0, 1e-4), (1.0, 1e-5))
+
+
+def rounded_up(problem: SizingProblem, xs) -> np.ndarray:
+    """The design rounded up to practical steps (F_nwl to 0.1 kN, then the least stroke at that F_nwl to
+    1 mm; finer steps if needed) so that every check still holds exactly at the rounded, printed values;
+    else the design unrounded.
+
+    Rounding F_nwl up is the safe side of the slip and slack checks; the stroke is the least one for
+    the rounded F_nwl (stroke margin = stroke - dF, eq. 23), rounded up.  A coarser step is refused
+    when it breaks another check (e.g. the rope safety falls as F_nwl rises).
+    """
+    x = np.maximum(np.asarray(xs, dtype=float), 0.0)
+    d, F_nwl, stroke = problem.to_si(x).values()
+    for step_F, step_s in ROUNDING:
+        F = math.ceil(F_nwl / step_F - 1e-9) * step_F
+        margins = problem.margins(np.array([d, F, stroke]) / problem.x_scale)
+        need = stroke - min(v for k, v in margins.items() if k.startswith("stroke_margin"))
+        trial = np.array([d, F, math.ceil(need / step_s - 1e-9) * step_s]) / problem.x_scale
+        if min(problem.margins(trial).values()) >= 0.0:
+            return trial
+    return x
+
+
+def solve_best(problem: SizingProblem, p=None, x0=None) -> Solution:
+    """IPOPT from ``x0`` (default: the scene's design or a computed start); if that fails, from a few
+    other starts (mid-catalogue sizes)."""
+    sol = solve_continuous(problem, p=p, x0=x0)
     if sol.feasible:
         return sol
     for d0 in (0.02, 0.04, 0.06):
@@ -78,10 +110,32 @@ def solve_best(problem: SizingProblem, p=None) -> Solution:
 
 
 def size(scene: Scene, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
-    """Size the winch of ``scene`` (effects rope = "catalogue", checks = "design", a lining, power = "drive")."""
+    """Size the winch of ``scene``: the lightest catalogue rope, then the least pretension, then the least stroke.
+
+    Parameters
+    ----------
+    scene : Scene
+        A winch scene with a catalogue rope (``rope = "catalogue"`` or a construction such as
+        ``"6x36-IWRC"``).  It needs no starting design (d, F_nwl, stroke) and no power effect: the
+        design checks are switched on here, and the drive power is reported when ``v_pj`` is given.
+        Without a drum diameter ``D`` (rigid drum), the least drum, D_ratio_min·d, is a result.
+    method : {"next-size-up", "bonmin"}
+        How the catalogue diameter is chosen.
+    with_sensitivities : bool
+        Also compute ∂x*/∂p of the continuous optimum.
+
+    Returns
+    -------
+    Design
+        ``feasible`` with the catalogue design and its margins, or the reason no design exists.
+    """
     problem = SizingProblem(scene)
-    design = Design(scene, False, method=method, units=dict(problem.units))
+    design = Design(problem.scene, False, method=method, units=dict(problem.units))
     sol = solve_best(problem)
+    if not sol.feasible:   # confirm independently: every catalogue size, F_nwl and stroke found with d fixed
+        probe = discrete.next_size_up(problem, 0.0)
+        if probe.found:
+            sol = solve_best(problem, x0=probe.solution.xs)
     if not sol.feasible:
         design.diagnosis = diagnose(problem)
         if design.diagnosis.feasible:   # IPOPT failed on a feasible problem: say so, do not guess
@@ -117,12 +171,15 @@ def size(scene: Scene, method: str = DEFAULT_DISCRETE, with_sensitivities: bool 
         return design
     dsol = disc.solution
     design.feasible = True
-    design.design = problem.to_si(dsol.xs)
+    xs = rounded_up(problem, dsol.xs)
+    design.design = problem.to_si(xs)
     design.active = list(dsol.active) + [f"{VARIABLES[i]} {side} bound" for i, side in dsol.active_bounds
                                          if i != 0] + ["d (catalogue size)"]
-    design.margins = problem.margins(dsol.xs)
-    values = problem.evaluate(dsol.xs)
-    design.power = {k: values[k] for k in ("N_p_up", "N_p_down")}
+    design.margins = problem.margins(xs)
+    values = problem.evaluate(xs)
+    design.power = {k: values[k] for k in ("N_p_up", "N_p_down") if k in values}
+    if problem.least_drum:
+        design.least_drum = values["D"]
     design.message = "design found"
     if sol.lexicographic_ok is False:
         design.message += ("; warning: the rope mass alone is not optimal at this design (the pretension or "

@@ -100,7 +100,7 @@ def bonmin(problem: SizingProblem, p=None, catalogue=None, x0=None) -> DiscreteD
     f, g = sub(xs, problem.p)
     z = ca.vertcat(b, y)
     nlp = {"x": z, "p": problem.p, "f": f, "g": ca.vertcat(g, ca.sum1(b))}
-    opts = {"discrete": [True] * nk + [False, False], "print_time": False,
+    opts = {"discrete": [True] * nk + [False, False], "print_time": False, "show_eval_warnings": False,
             "bonmin.print_level": 0, "bonmin.bb_log_level": 0, "bonmin.nlp_log_level": 0,
             "bonmin.algorithm": "B-BB", "bonmin.integer_tolerance": 1e-9, "bonmin.time_limit": 120.0,
             "bonmin.node_limit": 2000, "bonmin.num_resolve_at_infeasibles": 0, "bonmin.num_resolve_at_node": 0,

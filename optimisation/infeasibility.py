@@ -12,18 +12,31 @@ same (scaled) margins g_i(x) >= 0 answer it:
    alone does not help.
 3. **elastic L1**: min Σ s_i s.t. g_i + s_i >= 0, s >= 0: the least total relaxation;
    its nonzero slacks are reported too.
+4. **in the user's terms**: for each conflicting check, the scene parameters that relax it
+   (:data:`REMEDIES`) are freed one at a time, and the NLP finds the value that just lets a design
+   exist: "needs D >= 1.26 m", "needs n_rope <= 4.1".
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import casadi as ca
 import numpy as np
 
 from optimisation.problem import SizingProblem
+from ropemodel.papers import en12385 as ropes
 
-OPTS = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes", "ipopt.max_iter": 1000}
+#: check → the scene parameters that relax it, and in which direction ("min": the least value that lets
+#: a design exist is asked for; "max": the largest)
+REMEDIES = {
+    "safety_margin": (("n_rope", "max"), ("rope_grade", "min")),
+    "slip_margin": (("n_slip", "max"), ("mu_d", "min"), ("alpha_d", "min")),
+    "slack_margin": (("F_S_min", "max"),),
+    "drum_margin": (("D", "min"), ("D_ratio_min", "max")),
+}
+OPTS = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False, "ipopt.sb": "yes", "ipopt.max_iter": 1000}
 TOL = 1e-7
 
 
@@ -38,11 +51,14 @@ class Diagnosis:
     elastic: dict[str, float] = field(default_factory=dict)        # nonzero L1 slacks (SI)
     margins_at_least_violation: dict[str, float] = field(default_factory=dict)
     where: str = ""
+    needs: list[str] = field(default_factory=list)    # "needs D >= 1.26 m": what would make a design exist
 
     def text(self, units: dict[str, str]) -> str:
         if self.feasible:
             return "a design meeting every check exists"
         lines = [f"no design meets every check{self.where}: these checks conflict: " + ", ".join(self.conflicting)]
+        if self.needs:
+            lines.append("  each of these alone makes a design exist: " + "; ".join(self.needs))
         for c in self.conflicting:
             r = self.alone.get(c)
             lines.append(f"  {c}: " + ("relaxing it alone is not enough" if r is None else
@@ -116,4 +132,66 @@ def diagnose(problem: SizingProblem, p=None, d_range=None, fix_d: float | None =
     elastic = {c: float(z3[3 + i] * problem.g_scale[i]) for i, c in enumerate(problem.constraints)
                if z3[3 + i] > 1e-6}
     where = f" at d = {fix_d * 1e3:g} mm" if fix_d is not None else ""
-    return Diagnosis(False, t_star, conflicting, alone, elastic, margins, where)
+    needs = remedies(problem, conflicting, p, lbx, ubx, z1[:3])
+    return Diagnosis(False, t_star, conflicting, alone, elastic, margins, where, needs)
+
+
+def remedies(problem: SizingProblem, conflicting, p, lbx, ubx, x0) -> list[str]:
+    """"NAME >= value" for each scene parameter that relaxes a conflicting check (:data:`REMEDIES`): the
+    parameter is freed (within its valid range) and, for each catalogue diameter in turn (d fixed: the
+    design must be a catalogue rope), the NLP finds the value at which a design just exists; the best
+    over the catalogue is named."""
+    q = problem.scene.built.quantities
+    gfun = ca.Function("g", [problem.xs, problem.p], [problem.g])
+    out = []
+    bases = list(dict.fromkeys(c.rsplit("_", 1)[0] if c.endswith(("_up", "_down")) else c for c in conflicting))
+    for base in bases:
+        for name, sense in REMEDIES.get(base, ()):
+            if name not in problem.params:
+                continue
+            found = []
+            for d in _diameters(lbx, ubx, problem):
+                lo, hi = lbx.copy(), ubx.copy()
+                lo[0] = hi[0] = d / problem.x_scale[0]
+                start = np.array([lo[0], *x0[1:]])
+                found.append(_free(problem, gfun, problem.params.index(name), sense, q[name], p, lo, hi, start))
+            found = [v for v in found if v is not None]
+            value = (min(found) if sense == "min" else max(found)) if found else None
+            if value is not None:
+                shown = _safe_round(q[name].to_display(value), up=sense == "min")
+                out.append(f"{name} {'>=' if sense == 'min' else '<='} {shown:.4g}{q[name].unit_text}")
+    return out
+
+
+def _diameters(lbx, ubx, problem) -> list[float]:
+    """The catalogue diameters [m] within the bounds of d (one fixed diameter if d is fixed)."""
+    lo, hi = lbx[0] * problem.x_scale[0], ubx[0] * problem.x_scale[0]
+    return [d for d in ropes.diameters() if lo - 1e-12 <= d <= hi + 1e-12]
+
+
+def _safe_round(x: float, up: bool) -> float:
+    """``x`` to four significant digits, rounded away from the infeasible side."""
+    if x == 0 or not math.isfinite(x):
+        return x
+    step = 10.0 ** (math.floor(math.log10(abs(x))) - 3)
+    return (math.ceil(x / step) if up else math.floor(x / step)) * step
+
+
+def _free(problem, gfun, i, sense, quantity, p, lbx, ubx, x0):
+    """The least (``"min"``) or largest (``"max"``) value of parameter i with a feasible design, or None."""
+    t = ca.MX.sym("t")
+    scale = abs(p[i]) or 1.0
+    pv = ca.vertcat(*[t * scale if j == i else problem.p[j] for j in range(len(p))])
+    xs = ca.MX.sym("x", 3)
+    z = ca.vertcat(xs, t)
+    solver = ca.nlpsol("free", "ipopt", {"x": z, "p": problem.p, "f": t if sense == "min" else -t,
+                                         "g": gfun(xs, pv)}, OPTS)
+    lo = quantity.low / scale if math.isfinite(quantity.low) else -np.inf
+    hi = quantity.high / scale if math.isfinite(quantity.high) else np.inf
+    r = solver(x0=np.concatenate([x0, [1.0]]), p=p, lbx=np.concatenate([lbx, [lo]]), ubx=np.concatenate([ubx, [hi]]),
+               lbg=0.0, ubg=np.inf)
+    zz = np.asarray(r["x"]).ravel()
+    g = np.asarray(gfun(zz[:3], np.where(np.arange(len(p)) == i, zz[3] * scale, p))).ravel()
+    if not solver.stats()["success"] or g.min() < -1e-7 or not quantity.in_range(zz[3] * scale):
+        return None
+    return float(zz[3] * scale)

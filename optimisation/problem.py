@@ -42,6 +42,7 @@ in N are divided by F_ref, margins in m are taken in m, ratio margins as they ar
 
 from __future__ import annotations
 
+import math
 from functools import cached_property
 
 import casadi as ca
@@ -58,7 +59,60 @@ W_S = 1e-3
 #: continuous bounds of d [m] (the catalogue's range is used for discrete designs)
 D_BOUNDS = (1e-3, 0.2)
 
-REQUIRED = {"checks": "design", "power": "drive"}
+#: what sizing chooses itself: a scene may leave these out (a start is computed)
+SIZED = ("d", "F_nwl", "stroke")
+#: linings whose traction does not need the drum diameter: D is optional, and without it the drum
+#: check becomes a result, the least drum diameter D_ratio_min * d
+D_OPTIONAL_LININGS = ("none", "rigid")
+D_OPTIONAL = ("D",)
+
+
+#: ratio checks written multiplied out in the NLP (same sign as the margin while the rope is taut, which
+#: the taut/slack checks ensure; no pole where F_C crosses 0, so IPOPT never meets an infinite margin)
+RATIO_FORMS = ("safety_margin", "slip_margin")
+
+
+def _nlp_form(name: str, out: dict, args: dict):
+    """The constraint g >= 0 of check ``name`` in the NLP: rope safety F_min − n_rope·F_C [N], no slip
+    F_S·traction − n_slip·F_C [N]; every other margin as it is."""
+    way = name.rsplit("_", 1)[1]
+    if name.startswith("safety_margin"):
+        return out["F_min"] - args["n_rope"] * out[f"F_C_{way}"]
+    if name.startswith("slip_margin"):
+        return out[f"F_S_{way}"] * out[f"traction_{way}"] - args["n_slip"] * out[f"F_C_{way}"]
+    return out[name]
+
+
+def load_sizing(path, emit: bool = True) -> "Scene":
+    """Load a scene file for sizing (:func:`prepare`): no starting design needed; warnings of the scene
+    as sizing reads it (``emit=False``: kept in ``scene.warnings`` for the caller to print)."""
+    import warnings
+
+    from ropemodel.scene import SceneWarning, load
+
+    scene = prepare(load(path, optional=SIZED + D_OPTIONAL, emit=False))
+    if emit:
+        for note in scene.warnings:
+            warnings.warn(note, SceneWarning, stacklevel=2)
+    return scene
+
+
+def prepare(scene) -> "Scene":
+    """The scene as sizing needs it: design checks on; drive power on when ``v_pj`` is given.
+
+    The scene may leave out d, F_nwl and stroke (:data:`SIZED`, the sizing chooses them) and, for a
+    drum without a compliant lining, D (:data:`D_OPTIONAL_LININGS`).  Load it with
+    ``load(path, optional=SIZED + ("D",))`` (what ``ropemodel size`` does) or pass it loaded.
+    """
+    if scene.model != "winch":
+        raise InputError(f"sizing needs model = \"winch\", the scene has model = {scene.model!r}")
+    effects = {"checks": "design"}
+    if scene.effects.get("power") == "none" and ("v_pj" in scene.unused or "v_pj" in scene.parameters):
+        effects["power"] = "drive"
+    optional = SIZED + (D_OPTIONAL if scene.effects.get("lining", "none") in D_OPTIONAL_LININGS else ())
+    if all(scene.effects.get(k) == v for k, v in effects.items()) and not (set(scene.absent) - set(optional)):
+        return scene
+    return scene.with_effects(effects, optional=optional)
 
 
 class SizingProblem:
@@ -74,39 +128,35 @@ class SizingProblem:
     """
 
     def __init__(self, scene: Scene):
-        if scene.model != "winch":
-            raise InputError(f"sizing needs model = \"winch\", the scene has model = {scene.model!r}")
+        scene = prepare(scene)
         if scene.effects.get("rope") == "given":
             raise InputError("sizing chooses the rope diameter: it needs [effects] rope = \"catalogue\" or a named "
                              "construction such as \"6x36-IWRC\" (the scene has rope = \"given\")")
-        for effect, variant in REQUIRED.items():
-            if scene.effects.get(effect) != variant:
-                raise InputError(f"sizing needs [effects] {effect} = \"{variant}\" "
-                                 f"(the scene has {effect} = {scene.effects.get(effect)!r})")
         self.scene = scene
-        self.problem = Problem(scene)
+        #: no drum diameter given: the drum check becomes a result, D = D_ratio_min * d (the least drum)
+        self.least_drum = "D" in scene.absent
+        self.problem = Problem(scene, {"drum_margin": 0.0}, ["D"]) if self.least_drum else Problem(scene)
         fun = self.problem.function
-        self.params = [k for k in self.problem.knowns if k not in VARIABLES]
+        self.params = [k for k in self.problem.knowns if k not in VARIABLES and k not in self.problem.given]
         self.p0 = np.array([scene.parameters[k] for k in self.params], dtype=float)
         self.constraints = margin_names(self.problem.unknowns)
-        if "slip_margin_up" not in self.constraints:
-            raise InputError("sizing needs a drum traction check: set [effects] lining = \"rigid\" or \"voigt\"")
         q = scene.built.quantities
         g_m = scene.parameters.get("G_m", 1e5)
         self.F_ref = max(0.1 * abs(g_m), 1e3)
         self.x_scale = np.array([0.01, self.F_ref, 1.0])
         unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
-        self.g_scale = np.array([unit_scale[q[c].unit] for c in self.constraints])
-        self.units = {c: q[c].unit for c in self.constraints}
+        self.units = {c: ("N" if c.startswith(RATIO_FORMS) else q[c].unit) for c in self.constraints}
+        self.g_scale = np.array([unit_scale[self.units[c]] for c in self.constraints])
 
         xs = ca.MX.sym("x", 3)
         p = ca.MX.sym("p", len(self.params))
         x_si = xs * ca.DM(self.x_scale)
         args = {k: p[i] for i, k in enumerate(self.params)}
         args.update({k: x_si[i] for i, k in enumerate(VARIABLES)})
+        args.update({k: 0.0 for k in self.problem.given})   # drum_margin = 0 when D is a result
         out = fun.call(args)
         self.xs, self.p = xs, p
-        self.g = ca.vertcat(*[out[c] / s for c, s in zip(self.constraints, self.g_scale)])
+        self.g = ca.vertcat(*[_nlp_form(c, out, args) / s for c, s in zip(self.constraints, self.g_scale)])
         # reference mass per metre: the scene's rope at d = 10 mm (fixed number: the weights are constants)
         m_at = ca.Function("m", [xs, p], [out["m_l"]])
         self.m_ref = float(m_at(ca.DM([1.0, 1.0, 1.0]), self.p0))
@@ -130,8 +180,20 @@ class SizingProblem:
         return lbx, ubx
 
     def x0(self) -> np.ndarray:
-        """Scaled starting point: the scene's design."""
-        return np.array([self.scene.parameters[k] for k in VARIABLES]) / self.x_scale
+        """Scaled starting point: the scene's design where it gives one, else :meth:`start`."""
+        start, v = self.start(), self.scene.parameters
+        given = {k: v[k] for k in VARIABLES if k in v and self.scene.origin.get(k) != "default" and math.isfinite(v[k])}
+        return np.array([given.get(k, start[k]) for k in VARIABLES]) / self.x_scale
+
+    def start(self) -> dict[str, float]:
+        """A start computed from the scene (SI): d for the rope safety against the load's pull alone,
+        F_nwl twice the least slack-side tension, a 1 m stroke.  Only a start: IPOPT moves on from it."""
+        v = self.scene.parameters
+        pull = v.get("G_m", 1e5) * (abs(math.sin(v.get("alpha_u", 0.3))) + v.get("mu_pm", 0.05))
+        K = v.get("rope_K", 0.356)
+        d = math.sqrt(v.get("n_rope", 5.0) * max(pull, 1e3) / (K * v.get("rope_grade", 1770e6)))
+        return {"d": min(max(d, D_BOUNDS[0] * 10), D_BOUNDS[1] / 2), "F_nwl": max(2.0 * v.get("F_S_min", 0.0), 1e4),
+                "stroke": 1.0}
 
     def to_si(self, xs) -> dict[str, float]:
         xs = np.asarray(xs, dtype=float).ravel()
@@ -150,9 +212,9 @@ class SizingProblem:
         return ca.Function("g", [self.xs, self.p], [self.g], ["x", "p"], ["g"])
 
     def margins(self, xs, p=None) -> dict[str, float]:
-        """Every margin in its own unit (SI) at scaled ``xs``."""
-        g = np.asarray(self.g_function(xs, self.p0 if p is None else p)).ravel()
-        return {c: float(v * s) for c, v, s in zip(self.constraints, g, self.g_scale)}
+        """Every margin (the checks' own definition and unit, SI) at scaled ``xs``."""
+        values = self.evaluate(xs, p)
+        return {c: values[c] for c in self.constraints}
 
     def evaluate(self, xs, p=None) -> dict[str, float]:
         """Every scene output (SI) at scaled ``xs``."""

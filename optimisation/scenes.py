@@ -34,4 +34,4 @@ def random_sizing_scene(rng: np.random.Generator, name: str = "random", construc
                    "d": 0.03, "F_nwl": 20e3, "stroke": 1.0})
     return from_dict({"scene": {"name": name},
                       "effects": {"rope": construction, "checks": "design", "lining": lining, "power": "drive"},
-                      "parameters": params})
+                      "parameters": params}, bare="si")

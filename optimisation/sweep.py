@@ -51,7 +51,7 @@ def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, progress: 
     for k in (vary or {}):
         if k in VARIABLES:
             raise InputError(f"cannot vary {k}: it is a design variable the sizing chooses")
-    pts = grid(vary, inputs) if vary is not None else table(points, inputs)
+    pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=scene.built.outputs)
     check_ranges(pts, inputs)
     check_rules(scene.built, pts, dict(scene.parameters))
     rows = []

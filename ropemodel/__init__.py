@@ -8,45 +8,59 @@ Quick start::
     result.to_series()                   # values in the paper's units, e.g. "F_C_up [kN]"
     rm.solve(scene, given={"dF_up": "1000 mm"}, find=["G_m"])["G_m"]   # SI: N
 
-Layout: :mod:`ropemodel.papers` holds the published equations, one function
-each; :mod:`ropemodel.effects` wires them into models from the effects a scene
-names; :mod:`ropemodel.core` checks structure and compiles solvers;
-:mod:`ropemodel.problem` poses questions; :mod:`ropemodel.cli` is the command line.
+Layout: :mod:`ropemodel.papers` holds the published equations, one function each;
+:mod:`ropemodel.numerics` the numerical methods they need; :mod:`ropemodel.effects`
+wires them into models from the effects a scene names; :mod:`ropemodel.core` checks
+structure, compiles solvers and evaluates them over arrays; :mod:`ropemodel.scene`
+and :mod:`ropemodel.problem` pose questions; the analyses (:mod:`ropemodel.sweep`,
+:mod:`ropemodel.sensitivity`, :mod:`ropemodel.capstan`, :mod:`ropemodel.sheave`,
+:mod:`ropemodel.dynamics`) and :mod:`ropemodel.cli` build on them.
+
+The public names are imported on first use (PEP 562), so ``import ropemodel`` and
+``ropemodel --help`` cost almost nothing.
 """
 
+from __future__ import annotations
+
+import importlib
+
 from ropemodel.errors import IllPosedError, InfeasibleError, InputError, RopeModelError, SolveError
-from ropemodel.problem import Problem, run, solve
-from ropemodel.result import Result
-from ropemodel.scene import Scene, from_dict, from_toml
-from ropemodel.scene import load as load_scene
 
-__version__ = "0.1.0"
+#: public name → module it lives in (imported when first used)
+_LAZY = {
+    "Problem": "ropemodel.problem", "run": "ropemodel.problem", "solve": "ropemodel.problem",
+    "Result": "ropemodel.result",
+    "Scene": "ropemodel.scene", "from_dict": "ropemodel.scene", "from_toml": "ropemodel.scene",
+    "load_scene": "ropemodel.scene",
+    "sweep": "ropemodel.sweep", "sensitivity": "ropemodel.sensitivity",
+}
+_ALIASES = {"load_scene": "load"}
 
-__all__ = [
-    "IllPosedError",
-    "InfeasibleError",
-    "InputError",
-    "Problem",
-    "Result",
-    "RopeModelError",
-    "Scene",
-    "SolveError",
-    "from_dict",
-    "from_toml",
-    "load_scene",
-    "run",
-    "sensitivity",
-    "solve",
-    "sweep",
-]
-
-_LAZY = ("sensitivity", "sweep")  # heavier imports (pyarrow, SALib): loaded on first use
+__all__ = ["IllPosedError", "InfeasibleError", "InputError", "RopeModelError", "SolveError", "__version__",
+           *sorted(_LAZY)]
 
 
-def __getattr__(name):
-    """``rm.sweep(scene, vary=...)`` (a callable module) and ``rm.sensitivity``, imported on first use."""
+def _version() -> str:
+    """The installed distribution's version (written once, in pyproject.toml)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("ropemodel")
+    except PackageNotFoundError:  # a source tree that is not installed
+        return "0+unknown"
+
+
+def __getattr__(name: str):
+    if name == "__version__":
+        return _version()
+    if name in ("sweep", "sensitivity"):
+        return importlib.import_module(_LAZY[name])
     if name in _LAZY:
-        import importlib
-
-        return importlib.import_module(f"ropemodel.{name}")
+        value = getattr(importlib.import_module(_LAZY[name]), _ALIASES.get(name, name))
+        globals()[name] = value
+        return value
     raise AttributeError(f"module 'ropemodel' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))

@@ -15,7 +15,67 @@ class RopeModelError(Exception):
 
 
 class InputError(RopeModelError, ValueError):
-    """Bad input: unknown name, wrong unit, value out of range, unreadable file."""
+    """Bad input: unknown name, wrong unit, value out of range, unreadable file.
+
+    ``problems`` lists every problem found (one line each); the message says them all.
+    """
+
+    def __init__(self, message: str = "", problems: list[str] | None = None):
+        self.problems = list(problems) if problems else [message]
+        super().__init__(message or _listing(self.problems))
+
+
+def _listing(problems: list[str], where: str = "") -> str:
+    if len(problems) == 1:
+        return problems[0]
+    return f"{len(problems)} problems{where}:\n" + "\n".join(f"  - {p}" for p in problems)
+
+
+class Problems:
+    """Collects every problem of an input before raising one :class:`InputError` that lists them all.
+
+    ::
+
+        found = Problems(" in scene.toml")
+        found.add("G_m = 300 has no unit; write e.g. \"300 kN\"")
+        with found.collect():        # an InputError raised inside is recorded, not raised
+            check_something()
+        found.raise_if_any()
+    """
+
+    def __init__(self, where: str = ""):
+        self.where = where
+        self.items: list[str] = []
+
+    def add(self, message: str) -> None:
+        if message not in self.items:
+            self.items.append(message)
+
+    def collect(self):
+        return _Collect(self)
+
+    def __bool__(self) -> bool:
+        return bool(self.items)
+
+    def raise_if_any(self, error=None) -> None:
+        if self.items:
+            cls = error or InputError
+            raise cls(_listing(self.items, self.where), self.items)
+
+
+class _Collect:
+    def __init__(self, problems: Problems):
+        self.problems = problems
+
+    def __enter__(self):
+        return self.problems
+
+    def __exit__(self, kind, exc, tb):
+        if exc is not None and isinstance(exc, InputError):
+            for p in exc.problems:
+                self.problems.add(p)
+            return True
+        return False
 
 
 class IllPosedError(InputError):

@@ -2,24 +2,28 @@
 
 :class:`Problem` compiles the scene's equations once for a choice of unknowns
 (by default the model's outputs; ``given`` outputs replace the parameters named
-in ``find``) and evaluates it for one point or for many (CasADi ``map``).
-Solving is kept apart from the equations (:mod:`ropemodel.papers`) and from the
-wiring of effects (:mod:`ropemodel.effects`).
+in ``find``) and evaluates it for one point (:meth:`Problem.solve`) or for many
+(:meth:`Problem.evaluate`).  Solving is kept apart from the equations
+(:mod:`ropemodel.papers`) and from the wiring of effects (:mod:`ropemodel.effects`).
+
+A solution is returned only when it is a valid one: finite, inside the valid
+ranges and rules, reproducing every given value, and inside the physics (a rope
+that would have to push is slack, not a negative force).  Otherwise
+:class:`~ropemodel.errors.SolveError` says why in the user's terms, e.g. the
+range a given output can reach at all.
 """
 
 from __future__ import annotations
 
-from functools import lru_cache
+import math
 
-import casadi as ca
 import numpy as np
 
-from ropemodel.core import analyse, compile_solver
+from ropemodel.core.compile import forward_of, solver_of, structure_of
 from ropemodel.core.evaluate import evaluate_columns
-from ropemodel.errors import InputError, SolveError
+from ropemodel.errors import InputError, Problems, SolveError
 from ropemodel.result import Result
 from ropemodel.scene import Scene
-from ropemodel.units import to_si
 
 
 class Problem:
@@ -27,36 +31,64 @@ class Problem:
 
     Parameters
     ----------
-    scene: the validated scene (its parameter values are the defaults of every evaluation).
-    given: names of outputs whose values are given (values may be passed here as a dict).
-    find: parameters to solve for, one per given output.
+    scene : Scene
+        The validated scene; its parameter values are the defaults of every evaluation.
+    given : dict or sequence of str
+        Outputs whose values are given.  As a dict, name → value: a string with a unit
+        (``"1000 mm"``), a pint Quantity, or a number (SI with ``bare="si"``, the default of the
+        Python API; refused for a dimensional quantity with ``bare="refuse"``, the command line's).
+    find : sequence of str
+        Parameters to solve for, one per given output.
+    bare : {"si", "refuse"}
+        How a number without a unit is read (see above).
 
     Attributes
     ----------
-    function: ``ca.Function`` with one named input per known and one named output per unknown.
+    function : casadi.Function
+        One named input per known and one named output per unknown (SI).
+    knowns, unknowns : list of str
+        The inputs and outputs of ``function``.
+
+    Raises
+    ------
+    InputError
+        Unknown names, a ``find`` that is not a parameter, a ``given`` that is not an output, an
+        ill-posed choice (:class:`~ropemodel.errors.IllPosedError` names the variables), listed at once.
     """
 
-    def __init__(self, scene: Scene, given=(), find=()):
+    def __init__(self, scene: Scene, given=(), find=(), bare: str = "si"):
         self.scene = scene
         model = self.model = scene.built
         given_values = dict(given) if isinstance(given, dict) else {}
-        given = list(given)
-        find = list(find)
-        model.check_names(given, "given quantity")
-        model.check_names(find, "unknown to find")
+        given, find = list(given), list(find)
+        found = Problems()
         for n in given:
-            if n not in model.outputs:
-                raise InputError(f"--given {n}: {n} is a parameter of this scene; set it with --set {n}=...")
+            problem = model.name_problem(n, "given quantity")
+            if problem is None and n not in model.outputs:
+                problem = f"--given {n}: {n} is a parameter of this scene; set it with --set {n}=..."
+            if problem:
+                found.add(problem)
         for n in find:
-            if n not in model.parameters:
-                raise InputError(f"--find {n}: {n} is computed by this scene anyway; --find takes a parameter")
+            problem = model.name_problem(n, "unknown to find")
+            if problem is None and n not in model.parameters:
+                problem = f"--find {n}: {n} is computed by this scene anyway; --find takes a parameter"
+            if problem:
+                found.add(problem)
+        for names, what in ((given, "--given"), (find, "--find")):
+            for n in {n for n in names if names.count(n) > 1}:
+                found.add(f"{what} {n} is named twice")
+        self.given_values = {}
+        for n, v in given_values.items():
+            if n in model.outputs:
+                with found.collect():
+                    self.given_values[n] = model.quantities[n].to_si(v, bare)
+        found.raise_if_any()
         self.given, self.find = given, find
         self.unknowns = [o for o in model.outputs if o not in given] + find
         self.knowns = [p for p in model.parameters if p not in find] + given
-        self.structure = analyse(model, self.unknowns, self.knowns)
-        guesses = {n: scene.parameters[n] for n in find}
-        self.function = _compiled(scene, self.structure, tuple(sorted(guesses.items())))
-        self.given_values = {n: to_si(n, v, model.quantities[n].unit) for n, v in given_values.items()}
+        self.structure = structure_of(model, self.unknowns, self.knowns)
+        guesses = {n: scene.parameters[n] for n in find if n in scene.parameters}
+        self.function = solver_of(model, self.structure, guesses)
 
     def inputs(self, values: dict | None = None) -> dict[str, float]:
         """SI values of every known: the scene's parameters, then ``given`` values, then ``values``."""
@@ -65,36 +97,51 @@ class Problem:
         for k, v in (values or {}).items():
             if k not in self.knowns:
                 raise InputError(f"{k} is not an input of this problem; inputs: {', '.join(self.knowns)}")
-            out[k] = to_si(k, v, self.model.quantities[k].unit) if not isinstance(v, np.ndarray) else v
+            out[k] = v if isinstance(v, np.ndarray) else self.model.quantities[k].to_si(v, "si")
         missing = [k for k in self.knowns if k not in out]
         if missing:
             raise InputError(f"no value given for {', '.join(missing)}")
         return out
 
     def solve(self, values: dict | None = None) -> Result:
-        """Solve for one point; ``values`` override scene parameters or given outputs."""
+        """Solve for one point; ``values`` override scene parameters or given outputs (SI or with units).
+
+        Returns
+        -------
+        Result
+            Every known and solved quantity (SI).
+
+        Raises
+        ------
+        InputError
+            An input outside its valid range or rules.
+        SolveError
+            No valid solution: the message says why (e.g. the range a given output can reach).
+        """
         x = self.inputs(values)
         self.model.validate({k: v for k, v in x.items() if k in self.model.parameters})
-        out = self.function(**x)
-        sol = {k: float(v) for k, v in out.items()}
-        bad = [k for k, v in sol.items() if not np.isfinite(v)]
+        sol = {k: float(v) for k, v in self.function(**x).items()}
+        bad = [k for k, v in sol.items() if not (math.isfinite(v) or self._unlimited(k, v, x))]
+        if bad and self.find:
+            raise SolveError(self._explain(x, f"no finite solution for {', '.join(sorted(bad))}"))
         if bad:
-            raise SolveError(f"no finite solution for {', '.join(sorted(bad))} "
-                             f"(an implicit block did not converge or a division by zero)")
-        self._check_found(sol)
+            raise SolveError(f"no finite value for {', '.join(sorted(bad))} at these inputs (a division by zero "
+                             f"or an overflow in the equations)")
         values_all = {**x, **sol}
-        self._check_round_trip(values_all)
-        if self.find:  # found parameters meet the cross-parameter rules too (e.g. a found L_u >= L_ul)
-            self.model.validate({k: values_all[k] for k in self.model.parameters})
+        if self.find:
+            self._check_found(x, values_all)
+        for sm in self.model.submodels:
+            for why in sm.invalid(values_all):
+                raise SolveError(why)
         return Result(self.scene, self.model, values_all, self.given, self.find)
 
     def evaluate(self, columns: dict[str, np.ndarray], parallel: int = 1) -> dict[str, np.ndarray]:
         """Vectorised solve: arrays of SI inputs (missing ones from the scene) → arrays of unknowns.
 
-        Evaluated in chunks of 65536 points by :func:`ropemodel.core.evaluate.evaluate_columns`
-        (``Function.map``, or the same Function compiled to C; ``parallel`` threads), so memory
-        stays bounded and the Function is compiled once per process.  No range check is made
-        here; callers validate their inputs (see :mod:`ropemodel.sweep`).
+        Evaluated in chunks by :func:`ropemodel.core.evaluate.evaluate_columns` (``Function.map``, or
+        the same Function compiled to C; ``parallel`` threads), so memory stays bounded and the
+        Function is compiled once per process.  No range check is made here; callers validate their
+        inputs (see :mod:`ropemodel.sweep`).
         """
         n = max((np.size(v) for v in columns.values()), default=1)
         base = self.inputs({k: v for k, v in columns.items() if not isinstance(v, np.ndarray)})
@@ -104,72 +151,193 @@ class Problem:
         out = evaluate_columns(self.function, arrays, constants, threads=parallel)
         return {u: out[u] for u in self.unknowns}
 
-    def _check_round_trip(self, values_all):
-        """The forward model at the solution must reproduce every given output: an implicit
-        block whose Newton stopped without converging (e.g. a no-slip pretension that does
-        not exist) is a :class:`SolveError`, never a silently wrong answer."""
-        if not self.given:
-            return
-        ref = _Structural(self.scene)
-        fwd = _compiled_cached(ref, _forward_structure(ref), ())
-        out = fwd(**{k: values_all[k] for k in self.model.parameters})
+    def _unlimited(self, name: str, value: float, x: dict) -> bool:
+        """An infinite output is allowed where it follows from an unlimited input (e.g. no stroke given)."""
+        if value != math.inf:
+            return False
+        q = self.model.quantities
+        fun = self.function
+        j = fun.index_out(name)
+        return any(q[k].unlimited and x[k] == math.inf and fun.sparsity_jac(fun.index_in(k), j).nnz() > 0
+                   for k in self.knowns if k in q)
+
+    def _check_found(self, x: dict, values_all: dict) -> None:
+        """Found parameters in range and rules; the forward model reproduces each given value."""
+        for n in self.find:
+            q = self.model.quantities[n]
+            if not q.in_range(values_all[n]):
+                raise SolveError(self._explain(x, f"the solution {n} = {q.show(values_all[n])} is outside its valid "
+                                                  f"range {q.range_text()}"))
+        out = forward_of(self.model)(**{k: values_all[k] for k in self.model.parameters})
         for n in self.given:
             got, want = float(out[n]), values_all[n]
             if not abs(got - want) <= 1e-6 * max(1.0, abs(want)):
-                q = self.model.quantities[n]
-                u = q.unit_text
-                raise SolveError(
-                    f"no solution with {n} = {q.to_display(want):.6g}{u}: the solver stopped "
-                    f"where {n} = {q.to_display(got):.6g}{u} (no such {', '.join(self.find)} "
-                    f"or the Newton iteration did not converge)")
+                raise SolveError(self._explain(x, f"the solver stopped where {n} = "
+                                                  f"{self.model.quantities[n].show(got)}"))
+        broken = self.model.problems({k: values_all[k] for k in self.model.parameters})
+        if broken:
+            raise SolveError(f"no valid solution: the solution breaks a rule: {'; '.join(broken)}")
 
-    def _check_found(self, sol):
-        for n in self.find:
-            q = self.model.quantities[n]
-            if not q.in_range(sol[n]):
-                raise SolveError(
-                    f"no valid {n}: the solution {n} = {q.to_display(sol[n]):.6g}{q.unit_text} "
-                    f"is outside its valid range {q.range_text()}"
-                )
-
-
-def _compiled(scene: Scene, structure, guesses) -> ca.Function:
-    return _compiled_cached(_Structural(scene), structure, guesses)
-
-
-class _Structural:
-    """A scene keyed by its structure (model, effects, numerics), not its values: one compile serves all values."""
-
-    def __init__(self, scene):
-        self.scene = scene
-        self.key = (scene.model, tuple(sorted(scene.effects.items())), repr(sorted(scene.numerics.items())))
-
-    def __hash__(self):
-        return hash(self.key)
-
-    def __eq__(self, other):
-        return isinstance(other, _Structural) and other.key == self.key
+    def _explain(self, x: dict, what: str) -> str:
+        """Why an inverse question has no answer, in the user's terms (see :func:`reach`)."""
+        q = self.model.quantities
+        head = "; ".join(f"{g} = {q[g].show(x[g])}" for g in self.given)
+        if len(self.find) != 1 or len(self.given) != 1:
+            return f"no {', '.join(self.find)} gives {head} ({what})"
+        f, g = self.find[0], self.given[0]
+        lo, hi, swept = reach(self.model, {k: v for k, v in x.items() if k in self.model.parameters}, f, g)
+        if lo is None:
+            return f"no {f} gives {head}: {g} has no finite value over the valid range of {f} ({what})"
+        over = (f"for {f} in {q[f].range_text()}" if swept is None else
+                f"for {f} from {q[f].show(swept[0])} to {q[f].show(swept[1])} (its valid range here)")
+        span = (f"{over}, {g} stays within [{q[g].show(lo[0])}, {q[g].show(hi[0])}] "
+                f"({_at(q, f, g, lo)}; {_at(q, f, g, hi)})")
+        if lo[0] <= x[g] <= hi[0]:
+            return (f"no {f} found for {head} ({what}); {span}: the value is within reach, so try another "
+                    f"starting value of {f} (--set {f}=...)")
+        return f"{g} = {q[g].show(x[g])} is out of reach: {span}"
 
 
-@lru_cache(maxsize=64)
-def _compiled_cached(ref: _Structural, structure, guesses) -> ca.Function:
-    return compile_solver(ref.scene.built, structure, dict(guesses))
+def _at(q, f: str, g: str, extreme) -> str:
+    value, where, limit = extreme
+    return f"{q[g].show(value)} " + (f"as {f} -> {limit}" if limit else f"at {f} = {q[f].show(where)}")
 
 
-@lru_cache(maxsize=64)
-def _forward_structure(ref: _Structural):
-    """The structure of the forward problem (every output from the parameters)."""
-    model = ref.scene.built
-    return analyse(model, model.outputs, model.parameters)
+def reach(model, params: dict, find: str, given: str, n: int = 401):
+    """Least and largest value of output ``given`` as parameter ``find`` sweeps its valid range.
+
+    The other parameters are held at ``params`` (SI).  Returns two triples (value, where, limit) for
+    the least and the largest value: ``where`` the value of ``find`` there, ``limit`` a text such as
+    ``"0"`` or ``"inf"`` when the extreme is approached at an open or infinite end of the range (else
+    None); then the (least, largest) value of ``find`` swept when the scene's rules narrowed its range
+    (else None).  (None, None, None) when ``given`` is nowhere finite.  A positive quantity without an upper
+    bound is swept on a log scale over twelve decades either side of its guess.
+    """
+    q = model.quantities[find]
+    g = abs(q.guess) or 1.0
+    if q.low >= 0 and not math.isfinite(q.high):
+        grid = np.concatenate([[q.low] if not q.low_open else [], g * np.logspace(-12, 12, n)])
+        ends = (_fmt_limit(q.low) if q.low_open else None, "inf")
+    else:
+        lo = q.low if math.isfinite(q.low) else -1e12 * g
+        hi = q.high if math.isfinite(q.high) else 1e12 * g
+        eps = 1e-9 * (hi - lo)
+        grid = np.linspace(lo + (eps if q.low_open else 0.0), hi - (eps if q.high_open else 0.0), n)
+        ends = (_fmt_limit(q.low) if q.low_open or not math.isfinite(q.low) else None,
+                _fmt_limit(q.high) if q.high_open or not math.isfinite(q.high) else None)
+    valid = np.array([not model.problems({**params, find: float(v)}) for v in grid])
+    if not valid.any():
+        return None, None, None
+    kept = grid[valid]
+    swept = None
+    if not valid.all():   # the edges of the rules' interval, to rounding (bisection between grid points)
+        i, j = int(np.argmax(valid)), len(grid) - 1 - int(np.argmax(valid[::-1]))
+        ok = lambda v: not model.problems({**params, find: float(v)})  # noqa: E731
+        swept = (_edge(ok, grid[i], grid[i - 1]) if i > 0 else float(grid[i]),
+                 _edge(ok, grid[j], grid[j + 1]) if j < len(grid) - 1 else float(grid[j]))
+    if swept is not None:   # a rule (e.g. L_ul <= L_u) bounds the range: sweep that interval evenly
+        kept = np.linspace(swept[0], swept[1], n)
+        ends = (None, None)
+    grid = kept
+    fun = forward_of(model)
+    args = [grid if k == find else np.full_like(grid, params[k]) for k in fun.name_in()]
+    with np.errstate(all="ignore"):
+        y = np.asarray(fun.map(len(grid))(*[a.reshape(1, -1) for a in args])[fun.index_out(given)]).ravel()
+    ok = np.isfinite(y)
+    if not ok.any():
+        return None, None, None
+
+    def extreme(i):
+        limit = ends[0] if i == 0 else ends[1] if i == len(grid) - 1 else None
+        return float(y[i]), float(grid[i]), limit
+
+    return (extreme(int(np.argmin(np.where(ok, y, np.inf)))), extreme(int(np.argmax(np.where(ok, y, -np.inf)))),
+            swept)
+
+
+def _edge(ok, inside: float, outside: float) -> float:
+    """The last value on the way from ``inside`` to ``outside`` where ``ok`` holds (bisection)."""
+    for _ in range(80):
+        mid = 0.5 * (inside + outside)
+        if ok(mid):
+            inside = mid
+        else:
+            outside = mid
+    return float(inside)
+
+
+def _fmt_limit(x: float) -> str:
+    return "inf" if x == math.inf else "-inf" if x == -math.inf else f"{x:g}"
 
 
 def run(scene: Scene, values: dict | None = None) -> Result:
-    """Forward solve: every output of the scene from its parameters."""
+    """Forward solve: every output of the scene from its parameters.
+
+    Parameters
+    ----------
+    scene : Scene
+        A loaded scene (:func:`ropemodel.load_scene`).
+    values : dict, optional
+        Parameters to override for this run: SI numbers, strings with units or pint Quantities.
+
+    Returns
+    -------
+    Result
+        Every output in SI (``result["F_C_up"]`` in N); ``result.table()`` in the paper's units.
+
+    Raises
+    ------
+    InputError
+        Bad input (exit status 2 from the command line).
+    SolveError
+        No valid result, e.g. a slack rope (exit status 1).
+
+    Examples
+    --------
+    >>> import ropemodel as rm
+    >>> r = rm.run(rm.load_scene())          # Krauze et al. (2025), Fig. 9
+    >>> round(r["F_C_up"] / 1e3, 2)          # kN, the paper prints 190.95
+    190.95
+    """
     return Problem(scene).solve(values)
 
 
-def solve(scene: Scene, given: dict, find) -> Result:
-    """Inverse solve: ``given`` outputs (name → value, SI or unit string) in place of the ``find`` parameters."""
+def solve(scene: Scene, given: dict, find, bare: str = "si") -> Result:
+    """Inverse solve: ``given`` outputs (name → value) in place of the ``find`` parameters.
+
+    Parameters
+    ----------
+    scene : Scene
+        A loaded scene.
+    given : dict
+        Output name → value: a string with a unit (``"1000 mm"``), a pint Quantity, or an SI number.
+    find : str or sequence of str
+        The parameters to solve for, one per given value.
+    bare : {"si", "refuse"}
+        Numbers without a unit are SI (Python) or refused for dimensional quantities (command line).
+
+    Returns
+    -------
+    Result
+        The found parameters and every output, in SI.
+
+    Raises
+    ------
+    InputError
+        Unknown names or an ill-posed question (the message names the variables involved).
+    SolveError
+        No valid answer; the message says why in the quantities' terms.
+
+    Examples
+    --------
+    >>> import ropemodel as rm
+    >>> r = rm.solve(rm.load_scene(), given={"dF_up": "1000 mm"}, find=["G_m"])
+    >>> round(r["G_m"] / 1e3, 3)             # kN: the heaviest load a 1000 mm stroke allows
+    252.383
+    """
     if isinstance(find, str):
         find = [find]
-    return Problem(scene, given, find).solve()
+    return Problem(scene, given, find, bare=bare).solve()
+
+
+__all__ = ["Problem", "reach", "run", "solve"]

@@ -1,4 +1,4 @@
-"""Quantities: a name (the paper's symbol in ASCII), an SI unit, a description and a valid range."""
+"""Quantities: a name (the paper's symbol in ASCII), an SI unit, a description, a valid and a usual range."""
 
 from __future__ import annotations
 
@@ -6,25 +6,30 @@ import math
 from dataclasses import dataclass
 
 from ropemodel.errors import InputError
-from ropemodel.units import factor
+from ropemodel.units import factor, to_si
 
 
 @dataclass(frozen=True)
 class Quantity:
-    """One physical quantity of a model.
+    """One physical quantity of a model, declared once (the effect registry enforces it).
 
     Attributes
     ----------
     name: the paper's symbol in ASCII (``F_C``, ``alpha_u``).
-    unit: SI unit string as pint reads it (``"N"``, ``"m/N"``, ``"rad"``, ``"1"``).
+    unit: SI unit string (``"N"``, ``"m/N"``, ``"rad"``, ``"1"`` for a pure number).
     description: one line for tables and error messages.
     display: unit for human-readable tables (the paper's unit, e.g. ``"kN"``).
-    low, high: valid range in SI; ``low_open``/``high_open`` make an end exclusive.
-    warn_low, warn_high: outside these the value is valid but beyond the source's range (a warning).
+    low, high: valid range in SI; ``low_open``/``high_open`` make an end exclusive.  Outside it a
+        value is an error.
+    warn_low, warn_high: the range *usual for the field* (SI); outside it a valid value gets a warning
+        that states this range and ``usual_source``, where the range comes from.
+    usual_source: where the usual range comes from (documented in the README's scene section).
+    unlimited: ``math.inf`` is a valid value, meaning "no limit" (e.g. a tensioner's stroke not given).
     equation: where the quantity is defined (``"Krauze et al. 2025, eq. (13)"``).
     positive: strictly positive unknown; nonlinear blocks solve for it in log space.
     guess: starting value for Newton when the quantity is an unknown of a nonlinear block.
-    default: value used when a scene leaves the parameter out (``None``: required).
+    default: value used when a scene leaves the parameter out (``None``: required), with
+        ``default_note`` saying why that value (reported wherever the default is used).
     """
 
     name: str
@@ -37,32 +42,61 @@ class Quantity:
     high_open: bool = False
     warn_low: float = -math.inf
     warn_high: float = math.inf
+    usual_source: str = ""
+    unlimited: bool = False
     equation: str = ""
     positive: bool = False
     guess: float = 1.0
     default: float | None = None
+    default_note: str = ""
 
     @property
     def display_unit(self) -> str:
         return self.display or self.unit
 
+    @property
+    def dimensionless(self) -> bool:
+        """True for a pure number (its value may be typed without a unit)."""
+        return self.unit in ("1", "")
+
     def to_display(self, value):
         """Convert an SI value to the display unit."""
         return value * factor(self.unit, self.display_unit)
+
+    def to_si(self, value, bare: str = "refuse") -> float:
+        """``value`` (string with unit, pint Quantity or number) in SI; see :func:`ropemodel.units.to_si`."""
+        return to_si(self.name, value, self.unit, self.display_unit, bare)
 
     @property
     def unit_text(self) -> str:
         """The display unit as shown after a number: ``" kN"``, or ``""`` for a pure number."""
         return "" if self.display_unit in ("1", "") else f" {self.display_unit}"
 
+    def show(self, value: float) -> str:
+        """``value`` (SI) as text in the display unit: ``"467 kN"``, ``"unlimited"``."""
+        if self.unlimited and value == math.inf:
+            return "unlimited"
+        return f"{_fmt(self.to_display(value))}{self.unit_text}"
+
     def range_text(self) -> str:
         """The valid range as text in display units, e.g. ``(0, inf] m``."""
         f = factor(self.unit, self.display_unit)
-        lo = "[" if not self.low_open else "("
-        hi = "]" if not self.high_open else ")"
+        lo = "(" if self.low_open or self.low == -math.inf else "["
+        hi = ")" if self.high_open or self.high == math.inf else "]"
         return f"{lo}{_fmt(self.low * f)}, {_fmt(self.high * f)}{hi}{self.unit_text}"
 
+    def usual_text(self) -> str:
+        """The usual range in display units, e.g. ``0.1 to 1000 mm/kN``."""
+        f = factor(self.unit, self.display_unit)
+        if self.warn_low == -math.inf:
+            return f"up to {_fmt(self.warn_high * f)}{self.unit_text}"
+        if self.warn_high == math.inf:
+            return f"from {_fmt(self.warn_low * f)}{self.unit_text}"
+        return f"{_fmt(self.warn_low * f)} to {_fmt(self.warn_high * f)}{self.unit_text}"
+
     def in_range(self, value: float) -> bool:
+        if self.unlimited and value == math.inf:
+            return True
         if not math.isfinite(value):
             return False
         if value < self.low or (self.low_open and value == self.low):
@@ -71,19 +105,27 @@ class Quantity:
             return False
         return True
 
+    def range_problem(self, value: float, what: str = "") -> str | None:
+        """The message for a value outside the valid range, or None."""
+        if self.in_range(value):
+            return None
+        return (f"{what or self.name} = {_fmt(self.to_display(value))}{self.unit_text} is outside the valid range "
+                f"{self.range_text()} ({self.description})")
+
     def check(self, value: float, what: str = "") -> float:
         """Return ``value`` if valid, else raise :class:`InputError` naming the quantity and its range."""
-        if not self.in_range(value):
-            shown = self.to_display(value)
-            raise InputError(
-                f"{what or self.name} = {_fmt(shown)}{self.unit_text} is outside the valid range "
-                f"{self.range_text()} ({self.description})"
-            )
+        problem = self.range_problem(value, what)
+        if problem:
+            raise InputError(problem)
         return value
 
-    def beyond_source(self, value: float) -> bool:
-        """True where ``value`` is valid but outside the range the source covers."""
-        return value < self.warn_low or value > self.warn_high
+    def unusual(self, value: float) -> str | None:
+        """A warning for a valid value outside the range usual for the field, or None."""
+        if not (value < self.warn_low or value > self.warn_high) or value == math.inf:
+            return None
+        source = f"; {self.usual_source}" if self.usual_source else ""
+        return (f"{self.name} = {self.show(value)} is outside the range usual for the field, "
+                f"{self.usual_text()} ({self.description}{source}): check the value and its unit")
 
 
 def _fmt(x: float) -> str:

@@ -6,11 +6,11 @@ import json
 import math
 import re
 
-import pandas as pd
-
 from ropemodel.units import label
 
 _DIR = re.compile(r"^(?P<base>.+)_(?P<dir>up|down)$")
+#: keys of the JSON object that are not quantities (no quantity has one of these names)
+META = ("given", "found", "defaults", "unused", "unlimited", "warnings", "citations")
 
 
 class Result:
@@ -19,14 +19,16 @@ class Result:
     ``values`` maps names to SI floats; :meth:`to_series` gives display units in the
     index (``F_C_up [kN]``), :meth:`to_json` SI numbers, :meth:`table` a readable
     text table with each quantity's equation.  ``frames`` holds extra tables a
-    submodel publishes (e.g. the tension along a sheave's arc).
+    submodel publishes (e.g. the tension along a sheave's arc).  An output that is
+    infinite because an input is unlimited (no stroke given) reads ``unlimited`` in
+    the table and ``null`` in JSON, and is listed under ``"unlimited"``.
     """
 
     def __init__(self, scene, model, values: dict[str, float], given=(), find=()):
         self.scene, self.model = scene, model
         self.values = dict(values)
         self.given, self.find = list(given), list(find)
-        self.frames: dict[str, pd.DataFrame] = {}
+        self.frames: dict = {}
         for sm in model.submodels:
             self.frames.update(sm.frames(self.values, scene))
 
@@ -38,18 +40,34 @@ class Result:
         """Solved quantities: the model's outputs not given, plus the parameters found."""
         return [o for o in self.model.outputs if o not in self.given] + self.find
 
+    @property
+    def citations(self) -> list[str]:
+        """Full references of the papers behind these results."""
+        return self.model.citations
+
     def to_dict(self) -> dict[str, float]:
-        """Every solved quantity in SI (the JSON contract)."""
+        """Every solved quantity in SI (the JSON contract's numbers)."""
         return {k: self.values[k] for k in self.outputs}
 
     def to_json(self, **extra) -> str:
-        """One JSON object, SI values; NaN/inf never written (they are refused earlier)."""
-        out = {k: _json_num(v) for k, v in self.to_dict().items()}
+        """One JSON object: every solved quantity (SI), then ``given`` (inverse questions), ``found``,
+        ``defaults`` (parameter → why its default), ``unused``, ``unlimited``, ``warnings`` and ``citations``."""
+        out = {k: (v if math.isfinite(v) else None) for k, v in self.to_dict().items()}
+        if self.given:
+            out["given"] = {k: self.values[k] for k in self.given}
+            out["found"] = list(self.find)
+        out["defaults"] = {k: self.scene.defaults[k] for k in self.scene.defaults if k in self.values}
+        out["unused"] = dict(self.scene.unused)
+        out["unlimited"] = [k for k in self.outputs if self.values[k] == math.inf]
+        out["warnings"] = list(self.scene.warnings)
+        out["citations"] = self.citations
         out.update(extra)
         return json.dumps(out, indent=2, allow_nan=False)
 
-    def to_series(self, names=None, si: bool = False) -> pd.Series:
+    def to_series(self, names=None, si: bool = False):
         """Values in display units (or SI), index labels carry the unit: ``F_C_up [kN]``."""
+        import pandas as pd
+
         names = list(names) if names is not None else list(self.values)
         data = {}
         for n in names:
@@ -59,34 +77,51 @@ class Result:
         return pd.Series(data, name=self.scene.name, dtype=float)
 
     def table(self) -> str:
-        """Text table in display units: inputs, then single quantities, then up/down pairs."""
+        """Text table in display units: inputs, found parameters, single quantities, up/down pairs,
+        extra tables, the defaults used and the references."""
         q = self.model.quantities
         lines = [f"{self.scene.name}  (model {self.model.name}; "
                  + ", ".join(f"{e}={v}" for e, v in self.model.built_effects.items()) + ")"]
         inputs = [n for n in self.model.parameters if n not in self.find] + self.given
-        lines += ["", "inputs"] + [_row(n, q[n], self.values[n]) for n in inputs]
-        single = [o for o in self.outputs if not _DIR.match(o)]
+        lines += ["", "inputs"] + [_row(n, q[n], self.values[n], self._mark(n)) for n in inputs]
+        if self.find:
+            lines += ["", "found (solved for)"] + [_row(n, q[n], self.values[n], "solved for") for n in self.find]
+        single = [o for o in self.outputs if not _DIR.match(o) and o not in self.find]
+        if single:
+            lines += ["", "results"] + [_row(n, q[n], self.values[n], self._source(n)) for n in single]
+        lines += self._pairs()
+        for title, frame in self.frames.items():
+            lines += ["", title, frame.to_string(index=False)]
+        if self.scene.defaults:
+            lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in self.scene.defaults.items()
+                                              if k in self.values]
+        lines += ["", "references"] + [f"  {c}" for c in self.citations]
+        return "\n".join(lines)
+
+    def _pairs(self) -> list[str]:
+        q = self.model.quantities
         paired = []
         for o in self.outputs:
             m = _DIR.match(o)
             if m and m["base"] not in paired:
                 paired.append(m["base"])
-        if single:
-            lines += ["", "results"] + [_row(n, q[n], self.values[n], self._source(n)) for n in single]
-        if paired:
-            lines += ["", f"{'':<10}{'down':>14}{'up':>14}  {'unit':<8}source"]
-            for base in paired:
-                qq = q.get(f"{base}_up") or q[f"{base}_down"]
-                cells = []
-                for d in ("down", "up"):
-                    n = f"{base}_{d}"
-                    cells.append(f"{q[n].to_display(self.values[n]):>14.6g}" if n in self.values else f"{'':>14}")
-                src = self._source(f"{base}_up" if f"{base}_up" in self.values else f"{base}_down")
-                lines.append(f"{base:<10}{''.join(cells)}  {_unit(qq):<8}{src}".rstrip())
-        for title, frame in self.frames.items():
-            lines += ["", title, frame.to_string(index=False)]
-        return "\n".join(lines)
+        if not paired:
+            return []
+        lines = ["", f"{'':<14}{'down':>14}{'up':>14}  {'unit':<8}source"]
+        for base in paired:
+            qq = q.get(f"{base}_up") or q[f"{base}_down"]
+            cells = []
+            for d in ("down", "up"):
+                n = f"{base}_{d}"
+                cells.append(f"{_cell(q[n], self.values[n]):>14}" if n in self.values else f"{'':>14}")
+            src = self._source(f"{base}_up" if f"{base}_up" in self.values else f"{base}_down")
+            lines.append(f"{base:<14}{''.join(cells)}  {_unit(qq):<8}{src}".rstrip())
+        return lines
 
+    def _mark(self, name: str) -> str:
+        if name in self.given:
+            return "given"
+        return "default" if name in self.scene.defaults else ""
 
     def _source(self, name: str) -> str:
         return self.model.equation_of(name).source if name in self.model.defined_by else ""
@@ -96,11 +131,12 @@ def _unit(q) -> str:
     return "-" if q.display_unit == "1" else q.display_unit
 
 
+def _cell(q, value) -> str:
+    return "unlimited" if value == math.inf else f"{q.to_display(value):.6g}"
+
+
 def _row(name, q, value, source="") -> str:
-    return f"{name:<10}{q.to_display(value):>14.6g}  {_unit(q):<8}{source}".rstrip()
+    return f"{name:<14}{_cell(q, value):>14}  {_unit(q):<8}{source}".rstrip()
 
 
-def _json_num(v):
-    if isinstance(v, float) and not math.isfinite(v):
-        raise ValueError(f"non-finite value {v} in a result")
-    return v
+__all__ = ["META", "Result"]

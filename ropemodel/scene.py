@@ -1,4 +1,4 @@
-"""Scenes: one installation described in a TOML file.
+"""Scenes: one installation described in a TOML file, checked whole before anything is computed.
 
 ::
 
@@ -7,19 +7,31 @@
     model = "winch"            # default; also "sheave", "capstan"
     [effects]                  # effect = variant; omitted effects take their defaults
     elongation = "krauze2025"
-    [parameters]               # the paper's symbols; a number is SI, a string carries its unit
+    [parameters]               # the paper's symbols; a dimensional value carries its unit
     L_u = "1150 m"
     alpha_u = "16 deg"
+    mu_pl = 0.05               # a bare number only for a dimensionless quantity
     [numerics]                 # solver options, where the model has any
     rtol = 1e-8
 
-Loading checks every name (suggesting the nearest valid one), converts every
-value to SI, checks ranges and the submodels' cross-parameter rules, and fills
-in documented defaults.  :class:`InputError` on anything wrong.
+Loading collects *every* problem before it raises one :class:`~ropemodel.errors.InputError`
+that lists them all (one line each): unknown names (with the nearest valid name), a key in
+the wrong table, values without a unit, wrong units, values outside their valid range,
+missing parameters, broken cross-parameter rules, and given values of computed quantities
+that disagree with the model.  What is valid but unusual is a warning, not an error:
+
+* a parameter that the chosen effects do not use is accepted and named (``unused``), with
+  the variant that would use it;
+* a value outside the range usual for the field is named with that range and its source;
+* a quantity the model computes (e.g. ``mu_pl1`` in resistance case 1) may be given: it is
+  then a *check*, accepted when it agrees with the computed value to the digits typed;
+* every default a scene relies on is listed (``defaults``) with why that value.
 """
 
 from __future__ import annotations
 
+import hashlib
+import math
 import tomllib
 import warnings
 from dataclasses import dataclass, field, replace
@@ -27,23 +39,48 @@ from functools import cached_property
 from importlib import resources
 from pathlib import Path
 
+from ropemodel.core.compile import forward_of
 from ropemodel.core.model import Model
-from ropemodel.effects import effects_of, resolve_effects
-from ropemodel.effects.base import numerics_of
-from ropemodel.errors import InputError, suggest
-from ropemodel.units import to_si
+from ropemodel.effects import all_quantities, effects_of, misplaced, models, numerics_of, resolve_effects
+from ropemodel.errors import InputError, Problems, suggest
+from ropemodel.units import last_digit, split_value
 
 TABLES = ("scene", "effects", "parameters", "numerics")
-EXAMPLE = "krauze2025_fig9.toml"
+SCENE_KEYS = ("name", "model", "description")
+EXAMPLE = "krauze2025_fig9"
 
 
-class BeyondSourceWarning(UserWarning):
-    """A valid value outside the range the source paper covers."""
+class SceneWarning(UserWarning):
+    """Valid but worth a look: an unused parameter, a value outside the range usual for the field."""
+
+
+#: kept for code that caught the old name
+BeyondSourceWarning = SceneWarning
+
+
+@dataclass(frozen=True)
+class Check:
+    """A computed quantity given in a scene: the model must reproduce it to the digits typed."""
+
+    value: float       # SI
+    tolerance: float   # SI: half a unit of the last digit typed
+    text: str          # as typed
 
 
 @dataclass(frozen=True)
 class Scene:
-    """A validated scene.  ``parameters`` are SI floats; ``effects`` have defaults filled in."""
+    """A validated scene.  ``parameters`` are SI floats; ``effects`` have defaults filled in.
+
+    Attributes
+    ----------
+    defaults: parameter → why its default value (every default this scene relies on).
+    unused: parameter given but not used by the chosen effects → the variants that would use it.
+    checks: computed quantity given in the scene → :class:`Check` (verified when the scene loads).
+    absent: optional parameters left out (e.g. what sizing chooses itself).
+    warnings: every warning of the scene, one line each (the command line prints them once).
+    origin: parameter → where its value came from (``"scene"``, ``"default"``, ``"--set"``, ``"api"``).
+    digest: SHA-256 of the scene file's text (None for a scene built in Python).
+    """
 
     name: str
     model: str
@@ -51,26 +88,83 @@ class Scene:
     parameters: dict[str, float]
     numerics: dict = field(default_factory=dict)
     source: str | None = None
+    defaults: dict[str, str] = field(default_factory=dict)
+    unused: dict[str, str] = field(default_factory=dict)
+    checks: dict[str, Check] = field(default_factory=dict)
+    absent: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()
+    origin: dict[str, str] = field(default_factory=dict)
+    digest: str | None = None
+    raw: dict = field(default_factory=dict, repr=False, compare=False)
 
     @cached_property
     def built(self) -> Model:
         """The model with this scene's effects (only their equations are built)."""
         return Model(self.model, self.effects, self.numerics)
 
-    def with_values(self, values: dict) -> "Scene":
-        """A copy with parameters replaced (values SI numbers or unit strings), re-validated."""
-        params = dict(self.parameters)
-        model = self.built
-        model.check_names(values)
-        for k, v in values.items():
-            if k not in model.parameters:
-                raise InputError(f"{k} is computed by this scene ({model.quantities[k].equation}), "
-                                 f"not a parameter; use solve --given {k}=... --find <parameter>")
-            params[k] = to_si(k, v, model.quantities[k].unit)
-        out = replace(self, parameters=params)
+    def with_values(self, values: dict, bare: str = "si", origin: str = "api") -> "Scene":
+        """A copy with parameters replaced, every problem checked and listed at once.
+
+        values: name → value; strings carry units, numbers are SI (``bare="si"``, the Python API) or,
+        with ``bare="refuse"`` (the command line's ``--set``), allowed only for pure numbers.
+        """
+        model, found = self.built, Problems()
+        params, origin_of = dict(self.parameters), dict(self.origin)
+        defaults = dict(self.defaults)
+        unused, notes = dict(self.unused), []
+        for name, value in values.items():
+            if name in all_quantities(model.name) and name not in model.symbols:
+                with found.collect():
+                    model_q = all_quantities(model.name)[name]
+                    model_q.to_si(value, bare)
+                    unused[name] = " or ".join(model.owners(name)) or "no effect of this model"
+                    notes.append(f"{name} is not used: it belongs to {unused[name]}")
+                continue
+            problem = _settable(model, name, origin)
+            if problem:
+                found.add(problem)
+                continue
+            with found.collect():
+                params[name] = model.quantities[name].to_si(value, bare)
+                origin_of[name] = origin
+                defaults.pop(name, None)
+        for problem in model.problems({k: v for k, v in params.items() if k in model.parameters}):
+            found.add(problem)
+        found.raise_if_any()
+        notes += [w for k in values if k in model.parameters for w in [model.quantities[k].unusual(params[k])] if w]
+        out = replace(self, parameters=params, origin=origin_of, defaults=defaults, unused=unused,
+                      absent=tuple(a for a in self.absent if a not in values),
+                      warnings=self.warnings + tuple(notes))
         out.__dict__["built"] = model
-        _check_values(model, params)
+        _verify_checks(out, Problems()).raise_if_any()
         return out
+
+    def with_effects(self, effects: dict[str, str], optional=(), emit: bool = False) -> "Scene":
+        """The same scene file read again with some effects set (e.g. sizing's ``checks = "design"``)."""
+        if not self.raw:
+            raise InputError("this scene was not loaded from a file or dict; build it again with those effects")
+        data = {k: dict(v) if isinstance(v, dict) else v for k, v in self.raw.items()}
+        data["effects"] = {**data.get("effects", {}), **effects}
+        scene = from_dict(data, self.source, optional=optional, emit=emit, digest=self.digest)
+        overrides = {k: v for k, v in self.parameters.items() if self.origin.get(k) not in ("scene", "default")}
+        return scene.with_values(overrides) if overrides else scene
+
+    def required(self) -> list[str]:
+        """Parameters this scene must be given (no default)."""
+        q = self.built.quantities
+        return [n for n in self.built.parameters if q[n].default is None]
+
+
+def _settable(model: Model, name: str, origin: str) -> str | None:
+    if name in model.parameters:
+        return None
+    option = "--set" if origin == "--set" else "with_values"
+    if name in effects_of(model.name):
+        return f"{name} is an effect: it cannot be set with {option}; choose its variant in the scene's [effects]"
+    if name in model.outputs:
+        return (f"{name} is computed by this scene ({model.quantities[name].equation or 'an output'}), not a "
+                f"parameter; use solve --given {name}=... --find <parameter>")
+    return model.name_problem(name)
 
 
 def builtin_scenes() -> list[str]:
@@ -79,97 +173,263 @@ def builtin_scenes() -> list[str]:
                   if f.name.endswith(".toml") and "[scene]" in f.read_text())
 
 
-def load(path: str | Path | None = None) -> Scene:
+def load(path: str | Path | None = None, optional=(), emit: bool = True, values: dict | None = None,
+         bare: str = "si", origin: str = "api") -> Scene:
     """Load a scene file.
 
-    ``None`` (or ``"example"``) loads the built-in example (Krauze et al. 2025, Fig. 9);
-    the name of a built-in scene (see :func:`builtin_scenes`, e.g.
-    ``"capstan_li_experiment"``) loads that one when no such file exists.
+    path: a TOML file; ``None`` or ``"example"`` is the built-in example (Krauze et al. 2025,
+        Fig. 9); the name of a built-in scene (:func:`builtin_scenes`, e.g. ``"capstan_li_experiment"``)
+        loads that one when no such file exists.
+    optional: parameters the scene may leave out (a command that chooses them itself, e.g. sizing).
+    emit: issue the scene's warnings as :class:`SceneWarning` (the command line prints them itself).
+    values: parameters to set (they replace or complete the file's), checked with the file's;
+        numbers follow ``bare`` (``"si"`` in Python, ``"refuse"`` for the command line's ``--set``),
+        and ``origin`` says where they came from.
+    Raises :class:`InputError` listing every problem of the file and of ``values``.
     """
-    if path is None or str(path) == "example":
-        path = EXAMPLE[:-5]
-    p = Path(path)
-    name = p.name[:-5] if p.name.endswith(".toml") else p.name
-    if not p.exists() and str(path) in (name, p.name) and name in builtin_scenes():
+    name = EXAMPLE if path is None or str(path) == "example" else None
+    p = Path(path) if name is None else Path(f"{EXAMPLE}.toml")
+    stem = p.name[:-5] if p.name.endswith(".toml") else p.name
+    if name is None and not p.exists() and str(path) in (stem, p.name) and stem in builtin_scenes():
+        name = stem
+    if name is not None:
         text = resources.files("ropemodel.data").joinpath(f"{name}.toml").read_text()
-        return from_toml(text, source=f"built-in scene {name}")
+        return from_toml(text, f"built-in scene {name}", optional, emit, values, bare, origin)
     try:
-        text = p.read_text()
+        data = p.read_bytes()
     except FileNotFoundError:
         raise InputError(f"scene file not found: {p} (built-in scenes: {', '.join(builtin_scenes())})"
-                         f"{suggest(name, builtin_scenes())}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read scene file {p}: {exc}") from None
-    return from_toml(text, source=str(p))
+                         f"{suggest(stem, builtin_scenes())}") from None
+    except IsADirectoryError:
+        raise InputError(f"scene {p} is a directory, not a TOML file") from None
+    except OSError as exc:
+        raise InputError(f"cannot read scene file {p}: {exc.strerror or exc}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError(f"scene file {p} is not UTF-8 text (a binary file, or another encoding): "
+                         f"save it as UTF-8 TOML") from None
+    return from_toml(text, str(p), optional, emit, values, bare, origin)
 
 
-def from_toml(text: str, source: str | None = None) -> Scene:
-    """Parse and validate a scene from TOML text."""
+def from_toml(text: str, source: str | None = None, optional=(), emit: bool = True, values: dict | None = None,
+              bare: str = "si", origin: str = "api") -> Scene:
+    """Parse and validate a scene from TOML text (see :func:`from_dict`)."""
+    if "\x00" in text:
+        raise InputError(f"{source or 'scene'} is a binary file, not TOML text")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"invalid TOML in {source or 'scene'}: {exc}") from None
-    return from_dict(data, source)
-
-
-def from_dict(data: dict, source: str | None = None) -> Scene:
-    """Validate a scene given as nested dicts (the TOML structure)."""
-    where = f" in {source}" if source else ""
-    for key, val in data.items():
-        if key not in TABLES:
-            raise InputError(f"unknown table [{key}]{where}; valid tables: {', '.join(TABLES)}{suggest(key, TABLES)}")
-        if not isinstance(val, dict):
-            raise InputError(f"[{key}]{where} must be a table")
-    head = data.get("scene", {})
-    for key in head:
-        if key not in ("name", "model"):
-            raise InputError(f"unknown key {key!r} in [scene]{where}; valid: name, model{suggest(key, ['name', 'model'])}")
-    model_name = head.get("model", "winch")
-    effects_of(model_name)
-    effects = resolve_effects(model_name, data.get("effects"))
-    numerics = _check_numerics(model_name, data.get("numerics", {}))
-    model = Model(model_name, effects, numerics)
-    given = data.get("parameters", {})
-    model.check_names(given)
-    params: dict[str, float] = {}
-    for name, value in given.items():
-        if name not in model.parameters:
-            raise InputError(f"{name} is computed by this scene ({model.quantities[name].equation}), not a parameter")
-        params[name] = to_si(name, value, model.quantities[name].unit)
-    missing = []
-    for name in model.parameters:
-        if name not in params:
-            default = model.quantities[name].default
-            if default is None:
-                missing.append(name)
-            else:
-                params[name] = default
-    if missing:
-        raise InputError(f"missing parameter{'s' if len(missing) > 1 else ''}{where}: "
-                         + ", ".join(f"{n} ({model.quantities[n].description}, {model.quantities[n].unit})"
-                                     for n in missing))
-    _check_values(model, params)
-    scene = Scene(str(head.get("name", source or "unnamed")), model_name, effects, params, numerics, source)
-    scene.__dict__["built"] = model
+    scene = from_dict(data, source, optional=optional, emit=False, digest=hashlib.sha256(text.encode()).hexdigest(),
+                      values=values, values_bare=bare, values_origin=origin)
+    if emit:
+        for note in scene.warnings:
+            warnings.warn(note, SceneWarning, stacklevel=3)
     return scene
 
 
-def _check_values(model: Model, params: dict[str, float]) -> None:
-    model.validate(params)
-    for name, value in params.items():
-        q = model.quantities[name]
-        if q.beyond_source(value):
-            warnings.warn(f"{name} = {q.to_display(value):.6g}{q.unit_text} is beyond the range the source "
-                          f"covers ({q.description})", BeyondSourceWarning, stacklevel=3)
+def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", optional=(), emit: bool = True,
+              digest: str | None = None, values: dict | None = None, values_bare: str = "si",
+              values_origin: str = "api") -> Scene:
+    """Validate a scene given as nested dicts (the TOML structure); every problem at once.
+
+    bare: ``"refuse"`` (a file's rule: a dimensional value needs its unit) or ``"si"`` (numbers are
+    SI, for scenes built in Python).  optional, emit, values (read with ``values_bare``, from
+    ``values_origin``): as in :func:`load`.
+    """
+    where = f" in {source}" if source else ""
+    found, notes = Problems(where), []
+    if not isinstance(data, dict):
+        raise InputError(f"a scene is a table of tables, got {type(data).__name__}")
+    name, model_name = _head(data, found)
+    known = model_name in models()
+    effects = resolve_effects(model_name, _table(data, "effects", found), found) if known else {}
+    numerics = _numerics(model_name, _table(data, "numerics", found), found) if known else {}
+    given = _table(data, "parameters", found)
+    if not known:
+        for key in given:   # names can still be checked against every model's quantities
+            universe = {n for m in models() for n in all_quantities(m)}
+            if key not in universe:
+                found.add(f"unknown parameter {key!r}{suggest(key, universe)}")
+        found.raise_if_any()
+    model = Model(model_name, effects, numerics)
+    params, checks, unused, origin = _parameters(model, given, bare, found, notes)
+    if values:
+        _set_values(model, values, values_bare, values_origin, params, origin, found, notes)
+    defaults, absent = _missing(model, params, origin, tuple(optional), found)
+    for problem in model.problems(params):
+        found.add(problem)
+    scene = Scene(str(name if name is not None else source or "unnamed"), model_name, effects, params, numerics,
+                  source, defaults, unused, checks, absent, tuple(notes), origin, digest,
+                  {k: v for k, v in data.items()})
+    scene.__dict__["built"] = model
+    _verify_checks(scene, found)
+    found.raise_if_any()
+    if emit:
+        for note in scene.warnings:
+            warnings.warn(note, SceneWarning, stacklevel=2)
+    return scene
 
 
-def _check_numerics(model: str, numerics: dict) -> dict:
+def _table(data: dict, key: str, found: Problems) -> dict:
+    value = data.get(key, {})
+    if not isinstance(value, dict):
+        found.add(f"[{key}] must be a table of NAME = VALUE lines, got {type(value).__name__}")
+        return {}
+    return value
+
+
+def _head(data: dict, found: Problems):
+    for key in data:
+        if key not in TABLES:
+            found.add(f"unknown table [{key}]; valid tables: {', '.join(TABLES)}{suggest(key, TABLES)}")
+    head = _table(data, "scene", found)
+    for key in head:
+        if key not in SCENE_KEYS:
+            found.add(f"unknown key {key!r} in [scene]; valid: {', '.join(SCENE_KEYS)}{suggest(key, SCENE_KEYS)}")
+    model = head.get("model", "winch")
+    if not isinstance(model, str) or model not in models():
+        found.add(f"unknown model {model!r}; valid models: {', '.join(models())}{suggest(str(model), models())}")
+    name = head.get("name")
+    if name is not None and not isinstance(name, str):
+        found.add(f"[scene] name must be text, got {name!r}")
+    return name, model
+
+
+def _numerics(model: str, given: dict, found: Problems) -> dict:
     specs = numerics_of(model)
     out = {k: spec.default for k, spec in specs.items()}
-    for key, value in numerics.items():
+    for key, value in given.items():
         if key not in specs:
             valid = ", ".join(sorted(specs)) or "none"
-            raise InputError(f"unknown numerics option {key!r} for model {model!r}; valid: {valid}"
-                             f"{suggest(key, specs)}")
-        out[key] = specs[key].check(key, value)
+            found.add(misplaced(model, key, "[numerics]") or
+                      f"unknown numerics option {key!r} for model {model!r}; valid: {valid}{suggest(key, specs)}")
+            continue
+        with found.collect():
+            out[key] = specs[key].check(key, value)
+    return out
+
+
+def _parameters(model: Model, given: dict, bare: str, found: Problems, notes: list):
+    """SI values of the given parameters; checks (computed quantities given); unused ones."""
+    params, checks, unused, origin = {}, {}, {}, {}
+    quantities = all_quantities(model.name)
+    for key, value in given.items():
+        if key not in quantities:
+            found.add(misplaced(model.name, key, "[parameters]") or
+                      f"unknown parameter {key!r} for model {model.name!r}{suggest(key, quantities)}")
+            continue
+        q = quantities[key]
+        try:
+            si = q.to_si(value, bare)
+        except InputError as exc:
+            found.add(str(exc))
+            origin[key] = "scene (refused)"
+            continue
+        if key in model.outputs:
+            checks[key] = Check(si, _half_digit(q, value, si, bare), str(value))
+        elif key in model.parameters:
+            params[key], origin[key] = si, "scene"
+            note = q.unusual(si)
+            if note:
+                notes.append(note)
+        else:
+            owners = model.owners(key)
+            unused[key] = " or ".join(owners) or "no effect of this model"
+            notes.append(f"{key} is not used: it belongs to {unused[key]}")
+    return params, checks, unused, origin
+
+
+def _set_values(model: Model, values: dict, bare: str, origin_label: str, params: dict, origin: dict,
+                found: Problems, notes: list) -> None:
+    """Parameters set on top of the file (``--set``): they replace the file's values."""
+    for key, value in values.items():
+        problem = _settable(model, key, origin_label)
+        if problem and not (key in all_quantities(model.name) and key not in model.symbols):
+            found.add(problem)
+            continue
+        q = all_quantities(model.name)[key]
+        try:
+            si = q.to_si(value, bare)
+        except InputError as exc:
+            found.add(str(exc))
+            origin[key] = f"{origin_label} (refused)"
+            continue
+        if key not in model.parameters:
+            notes.append(f"{key} is not used: it belongs to {' or '.join(model.owners(key)) or 'no effect'}")
+            continue
+        params[key], origin[key] = si, origin_label
+        note = q.unusual(si)
+        if note:
+            notes.append(note)
+
+
+def _half_digit(q, value, si: float, bare: str) -> float:
+    """Half a unit of the last digit typed in ``value``, in SI (how precisely a check was given)."""
+    text = value if isinstance(value, str) else repr(value)
+    num, unit = split_value(text) if isinstance(value, str) else (float(value), "")
+    step = last_digit(text)
+    bigger = q.to_si(f"{num + step!r} {unit}".strip(), bare) if unit or q.dimensionless or bare == "si" else si
+    return 0.5 * abs(bigger - si)
+
+
+def _missing(model: Model, params: dict, origin: dict, optional: tuple, found: Problems):
+    defaults, absent, missing = {}, [], []
+    for name in model.parameters:
+        if name in params or name in origin:
+            continue
+        q = model.quantities[name]
+        if q.default is not None:
+            params[name], origin[name] = q.default, "default"
+            defaults[name] = q.default_note or f"default {q.show(q.default)}"
+        elif name in optional:
+            absent.append(name)
+        else:
+            missing.append(name)
+    for name in missing:
+        q = model.quantities[name]
+        example = f'"{_example(q)}{q.unit_text}"' if not q.dimensionless else _example(q)
+        found.add(f"missing parameter {name} ({q.description}), e.g. {name} = {example}")
+    return defaults, tuple(absent)
+
+
+def _example(q) -> str:
+    return f"{q.to_display(q.guess):.4g}"
+
+
+def _verify_checks(scene: Scene, found: Problems) -> Problems:
+    """Each computed quantity given in the scene against the model's value (to the digits typed).
+
+    Parameters that are missing or were refused enter as NaN, so every check that does not depend
+    on them is still verified (a mistake elsewhere does not hide this one).
+    """
+    if not scene.checks:
+        return found
+    model = scene.built
+    out = forward_of(model)(**{k: scene.parameters.get(k, math.nan) for k in model.parameters})
+    for name, chk in scene.checks.items():
+        got = float(out[name])
+        if math.isnan(got) or abs(got - chk.value) <= chk.tolerance + 1e-12 * abs(got):
+            continue
+        q = model.quantities[name]
+        ways = [w for w in _input_variants(model, name)]
+        way = (f"to give {name} as an input, choose {' or '.join(ways)}" if ways
+               else f"remove {name} from [parameters] or change the inputs it is computed from")
+        found.add(f"{name} = {chk.text} disagrees with the value this scene computes, {q.show(got)} "
+                  f"({model.equation_of(name).source}, {model.defined_by[name]} = "
+                  f"{model.effects[model.defined_by[name]]!r}); {way}")
+    return found
+
+
+def _input_variants(model: Model, name: str) -> list[str]:
+    """``effect = 'variant'`` choices under which ``name`` is a parameter instead of computed."""
+    effect = model.defined_by[name]
+    out = []
+    for variant, cls in effects_of(model.name)[effect].variants.items():
+        if variant == model.effects[effect]:
+            continue
+        trial = Model(model.name, {**model.effects, effect: variant}, model.options)
+        if name in trial.parameters:
+            out.append(f"{effect} = {variant!r}")
     return out

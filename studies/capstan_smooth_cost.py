@@ -36,7 +36,7 @@ NOISE = 1e-5  # [rad]
 
 def scene(variant, sharpness=30.0, **values):
     return rm.from_dict({"scene": {"model": "capstan"}, "effects": {"stiffness": variant},
-                         "parameters": {**BASE, **values}, "numerics": {"sharpness": float(sharpness)}})
+                         "parameters": {**BASE, **values}, "numerics": {"sharpness": float(sharpness)}}, bare="si")
 
 
 def data(n_points: int, seed: int = 0) -> pd.DataFrame:

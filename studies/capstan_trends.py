@@ -37,7 +37,7 @@ FAMILIES = {  # parameter -> values (SI) and label
 
 def scene(variant="li", **values):
     return rm.from_dict({"scene": {"name": "Li et al. Fig. 13-17", "model": "capstan"},
-                         "effects": {"stiffness": variant}, "parameters": {**BASE, **values}})
+                         "effects": {"stiffness": variant}, "parameters": {**BASE, **values}}, bare="si")
 
 
 def curves(n: int) -> pd.DataFrame:

@@ -42,7 +42,7 @@ def _scene(t_end, contact, D=None, mu_d=None):
         d["parameters"]["D"] = D
     if mu_d is not None:
         d["parameters"]["mu_d"] = mu_d
-    return rm.from_dict(d)
+    return rm.from_dict(d, bare="si")
 
 
 def _run(scene, repeats):

@@ -50,7 +50,7 @@ def _scene(name, params, numerics):
     d = tomllib.loads(DATA.joinpath(name).read_text())
     d["parameters"].update(params)
     d.setdefault("numerics", {}).update(numerics)
-    return rm.from_dict(d)
+    return rm.from_dict(d, bare="si")
 
 
 def chart(ramps, dampings, segments) -> pd.DataFrame:

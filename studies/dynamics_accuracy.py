@@ -37,7 +37,7 @@ def _scene(t_end, segments, rtol, integrator="cvodes"):
     d = tomllib.loads(DATA.joinpath("winch_start.toml").read_text())
     d["parameters"]["t_end"] = t_end
     d["numerics"].update({"segments": segments, "sim_rtol": rtol, "sim_integrator": integrator, "sim_dt": 0.02})
-    return rm.from_dict(d)
+    return rm.from_dict(d, bare="si")
 
 
 def _run(t_end, segments, rtol, integrator="cvodes", repeats=3):

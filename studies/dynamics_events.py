@@ -45,7 +45,7 @@ def _scene(params=None, numerics=None):
     d["effects"].update({"rope_elasticity": "rigid", "ramp": "cosine"})
     d["parameters"].update({"t_end": "8 s", **(params or {})})
     d["numerics"].update(numerics or {})
-    return rm.from_dict(d)
+    return rm.from_dict(d, bare="si")
 
 
 def truth(eps):

@@ -41,7 +41,7 @@ def scene(mu, Q, k, method):
     return rm.from_dict({"scene": {"model": "sheave", "name": "Hajduk Fig. 5"}, "effects": {"lining": "voigt"},
                          "parameters": {"S_0": S_0, "mu": mu, "alpha": 2 * math.pi, "Q": Q, "lambda": 1.0,
                                         "omega": k},
-                         "numerics": {"method": method}})
+                         "numerics": {"method": method}}, bare="si")
 
 
 def measure(points: int, k_over_pi) -> pd.DataFrame:

@@ -3,13 +3,12 @@
 import math
 import subprocess
 import sys
-import warnings
 
 import pytest
 
 import ropemodel as rm
 from ropemodel.cli import main
-from ropemodel.scene import BeyondSourceWarning
+from ropemodel.scene import SceneWarning
 
 BASE = {
     "L_u": "1150 m", "L_ul": "500 m", "alpha_u": "16 deg", "mu_pm": 0.05, "mu_pl": 0.05,
@@ -24,39 +23,49 @@ def scene(**changes):
 
 @pytest.mark.parametrize("changes, pattern", [
     ({"alpa_u": "16 deg"}, r"unknown parameter 'alpa_u'.*did you mean 'alpha_u'"),
-    ({"G_m": None}, r"missing parameter.*G_m"),
-    ({"alpha_u": "16 kN"}, r"alpha_u: '16 kN' has dimension .*expected"),
-    ({"L_u": "3 s"}, r"L_u: '3 s' has dimension \[time\]"),
+    ({"G_m": None}, r"missing parameter G_m .*e\.g\. G_m = \"\d+ kN\""),
+    ({"alpha_u": "16 kN"}, r"alpha_u = '16 kN' has the dimension force, expected angle \(a value in deg\)"),
+    ({"L_u": "3 s"}, r"L_u = '3 s' has the dimension time, expected length"),
     ({"G_m": float("nan")}, r"G_m: value must be finite"),
     ({"G_m": math.inf}, r"G_m: value must be finite"),
     ({"G_m": "inf kN"}, r"G_m: value must be finite"),
-    ({"L_u": "-5 m"}, r"L_u = -5 m is outside the valid range \(0, inf\] m"),
-    ({"L_u": 0}, r"L_u = 0 m is outside the valid range"),
+    ({"G_m": 10 ** 400}, r"G_m: 1000.*\.\.\. is too large to be a number"),
+    ({"L_u": "-5 m"}, r"L_u = -5 m is outside the valid range \(0, inf\) m"),
+    ({"L_u": "0 m"}, r"L_u = 0 m is outside the valid range"),
     ({"L_ul": "-1 m"}, r"L_ul = -1 m is outside"),
     ({"L_ul": "1200 m"}, r"L_ul = 1200 m is beyond L_u = 1150 m"),
     ({"alpha_u": "90 deg"}, r"alpha_u = 90 deg is outside the valid range \(-90, 90\) deg"),
     ({"alpha_u": "-95 deg"}, r"alpha_u = -95 deg is outside"),
-    ({"q_lw": 0}, r"q_lw = 0 mm/kN is outside the valid range"),
+    ({"q_lw": "0 mm/kN"}, r"q_lw = 0 mm/kN is outside the valid range"),
     ({"q_lw": "-5.8 mm/kN"}, r"q_lw = -5.8 mm/kN is outside"),
-    ({"mu_pm": "abc"}, r"mu_pm: cannot read 'abc'"),
-    ({"G_m": True}, r"G_m: expected a number"),
-    ({"mu_pl1": 0.05}, r"'mu_pl1' is computed by this scene|mu_pl1 is computed"),
-    ({"F_C_up": 1.0}, r"F_C_up is computed by this scene"),
-    ({"v_pj": 2.5}, r"'v_pj' is not used by this scene's effects; it belongs to power = 'drive'"),
+    ({"mu_pm": "abc"}, r"mu_pm = 'abc' is not a number \(e\.g\. \"0\.5\"\)"),
+    ({"G_m": True}, r"G_m = True: expected a number or a value with a unit"),
+    ({"G_m": [1, 2]}, r"G_m = \[1, 2\]: expected a number or a value with a unit"),
+    ({"G_m": 300}, r'G_m = 300 has no unit; write e\.g\. "300 kN"'),
+    ({"G_m": "300"}, r'G_m = 300 has no unit; write e\.g\. "300 kN"'),
+    ({"alpha_u": 16}, r'alpha_u = 16 has no unit; write e\.g\. "16 deg"'),
+    ({"mu_pl1": 0.04}, r"mu_pl1 = 0.04 disagrees with the value this scene computes, 0.05 .*choose resistance = 'case2'"),
+    ({"F_C_up": "100 kN"}, r"F_C_up = 100 kN disagrees with the value this scene computes, 190.949 kN"),
+    ({"lining": "rigid"}, r"lining is an effect of model 'winch': move it to \[effects\]"),
+    ({"segments": 8}, r"segments is a numerics option of model 'winch': move it to \[numerics\]"),
 ])
 def test_scene_errors(changes, pattern):
     with pytest.raises(rm.InputError, match=pattern):
         scene(**changes)
 
 
-def test_beyond_paper_range_warns():
-    with pytest.warns(BeyondSourceWarning, match="alpha_u = 50 deg is beyond the range"):
-        scene(alpha_u="50 deg")
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        scene(alpha_u="45 deg")
+def test_known_but_unused_is_a_warning_and_a_check_that_agrees_is_accepted():
+    """v_pj without the power effect is named with the variant that uses it; mu_pl1 = mu_pl (case 1) passes."""
+    with pytest.warns(SceneWarning, match=r"v_pj is not used: it belongs to power = 'drive' or lining = 'voigt'"):
+        sc = scene(v_pj="2.5 m/s", mu_pl1=0.05, mu_pl2="0.050")
+    assert sc.unused == {"v_pj": "power = 'drive' or lining = 'voigt'"} and set(sc.checks) == {"mu_pl1", "mu_pl2"}
 
 
+def test_every_mistake_is_named_at_once():
+    with pytest.raises(rm.InputError) as err:
+        scene(G_m=300, alpa_u="16 deg", L_u="3 s", q_lw="-1 mm/kN", lining="rigid", mu_pl1=0.04)
+    assert len(err.value.problems) == 6, err.value.problems
+    assert str(err.value).startswith("6 problems")
 @pytest.mark.parametrize("data, pattern", [
     ({"effects": {"elongaton": "none"}}, r"unknown effect 'elongaton'.*did you mean 'elongation'"),
     ({"effects": {"elongation": "off"}}, r"elongation = 'off' is not a variant; valid variants: krauze2025, none"),
@@ -86,7 +95,8 @@ def test_missing_file(tmp_path):
     (["run", "--set", "L_ul=2000m"], "L_ul"),
     (["run", "--set", "G_m"], "expected NAME=VALUE"),
     (["run", "missing.toml"], "scene file not found"),
-    (["solve", "example", "--given", "F_C_up=2e5", "--find", "nope"], "unknown to find 'nope'"),
+    (["solve", "example", "--given", "F_C_up=200kN", "--find", "nope"], "unknown unknown to find 'nope'"),
+    (["solve", "example", "--given", "F_C_up=200", "--find", "G_m"], 'F_C_up = 200 has no unit; write e.g. "200 kN"'),
     (["solve", "example"], "solve needs --given"),
     (["frobnicate"], "invalid choice"),
     ([], "no command given"),

@@ -104,7 +104,7 @@ def test_published_jump_in_the_scene(scene):
 def test_torque_and_force_scenes_agree(scene):
     p = scene.parameters
     torque = rm.from_dict({"scene": {"model": "capstan"}, "effects": {"load": "torque"},
-                           "parameters": {**{k: v for k, v in p.items() if k != "F_T"}, "T": 2 * p["R"] * 37.0}})
+                           "parameters": {**{k: v for k, v in p.items() if k != "F_T"}, "T": 2 * p["R"] * 37.0}}, bare="si")
     a = rm.run(scene.with_values({"F_T": 37.0})).to_dict()
     b = rm.run(torque).to_dict()
     for k in KEYS:
@@ -131,7 +131,7 @@ def test_load_from_a_measured_rotation(scene):
 @pytest.mark.parametrize("variant", ["li", "continuous", "smooth"])
 def test_stiffness_and_derivatives_finite_at_zero_preload_and_beyond(scene, variant):
     sc = rm.from_dict({"scene": {"model": "capstan"}, "effects": {"stiffness": variant},
-                       "parameters": dict(scene.parameters)})
+                       "parameters": dict(scene.parameters)}, bare="si")
     prob = rm.Problem(sc)
     syms = {k: ca.MX.sym(k) for k in prob.knowns}
     out = prob.function(**syms)
@@ -188,7 +188,7 @@ def test_zero_free_length_at_zero_load_refused(scene):
 
 
 def test_cli_run_curve_solve(tmp_path, capsys):
-    assert cli(["run", SCENE, "--json", "--set", "F_T=0"]) == 0
+    assert cli(["run", SCENE, "--json", "--set", "F_T=0N"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["K"] == pytest.approx(2 * 5e4 / 0.36, rel=1e-15)
     assert set(KEYS) <= set(out)
@@ -197,7 +197,7 @@ def test_cli_run_curve_solve(tmp_path, capsys):
     capsys.readouterr()
     text = csv.read_text().splitlines()
     assert text[0].startswith("F_T [N],T [N*m],K [N/m]") and len(text) == 12
-    assert cli(["solve", SCENE, "--given", "T=7.5", "--find", "F_T", "--json"]) == 0
+    assert cli(["solve", SCENE, "--given", "T=7.5N*m", "--find", "F_T", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["F_T"] == pytest.approx(50.0, rel=1e-12)
     assert cli(["run", SCENE, "--set", "mu=-1"]) == 2
     assert cli(["curve", SCENE, "--to", "1e5N"]) == 2
@@ -217,7 +217,7 @@ def test_property_trends_with_self_consistent_rotation(scene, F, f, mu, a0, Fp):
     tiny change of the wraps, found to move K by ~1e-5 either way); the rotation falls with F_p and EA."""
     base = {**scene.parameters, "F_T": F, "mu": mu, "alpha_0": a0, "F_p": Fp}
     for variant in ("continuous", "li"):
-        sc = rm.from_dict({"scene": {"model": "capstan"}, "effects": {"stiffness": variant}, "parameters": base})
+        sc = rm.from_dict({"scene": {"model": "capstan"}, "effects": {"stiffness": variant}, "parameters": base}, bare="si")
         prob = rm.Problem(sc)
         cols = {k: np.array([base[k]] * 5) for k in ("L", "R", "F_p", "EA")}
         for i, k in enumerate(("L", "R", "F_p", "EA"), start=1):

@@ -20,7 +20,7 @@ def paper_scene(**params):
     values = {**base.parameters, "d": "42 mm", "F_min": "1100 kN", "n_rope": 4.0, "D": "1.4 m",
               "stroke": "1000 mm", **params}
     return from_dict({"scene": {"name": "Fig. 9 + checks"},
-                      "effects": {**base.effects, "checks": "design"}, "parameters": values})
+                      "effects": {**base.effects, "checks": "design"}, "parameters": values}, bare="si")
 
 
 def test_paper_rope_stroke_is_403_mm_short():

@@ -31,7 +31,7 @@ def scene(name="winch_start.toml", effects=None, params=None, numerics=None):
     d["effects"].update(effects or {})
     d["parameters"].update(params or {})
     d.setdefault("numerics", {}).update(numerics or {})
-    return rm.from_dict(d)
+    return rm.from_dict(d, bare="si")
 
 
 # --- settling on the static model -------------------------------------------------------------

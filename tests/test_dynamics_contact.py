@@ -32,7 +32,7 @@ def scene(name="winch_start.toml", effects=None, params=None, numerics=None):
             d["parameters"].pop(k)
     d["parameters"].update(params or {})
     d.setdefault("numerics", {}).update(numerics or {})
-    return rm.from_dict(d)
+    return rm.from_dict(d, bare="si")
 
 CAPSTAN = {"drum_contact": "capstan"}
 

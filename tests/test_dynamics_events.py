@@ -29,7 +29,7 @@ def scene(name, effects=None, params=None, numerics=None):
     d["effects"].update(effects or {})
     d["parameters"].update(params or {})
     d.setdefault("numerics", {}).update(numerics or {})
-    return rm.from_dict(d)
+    return rm.from_dict(d, bare="si")
 
 
 def _short_slip_case(eps=1e-3):

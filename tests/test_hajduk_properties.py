@@ -49,7 +49,7 @@ def sheave(method):
     return rm.from_dict({"scene": {"model": "sheave"}, "effects": {"lining": "voigt"},
                          "parameters": {"S_0": 1e4, "mu": 0.2, "alpha": 3.0, "Q": 1e-5, "lambda": 0.01,
                                         "omega": 1.0},
-                         "numerics": {"method": method}})
+                         "numerics": {"method": method}}, bare="si")
 
 
 def ratio_and_jacobian(method):
@@ -93,7 +93,7 @@ def test_anisotropic_derivatives_match_finite_differences():
         scene = rm.from_dict({"scene": {"model": "sheave"}, "effects": {"lining": "voigt_anisotropic"},
                               "parameters": {"S_0": 2e4, "mu": 0.3, "alpha": 5.0, "Q_R": 3e-6, "Q_T": 2e-5,
                                              "lambda_R": 0.002, "lambda_T": 0.5, "omega": 2.0},
-                              "numerics": {"method": method}})
+                              "numerics": {"method": method}}, bare="si")
         prob = rm.Problem(scene)
         names = list(prob.knowns)
         x = ca.MX.sym("x", len(names))

@@ -116,7 +116,7 @@ def test_case2_by_hand():
 def test_case2_equal_coefficients_is_case1(fig9):
     p = {k: v for k, v in fig9.parameters.items() if k not in ("v_pj", "eta")}
     c2 = rm.from_dict({"effects": {"resistance": "case2"},
-                       "parameters": {**p, "mu_pl1": p["mu_pl"], "mu_pl2": p["mu_pl"]}})
+                       "parameters": {**p, "mu_pl1": p["mu_pl"], "mu_pl2": p["mu_pl"]}}, bare="si")
     r1, r2 = rm.run(fig9), rm.run(c2)
     for n in ("F_C_up", "F_C_down", "F_S_up", "dF_up"):
         assert r2[n] == pytest.approx(r1[n], rel=1e-14)
@@ -139,8 +139,15 @@ def test_equation_functions_on_scalars_arrays_symbols():
 
 
 def test_horizontal_route_limit(fig9):
-    """alpha_u = 0: no weight components, forces are pretension ± resistances only."""
-    r = rm.run(fig9.with_values({"alpha_u": 0.0}))
+    """alpha_u = 0: no weight components, forces are pretension ± resistances only.
+
+    With the paper's 20 kN pretension the winding rope would have to push when lowering
+    (F_C_down = 10 - 23.35 - 4.6 kN < 0): that is a slack rope, refused; 60 kN keeps every rope taut."""
+    with pytest.raises(rm.SolveError, match=r"F_C_down = -17.95 kN: the winding rope would have to push "
+                                            r"\(downward travel\).*F_nwl > 55.9 kN"):
+        rm.run(fig9.with_values({"alpha_u": 0.0}))
+    r = rm.run(fig9.with_values({"alpha_u": 0.0, "F_nwl": 60e3}))
     assert r["G_lmC"] == 0.0
-    assert r["F_C_up"] == pytest.approx(10e3 + 0.05 * 467e3 + 0.05 * 80 * 1150, rel=1e-14)
-    assert r["F_S_up"] == pytest.approx(10e3 - 0.05 * 80 * 1150, rel=1e-14)
+    assert r["F_C_up"] == pytest.approx(30e3 + 0.05 * 467e3 + 0.05 * 80 * 1150, rel=1e-14)
+    assert r["F_S_up"] == pytest.approx(30e3 - 0.05 * 80 * 1150, rel=1e-14)
+    assert r["F_C_down"] == pytest.approx(30e3 - 0.05 * 467e3 - 0.05 * 80 * 1150, rel=1e-14)

@@ -62,7 +62,7 @@ def _scene(**extra_effects):
     params.update({"d": 0.042, "rope_grade": "1770 N/mm^2", "rope_E": "100 kN/mm^2"})
     data = {"scene": {"name": "catalogue"}, "effects": {"power": "drive", "rope": "6x36-IWRC", **extra_effects},
             "parameters": params}
-    return from_dict(data)
+    return from_dict(data, bare="si")
 
 
 def test_catalogue_rope_feeds_the_forces_and_elongation():
@@ -88,7 +88,7 @@ def test_named_construction_equals_explicit_factors():
     s = _scene()
     data = {"scene": {"name": "factors"}, "effects": {**s.effects, "rope": "catalogue"},
             "parameters": {**s.parameters, "rope_K": 0.356, "rope_W": "0.409 kg/(100 m*mm^2)", "rope_C": 0.46}}
-    explicit = run(from_dict(data))
+    explicit = run(from_dict(data, bare="si"))
     for k in ("q_l", "q_lw", "F_min", "F_C_up", "dF_up"):
         assert explicit[k] == pytest.approx(named[k], rel=1e-14)
 
@@ -97,7 +97,7 @@ def test_rope_W_catalogue_unit_parses_to_si():
     s = _scene()
     data = {"scene": {"name": "factors"}, "effects": {**s.effects, "rope": "catalogue"},
             "parameters": {**s.parameters, "rope_K": 0.356, "rope_W": "0.409 kg/(100 m*mm^2)", "rope_C": 0.46}}
-    assert from_dict(data).parameters["rope_W"] == pytest.approx(4090.0)
+    assert from_dict(data, bare="si").parameters["rope_W"] == pytest.approx(4090.0)
 
 
 def test_unknown_construction_is_named_with_a_suggestion():
@@ -105,7 +105,7 @@ def test_unknown_construction_is_named_with_a_suggestion():
     data = {"scene": {"name": "x"}, "effects": {**base.effects, "rope": "6x36-IWCR"},
             "parameters": dict(base.parameters)}
     with pytest.raises(InputError, match="did you mean '6x36-IWRC'"):
-        from_dict(data)
+        from_dict(data, bare="si")
 
 
 def test_catalogue_functions_accept_arrays_and_casadi():

@@ -30,7 +30,7 @@ def sheave(lining="voigt", friction="constant", numerics=None, **params):
         del p["omega"]
     p.update(params)
     return rm.from_dict({"scene": {"model": "sheave"}, "effects": {"lining": lining, "friction": friction},
-                         "parameters": p, "numerics": numerics or {}})
+                         "parameters": p, "numerics": numerics or {}}, bare="si")
 
 
 def test_example_scene_reproduces_the_table():
@@ -162,7 +162,7 @@ def test_thirion_inverse_pressure_by_hand():
     scene = rm.from_dict({"scene": {"model": "sheave"}, "effects": {"lining": "rigid", "friction": "thirion"},
                           "parameters": {"S_0": "20 kN", "mu": 0.3, "alpha": "180 deg", "R": "1 m", "a": "30 mm",
                                          "p_c": "2 MPa"},
-                          "numerics": {"method": "ode"}})
+                          "numerics": {"method": "ode"}}, bare="si")
     s = 2.2
     hand = 2e4 * (s - 1) / ((0.3 * math.pi - math.log(s)) * 1.0 * 0.03)
     r = rm.solve(scene, {"S_ratio": s}, ["p_c"])

@@ -50,7 +50,9 @@ def test_every_effect_combination_is_well_posed(model, effects):
     # an independent check: CasADi's structural rank of the full incidence equals the count
     A = incidence(m, m.outputs)
     assert A.shape[0] == A.shape[1] == len(m.outputs)
-    assert ca.sprank(ca.Sparsity.triplet(*A.shape, *map(list, A.nonzero()))) == len(m.outputs)
+    rows = [i for i, js in enumerate(A.rows) for _ in js]
+    cols = [j for js in A.rows for j in js]
+    assert ca.sprank(ca.Sparsity.triplet(*A.shape, rows, cols)) == len(m.outputs)
 
 
 def test_elongation_off_builds_no_elongation_equation(fig9):
@@ -143,3 +145,25 @@ def test_call_equation_forward_and_inverse(toy_model):
     a, k = ca.MX.sym("a"), ca.MX.sym("k")
     dz = ca.Function("dz", [a, k], [ca.jacobian(fwd(a=a, k=k)["z"], k)])
     assert float(dz(2.0, 0.3)) == pytest.approx(-4 * np.exp(-0.3), rel=1e-7)
+
+
+def test_matching_is_maximum_against_scipy():
+    """Our augmenting-path matching has the size of scipy's maximum bipartite matching (independent code)."""
+    import scipy.sparse as sp
+    from scipy.sparse.csgraph import maximum_bipartite_matching
+
+    from ropemodel.core.structure import Incidence, matching
+
+    rng = np.random.default_rng(7)
+    for _ in range(300):
+        n, m = rng.integers(1, 60, size=2)
+        P = rng.random((n, m)) < rng.uniform(0.02, 0.3)
+        rows = tuple(tuple(int(j) for j in np.flatnonzero(P[i])) for i in range(n))
+        cols = tuple(tuple(int(i) for i in np.flatnonzero(P[:, j])) for j in range(m))
+        row_match, col_match = matching(Incidence(rows, cols))
+        size = sum(j >= 0 for j in row_match)
+        assert size == sum(i >= 0 for i in col_match)
+        assert all(col_match[j] == i for i, j in enumerate(row_match) if j >= 0)
+        assert all(P[i, j] for i, j in enumerate(row_match) if j >= 0)
+        ref = maximum_bipartite_matching(sp.csr_matrix(P.astype(float)), perm_type="column")
+        assert size == int((ref >= 0).sum())

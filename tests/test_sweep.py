@@ -96,8 +96,10 @@ def test_inverse_sweep_and_invalid_solutions(fig9):
     ({"mu_pm": [0.1, -0.2]}, r"mu_pm = -0\.2 .*point|mu_pm = -0\.2"),
     ({"L_ul": "0m:2000m:3"}, r"L_ul = 2000 m is beyond L_u"),
     ({"alpha_u": "0:1"}, r"START:STOP:N"),
-    ({"alpha_u": "0:1:0"}, r"positive integer"),
-    ({"alpha_u": "0 kN:1 kN:3"}, r"alpha_u: '0 kN' has dimension"),
+    ({"alpha_u": "0deg:1deg:0"}, r"positive whole number"),
+    ({"alpha_u": "0 kN:1 kN:3"}, r"alpha_u = '0 kN' has the dimension force, expected angle"),
+    ({"alpha_u": "0:1deg:3"}, r'alpha_u = 0 has no unit; write e.g. "0 deg"'),
+    ({"G_m": "300,467"}, r'G_m = 300 has no unit; write e.g. "300 kN"'),
     ({"alpah_u": [0.1]}, r"alpah_u"),
     ({"F_C_up": [1.0]}, r"F_C_up"),
 ])
@@ -112,10 +114,11 @@ def test_bad_point_in_a_table_is_named(fig9):
         rm.sweep(fig9, pts)
 
 
-def test_parse_axis_units():
-    np.testing.assert_allclose(parse_axis("alpha_u", "0deg:45deg:4", "rad"), np.radians([0, 15, 30, 45]))
-    np.testing.assert_allclose(parse_axis("G_m", "300kN,467 kN", "N"), [300e3, 467e3])
-    np.testing.assert_allclose(parse_axis("L_u", (1, 2, 3), "m"), [1, 1.5, 2])
+def test_parse_axis_units(fig9):
+    q = fig9.built.quantities
+    np.testing.assert_allclose(parse_axis("alpha_u", "0deg:45deg:4", q["alpha_u"]), np.radians([0, 15, 30, 45]))
+    np.testing.assert_allclose(parse_axis("G_m", "300kN,467 kN", q["G_m"]), [300e3, 467e3])
+    np.testing.assert_allclose(parse_axis("L_u", (1, 2, 3), q["L_u"]), [1, 1.5, 2])   # numbers: SI (Python API)
 
 
 def test_cli_sweep_csv(tmp_path, capsys):
@@ -147,7 +150,7 @@ def _voigt_winch():
     p = dict(base.parameters)
     p.update({"mu_d": 0.25, "alpha_d": "200 deg", "Q": 5e-7, "lambda": 0.05, "D": "3000 mm"})
     return rm.from_dict({"scene": {"model": "winch"}, "effects": {"lining": "voigt", "power": "drive"},
-                         "parameters": p})
+                         "parameters": p}, bare="si")
 
 
 def test_inverse_sweep_through_newton_catches_non_convergence():

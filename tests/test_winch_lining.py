@@ -14,6 +14,7 @@ import sys
 import pytest
 
 import ropemodel as rm
+from _toml import parameters_toml
 from ropemodel.errors import InputError
 
 
@@ -23,7 +24,7 @@ def winch(lining="rigid", **params):
     p.update({"mu_d": 0.2, "alpha_d": "200 deg"})
     p.update(params)
     return rm.from_dict({"scene": {"model": "winch"}, "effects": {"lining": lining, "power": "drive"},
-                         "parameters": p})
+                         "parameters": p}, bare="si")
 
 
 def affine_parts(scene, d):
@@ -68,7 +69,7 @@ def test_rigid_cli_solve(tmp_path):
     t = math.exp(0.2 * math.radians(200))
     hand = least_pretension(*affine_parts(scene, "up"), t, 1.0)
     toml = tmp_path / "w.toml"
-    params = "\n".join(f"{k} = {v!r}" for k, v in scene.parameters.items())
+    params = parameters_toml(scene)
     toml.write_text(f'[scene]\nmodel = "winch"\n[effects]\nlining = "rigid"\npower = "drive"\n'
                     f"[parameters]\n{params}\n")
     out = subprocess.run([sys.executable, "-m", "ropemodel", "solve", str(toml), "--given", "slip_margin_up=0",
@@ -175,7 +176,7 @@ def test_voigt_cli_solve(tmp_path, capsys):
     margin = voigt_margin(scene, "up", 1.0)
     peak = minimize_scalar(lambda F: -margin(F), bounds=(0.0, 1e8), method="bounded").x
     truth = brentq(margin, 0.0, peak, xtol=1e-9, rtol=1e-14)
-    params = "\n".join(f"{k} = {v!r}" for k, v in scene.parameters.items())
+    params = parameters_toml(scene)
     toml = tmp_path / "w.toml"
     toml.write_text(f'[scene]\nmodel = "winch"\n[effects]\nlining = "voigt"\npower = "drive"\n[parameters]\n{params}\n')
     assert cli_main(["solve", str(toml), "--given", "slip_margin_up=0", "--find", "F_nwl", "--json"]) == 0

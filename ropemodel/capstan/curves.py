@@ -27,8 +27,8 @@ def load_curve(scene, F_max, n: int = 201, F_min=0.0, display: bool = False) -> 
     """
     if scene.model != "capstan":
         raise InputError(f"load curves are for capstan scenes; this scene's model is {scene.model!r}")
-    F_max = to_si("F_max", F_max, "N")
-    F_min = to_si("F_min", F_min, "N")
+    F_max = to_si("F_max", F_max, "N", bare="si")   # numbers SI (Python); text carries its unit
+    F_min = to_si("F_min", F_min, "N", bare="si")
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
         raise InputError(f"n = {n!r}: a load curve needs a whole number of points n >= 2")
     if not 0.0 <= F_min < F_max:

@@ -167,7 +167,7 @@ def identify(scene, data, fit=("mu", "EA"), sigma: float | None = None, variant:
     lam_f, lam_g, p_nlp = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", 0), ca.MX.sym("p", 0)
     hess = ca.Function("nlp_hess_l", [x, p_nlp, lam_f, lam_g], [ca.triu(lam_f * (Jr.T @ Jr))],
                        ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])
-    opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes", "ipopt.tol": 1e-8, "ipopt.acceptable_tol": 1e-4, "ipopt.acceptable_iter": 4,
+    opts = {"ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False, "ipopt.sb": "yes", "ipopt.tol": 1e-8, "ipopt.acceptable_tol": 1e-4, "ipopt.acceptable_iter": 4,
             "ipopt.max_iter": 100, "hess_lag": hess}
     opts.update({f"ipopt.{a}": b for a, b in (ipopt_options or {}).items()})
     solver = ca.nlpsol("capstan_fit", "ipopt", nlp, opts)

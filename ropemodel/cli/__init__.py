@@ -34,15 +34,26 @@ def _commands():
     return {m.NAME: m for m in mods}
 
 
-def build_parser() -> argparse.ArgumentParser:
-    from ropemodel import __version__
+class _Version(argparse.Action):
+    """``--version``: the installed version, looked up only when asked for."""
 
+    def __call__(self, parser, namespace, values, option_string=None):
+        from ropemodel import __version__
+
+        print(f"ropemodel {__version__}")
+        parser.exit()
+
+
+def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="ropemodel", description="Rope and cable friction drives: forces, traction, stiffness.")
-    parser.add_argument("--version", action="version", version=f"ropemodel {__version__}")
+    parser.add_argument("--version", action=_Version, nargs=0, help="show the version and exit")
+    parser.add_argument("-q", "--quiet", action="store_true", help="no progress bars or status lines on stderr")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name, mod in _commands().items():
         p = sub.add_parser(name, help=mod.HELP, description=mod.HELP)
         mod.add_arguments(p)
+        p.add_argument("-q", "--quiet", action="store_true", default=argparse.SUPPRESS,
+                       help="no progress bars or status lines on stderr")
         p.set_defaults(_main=mod.main)
     return parser
 
@@ -56,6 +67,10 @@ def main(argv=None) -> int:
     warnings.showwarning = _warning
     try:
         args = build_parser().parse_args(argv)
+        if args.quiet:
+            from ropemodel import progress
+
+            progress.quiet()
         if not getattr(args, "_main", None):
             raise InputError("no command given; try 'ropemodel run' or 'ropemodel --help'")
         return args._main(args)
@@ -77,4 +92,7 @@ def main(argv=None) -> int:
 
 
 def run_console() -> None:
-    sys.exit(main())
+    """Run the command line and exit (kept for scripts that called it; see :mod:`ropemodel.__main__`)."""
+    from ropemodel.__main__ import console
+
+    console()

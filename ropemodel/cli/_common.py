@@ -1,31 +1,33 @@
-"""Helpers shared by the CLI commands."""
+"""Helpers shared by the CLI commands: scene arguments, NAME=VALUE assignments, warnings."""
 
 from __future__ import annotations
 
-from ropemodel.errors import InputError
-from ropemodel.scene import load
+import sys
+
+from ropemodel.errors import InputError, Problems
 
 
-def parse_assignment(text: str, option: str) -> tuple[str, object]:
-    """``NAME=VALUE`` → (name, value); the value is a float if it reads as one, else a unit string."""
+def parse_assignment(text: str, option: str) -> tuple[str, str]:
+    """``NAME=VALUE`` → (name, value text).  The value keeps its unit; a bare number is accepted
+    later only for a dimensionless quantity (never guessed as SI)."""
     if "=" not in text:
         raise InputError(f"{option} {text!r}: expected NAME=VALUE, e.g. {option} alpha_u=16deg")
     name, value = (s.strip() for s in text.split("=", 1))
     if not name or not value:
         raise InputError(f"{option} {text!r}: expected NAME=VALUE")
-    try:
-        return name, float(value)
-    except ValueError:
-        return name, value
+    return name, value
 
 
-def assignments(items, option: str) -> dict[str, object]:
-    out = {}
+def assignments(items, option: str) -> dict[str, str]:
+    """Every ``NAME=VALUE`` of a repeated option; all mistakes at once."""
+    out, found = {}, Problems()
     for item in items or []:
-        name, value = parse_assignment(item, option)
-        if name in out:
-            raise InputError(f"{option} {name} given twice")
-        out[name] = value
+        with found.collect():
+            name, value = parse_assignment(item, option)
+            if name in out:
+                raise InputError(f"{option} {name} given twice")
+            out[name] = value
+    found.raise_if_any()
     return out
 
 
@@ -35,12 +37,22 @@ def add_scene_arguments(parser, optional: bool = True) -> None:
     else:
         parser.add_argument("scene", help="scene TOML file, or the name of a built-in scene ('example' for Fig. 9)")
     parser.add_argument("--set", action="append", metavar="NAME=VALUE", default=[],
-                        help="override a parameter; VALUE is SI or carries a unit, e.g. alpha_u=20deg")
+                        help="override a parameter; a dimensional VALUE carries its unit, e.g. alpha_u=20deg")
     parser.add_argument("--json", action="store_true", help="print one JSON object in SI units")
 
 
-def scene_from_args(args):
-    """Load the scene named on the command line and apply ``--set``."""
-    scene = load(args.scene)
-    values = assignments(args.set, "--set")
-    return scene.with_values(values) if values else scene
+def scene_from_args(args, optional=(), announce: bool = True):
+    """Load the scene named on the command line and apply ``--set``; print its warnings on stderr."""
+    from ropemodel.scene import load
+
+    scene = load(args.scene, optional=optional, emit=False, values=assignments(args.set, "--set"),
+                 bare="refuse", origin="--set")
+    if announce:
+        warn(scene.warnings)
+    return scene
+
+
+def warn(lines) -> None:
+    """Each line as ``warning: ...`` on stderr."""
+    for line in lines:
+        print(f"warning: {line}", file=sys.stderr)

@@ -13,18 +13,11 @@ HELP = "load curve of a capstan scene: K, delta_alpha, regime ... against F_T fr
 
 def add_arguments(parser) -> None:
     add_scene_arguments(parser, optional=False)
-    parser.add_argument("--to", required=True, metavar="F_MAX", help="largest load F_T, e.g. 100N (SI if no unit)")
+    parser.add_argument("--to", required=True, metavar="F_MAX", help="largest load F_T with its unit, e.g. 100N")
     parser.add_argument("--from", dest="start", default="0 N", metavar="F_MIN", help="smallest load (default 0 N)")
     parser.add_argument("-n", type=int, default=201, help="number of loads (default 201)")
     parser.add_argument("--display", action="store_true", help="display units (N/mm, deg) instead of SI")
     parser.add_argument("-o", "--output", metavar="FILE.csv", help="write the curve as CSV instead of printing it")
-
-
-def _value(text):
-    try:
-        return float(text)
-    except ValueError:
-        return text
 
 
 def main(args) -> int:
@@ -32,7 +25,7 @@ def main(args) -> int:
 
     if args.json and args.output:
         raise InputError("curve: give either --json or -o FILE, not both")
-    df = load_curve(scene_from_args(args), _value(args.to), args.n, _value(args.start), display=args.display)
+    df = load_curve(scene_from_args(args), args.to, args.n, args.start, display=args.display)
     if args.output:
         try:
             df.to_csv(args.output, index=False)

@@ -6,6 +6,7 @@ import json
 
 from ropemodel.cli._common import add_scene_arguments, scene_from_args
 from ropemodel.errors import SolveError
+from ropemodel.progress import status
 from ropemodel.units import to_si
 
 NAME = "identify"
@@ -25,9 +26,9 @@ def main(args) -> int:
 
     scene = scene_from_args(args)
     fit = [n.strip() for n in args.fit.split(",") if n.strip()]
-    sigma = to_si("--sigma", args.sigma if not _is_number(args.sigma) else float(args.sigma), "rad") \
-        if args.sigma else None
-    res = identify(scene, args.data, fit, sigma=sigma)
+    sigma = to_si("--sigma", args.sigma, "rad", "deg") if args.sigma else None
+    with status(f"identifying {', '.join(fit)} from {args.data}"):
+        res = identify(scene, args.data, fit, sigma=sigma)
     if args.json:
         print(json.dumps(res.to_dict(), indent=2, allow_nan=False))
     else:
@@ -40,10 +41,3 @@ def main(args) -> int:
         raise SolveError(f"identification did not converge: {res.status}")
     return 0
 
-
-def _is_number(text) -> bool:
-    try:
-        float(text)
-        return True
-    except (TypeError, ValueError):
-        return False

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from ropemodel.cli._common import add_scene_arguments, scene_from_args
-from ropemodel.problem import run
 
 NAME = "run"
 HELP = "compute every output of a scene (default: the built-in Fig. 9 example)"
@@ -14,6 +13,8 @@ def add_arguments(parser) -> None:
 
 
 def main(args) -> int:
+    from ropemodel.problem import run
+
     result = run(scene_from_args(args))
     print(result.to_json() if args.json else result.table())
     return 0

@@ -14,8 +14,7 @@ import math
 
 from ropemodel.cli._common import add_scene_arguments, scene_from_args
 from ropemodel.errors import InputError
-from ropemodel.sensitivity import elasticities, sobol, sobol_indices, table, tornado
-from ropemodel.sensitivity.sobol import parse_range
+from ropemodel.progress import status
 
 NAME = "sensitivity"
 HELP = "which inputs matter: elasticities d ln y / d ln p (AD), or Sobol indices over ranges"
@@ -46,6 +45,9 @@ def _num(v):
 
 
 def main(args) -> int:
+    from ropemodel.sensitivity import elasticities, sobol, sobol_indices, table, tornado
+    from ropemodel.sensitivity.sobol import parse_range
+
     scene = scene_from_args(args)
     outputs = _names(args.outputs) or None
     if args.sobol:
@@ -62,10 +64,12 @@ def main(args) -> int:
 
             scene.built.check_names(ranges)
             q = scene.built.quantities
-            frame = sobol_indices(sizing_function(scene), {k: parse_range(k, v, q[k].unit) for k, v in ranges.items()},
-                                  args.samples, args.seed)
+            with status(f"computing the Sobol indices of the sizing optimum ({args.samples} base samples)"):
+                frame = sobol_indices(sizing_function(scene), {k: parse_range(k, v, q[k].unit)
+                                                               for k, v in ranges.items()}, args.samples, args.seed)
         else:
-            frame = sobol(scene, ranges, outputs, args.samples, args.seed)
+            with status(f"computing the Sobol indices ({args.samples} base samples)"):
+                frame = sobol(scene, ranges, outputs, args.samples, args.seed)
         if args.json:
             print(json.dumps([{k: _num(v) for k, v in r.items()} for r in frame.to_dict("records")], indent=1))
         else:

@@ -5,7 +5,6 @@ from __future__ import annotations
 from pathlib import Path
 
 from ropemodel.cli._common import add_scene_arguments, scene_from_args
-from ropemodel.dynamics import simulate
 from ropemodel.errors import InputError
 
 NAME = "simulate"
@@ -31,6 +30,8 @@ def add_arguments(parser) -> None:
 
 
 def main(args) -> int:
+    from ropemodel.dynamics import simulate
+
     writer = None
     if args.output:
         suffix = Path(args.output).suffix.lower()

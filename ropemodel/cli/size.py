@@ -11,7 +11,8 @@ from __future__ import annotations
 import json
 import math
 
-from ropemodel.cli._common import add_scene_arguments, scene_from_args
+from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn
+from ropemodel.progress import status
 
 NAME = "size"
 HELP = "size the winch: least rope d, then least pretension F_nwl, then least stroke, every check met"
@@ -47,6 +48,9 @@ def _text(design) -> str:
         lines.append("active constraints: " + ", ".join(design.active))
         for k, v in design.power.items():
             lines.append(f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}")
+        if design.least_drum is not None:
+            lines.append(f"{'D_min':<12}{q['D'].to_display(design.least_drum):>14.6g}  {q['D'].display_unit}"
+                         f"  (no drum diameter given: the least drum, D_ratio_min d)")
         lines.append("")
         lines.append(f"{'check margin':<22}{'value':>14}  unit")
         for k, v in design.margins.items():
@@ -60,9 +64,12 @@ def _text(design) -> str:
 
 def main(args) -> int:
     from optimisation.design import DEFAULT_DISCRETE, size
+    from optimisation.problem import D_OPTIONAL, SIZED, prepare
 
-    scene = scene_from_args(args)
-    design = size(scene, method=args.discrete or DEFAULT_DISCRETE)
+    scene = prepare(scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False))
+    warn(scene.warnings)
+    with status(f"sizing {scene.name}: rope, pretension and stroke"):
+        design = size(scene, method=args.discrete or DEFAULT_DISCRETE)
     if args.json:
         print(json.dumps(_num(design.to_dict()), indent=2, allow_nan=False))
     else:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from ropemodel.cli._common import add_scene_arguments, assignments, scene_from_args
 from ropemodel.errors import InputError
-from ropemodel.problem import solve
 
 NAME = "solve"
 HELP = "solve a scene for parameters (--find) from given outputs (--given)"
@@ -19,10 +18,12 @@ def add_arguments(parser) -> None:
 
 
 def main(args) -> int:
+    from ropemodel.problem import solve
+
     given = assignments(args.given, "--given")
     find = [n.strip() for item in args.find for n in item.split(",") if n.strip()]
     if not given and not find:
         raise InputError("solve needs --given NAME=VALUE and --find NAME (use 'run' for the forward problem)")
-    result = solve(scene_from_args(args), given, find)
+    result = solve(scene_from_args(args), given, find, bare="refuse")
     print(result.to_json() if args.json else result.table())
     return 0

@@ -12,13 +12,10 @@ with the same arguments resumes it; rerunning a finished one says it is complete
 from __future__ import annotations
 
 import json
-import math
 import sys
 
 from ropemodel.cli._common import add_scene_arguments, assignments, scene_from_args
 from ropemodel.errors import InputError
-from ropemodel.sweep import read_points, sweep
-from ropemodel.sweep.runner import CHUNK, SweepInterrupted, show_progress
 
 NAME = "sweep"
 HELP = "evaluate a scene over grids or a table of points; write CSV or Parquet (resumable)"
@@ -37,7 +34,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--find", action="append", metavar="NAME", default=[],
                         help="a parameter to solve for at every point, freed by a --given")
     parser.add_argument("-o", "--output", required=True, metavar="FILE", help="FILE.csv or FILE.parquet")
-    parser.add_argument("--chunk-size", type=int, default=CHUNK, help=f"points per chunk (default {CHUNK})")
+    parser.add_argument("--chunk-size", type=int, default=65536, help="points per chunk (default 65536)")
     parser.add_argument("--threads", type=int, default=None, help="threads (default: number of CPUs)")
     parser.add_argument("--backend", default="auto", choices=["auto", "casadi", "compiled"],
                         help="evaluation backend (default auto: compiled C if a compiler works)")
@@ -50,8 +47,8 @@ def add_arguments(parser) -> None:
                         help="at every point, the sizing optimum (d, F_nwl, stroke) instead of the outputs; "
                              "each optimisation warm-starts from its neighbour (not resumable)")
     parser.add_argument("--cold", action="store_true", help="with --sizing: no warm start")
-    parser.add_argument("--no-progress", "--quiet", dest="no_progress", action="store_true",
-                        help="no progress bar (default: a bar on stderr when it is a terminal)")
+    parser.add_argument("--no-progress", action="store_true",
+                        help="no progress bar, as --quiet (default: a bar on stderr when it is a terminal)")
 
 
 def _names(items):
@@ -59,6 +56,10 @@ def _names(items):
 
 
 def main(args) -> int:
+    from ropemodel.progress import enabled
+    from ropemodel.sweep import read_points, sweep
+    from ropemodel.sweep.runner import SweepInterrupted
+
     scene = scene_from_args(args)
     vary = {}
     for item in args.vary:
@@ -80,7 +81,7 @@ def main(args) -> int:
                         find=_names(args.find), out=args.output, chunk_size=args.chunk_size,
                         threads=args.threads, backend=args.backend, si=args.si,
                         errors="mark" if args.mark_failures else "raise",
-                        progress=show_progress(False if args.no_progress else None),
+                        progress=enabled(False if args.no_progress else None),
                         restart=args.restart, collect=False)
     except SweepInterrupted as exc:
         print(f"interrupted: {exc}", file=sys.stderr)
@@ -102,19 +103,16 @@ def _summary(path, as_json: bool, rows: int, columns: list[str], status: str = "
 
 def _sizing(scene, vary, points, args) -> int:
     from optimisation.sweep import sizing_sweep
-    from ropemodel.sweep.limits import axis_counts, check_size
-    from ropemodel.sweep.store import OutputLock, check_output, write_frame
+    from ropemodel.progress import enabled
+    from ropemodel.sweep.files import OutputLock, check_output, write_frame
 
     if args.given or args.find or args.outputs:
         raise InputError("--sizing computes d, F_nwl and stroke; it takes no --given, --find or --outputs")
     out = check_output(args.output)
     with OutputLock(out):
-        if vary:  # the grid's size, before any axis is made (the frame is held in memory)
-            counts = axis_counts(vary, scene.built.quantities)
-            check_size(math.prod(counts.values()), len(counts) + 6, axes=counts, out=out)
         try:
             frame = sizing_sweep(scene, vary or None, points=points, warm=not args.cold,
-                                 progress=show_progress(False if args.no_progress else None))
+                                 progress=enabled(False if args.no_progress else None))
         except KeyboardInterrupt:
             print("interrupted: nothing written (a sizing sweep is not resumable)", file=sys.stderr)
             return 130

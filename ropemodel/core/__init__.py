@@ -9,8 +9,8 @@
   quantities: explicit blocks evaluated directly, implicit blocks by Newton.
 """
 
-from ropemodel.core.compile import compile_solver
+from ropemodel.core.compile import compile_solver, forward_of, solver_of, structure_of
 from ropemodel.core.model import Model
 from ropemodel.core.structure import Structure, analyse
 
-__all__ = ["Model", "Structure", "analyse", "compile_solver"]
+__all__ = ["Model", "Structure", "analyse", "compile_solver", "forward_of", "solver_of", "structure_of"]

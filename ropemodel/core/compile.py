@@ -28,7 +28,9 @@ import casadi as ca
 
 from ropemodel.core.structure import Structure
 
-NEWTON_OPTIONS = {"abstol": 1e-12, "abstolStep": 1e-14, "max_iter": 100, "error_on_fail": False}
+#: Newton's options; a failure is reported by the caller in the user's terms, never as a solver log
+NEWTON_OPTIONS = {"abstol": 1e-12, "abstolStep": 1e-14, "max_iter": 100, "error_on_fail": False,
+                  "show_eval_warnings": False}
 
 
 def compile_solver(model, structure: Structure, guesses: dict[str, float] | None = None,
@@ -120,3 +122,33 @@ def _newton(model, block, res: ca.Function, deps, guesses, b) -> ca.Function:
     rf = ca.rootfinder(f"newton{b}", "newton", g_res, NEWTON_OPTIONS)
     x_fun = ca.Function(f"x_of_z{b}", [z], [x_of_z])
     return ca.Function(f"block{b}", [p], [x_fun(rf(ca.DM(z0), p))])
+
+
+_CACHE: dict[tuple, object] = {}
+CACHE_SIZE = 64
+
+
+def _cached(key, make):
+    if key not in _CACHE:
+        if len(_CACHE) >= CACHE_SIZE:  # oldest first out
+            del _CACHE[next(iter(_CACHE))]
+        _CACHE[key] = make()
+    return _CACHE[key]
+
+
+def structure_of(model, unknowns, knowns) -> Structure:
+    """:func:`~ropemodel.core.structure.analyse`, once per model structure and choice of unknowns."""
+    from ropemodel.core.structure import analyse
+
+    return _cached(("structure", model.key, tuple(unknowns), tuple(knowns)), lambda: analyse(model, unknowns, knowns))
+
+
+def solver_of(model, structure: Structure, guesses: dict[str, float] | None = None) -> ca.Function:
+    """:func:`compile_solver`, once per model structure, choice of unknowns and Newton guesses."""
+    g = tuple(sorted((guesses or {}).items()))
+    return _cached(("solver", model.key, structure, g), lambda: compile_solver(model, structure, dict(g)))
+
+
+def forward_of(model) -> ca.Function:
+    """The forward Function of ``model``: every output from the parameters (compiled once)."""
+    return solver_of(model, structure_of(model, model.outputs, model.parameters))

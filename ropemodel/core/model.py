@@ -5,7 +5,7 @@ from __future__ import annotations
 import casadi as ca
 
 from ropemodel.citations import cite
-from ropemodel.effects import Equation, Symbols, all_quantities, effects_of, resolve_effects
+from ropemodel.effects import Equation, Symbols, all_quantities, effects_of, misplaced, resolve_effects
 from ropemodel.errors import InputError, suggest
 from ropemodel.quantity import Quantity
 
@@ -26,6 +26,7 @@ class Model:
 
     def __init__(self, model: str, effects: dict[str, str] | None = None, options: dict | None = None):
         self.name = model
+        self.options = dict(options or {})
         self.effects = resolve_effects(model, effects)
         specs = effects_of(model)
         self.submodels = [specs[e].variants[v](options) for e, v in self.effects.items()]
@@ -69,29 +70,47 @@ class Model:
     def equation_of(self, name: str) -> Equation:
         return self.equations[self.outputs.index(name)]
 
-    def validate(self, values: dict[str, float]) -> None:
-        """Range of every given value, then each submodel's cross-parameter checks."""
+    @property
+    def key(self) -> tuple:
+        """What the equations depend on (model, effects, numerics): one compile serves every value."""
+        return (self.name, tuple(sorted(self.effects.items())), repr(sorted(self.options.items())))
+
+    def problems(self, values: dict[str, float]) -> list[str]:
+        """Every value outside its valid range, then every broken cross-parameter rule (SI ``values``)."""
+        out = []
         for name, value in values.items():
             if name in self.quantities:
-                self.quantities[name].check(value)
+                problem = self.quantities[name].range_problem(value)
+                if problem:
+                    out.append(problem)
         for sm in self.submodels:
-            sm.validate(values)
+            out += [p for p in sm.rules(values) if p not in out]
+        return out
+
+    def validate(self, values: dict[str, float]) -> None:
+        """:class:`InputError` listing every out-of-range value and broken rule of ``values``."""
+        found = self.problems(values)
+        if found:
+            raise InputError(problems=found)
+
+    def owners(self, name: str) -> list[str]:
+        """``effect = 'variant'`` of every other variant of this model that declares ``name``."""
+        return [f"{e} = {v!r}" for e, spec in effects_of(self.name).items() for v, cls in spec.variants.items()
+                if any(q.name == name for q in cls.quantities) and self.effects[e] != v]
+
+    def name_problem(self, name: str, what: str = "parameter") -> str | None:
+        """Why ``name`` is not a quantity of this model (a suggestion, or the variant that uses it), or None."""
+        if name in self.symbols:
+            return None
+        if name in all_quantities(self.name):
+            owners = self.owners(name)
+            hint = f"; it belongs to {' or '.join(owners)}" if owners else ""
+            return f"{what} {name!r} is not used by this scene's effects{hint}"
+        return misplaced(self.name, name, "") or (
+            f"unknown {what} {name!r} for model {self.name!r}{suggest(name, list(all_quantities(self.name)))}")
 
     def check_names(self, names, what: str = "parameter") -> None:
-        """:class:`InputError` for a name that is not a quantity of this model."""
-        for n in names:
-            if n not in self.symbols:
-                universe = all_quantities(self.name)
-                if n in universe:
-                    owners = [
-                        f"{e} = {v!r}"
-                        for e, spec in effects_of(self.name).items()
-                        for v, cls in spec.variants.items()
-                        if any(q.name == n for q in cls.quantities) and self.effects[e] != v
-                    ]
-                    hint = f"; it belongs to {' or '.join(owners)}" if owners else ""
-                    raise InputError(f"{what} {n!r} is not used by this scene's effects{hint}")
-                raise InputError(
-                    f"unknown {what} {n!r} for model {self.name!r}{suggest(n, list(self.symbols))}"
-                )
-
+        """:class:`InputError` naming every name that is not a quantity of this model."""
+        found = [p for p in (self.name_problem(n, what) for n in names) if p]
+        if found:
+            raise InputError(problems=found)

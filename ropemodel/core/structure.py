@@ -5,7 +5,7 @@ unknowns, the incidence pattern (which unknown appears in which equation, the
 sparsity of the Jacobian) decides whether the problem is well-posed before any
 number is computed:
 
-* a maximum matching of equations to unknowns (scipy's bipartite matching)
+* a maximum matching of equations to unknowns (augmenting paths, Kuhn's algorithm)
   shows the *under-determined* unknowns (reachable by alternating paths from an
   unmatched unknown: no equation pins them) and the *over-determined* equations
   (reachable from an unmatched equation: more equations than their unknowns);
@@ -19,9 +19,6 @@ from collections import deque
 from dataclasses import dataclass
 
 import casadi as ca
-import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import maximum_bipartite_matching
 
 from ropemodel.errors import IllPosedError
 
@@ -43,13 +40,52 @@ class Structure:
     blocks: tuple[Block, ...]
 
 
-def incidence(model, unknowns) -> sp.csr_matrix:
-    """Equations × unknowns incidence matrix (the sparsity of ∂residual/∂unknowns)."""
+@dataclass(frozen=True)
+class Incidence:
+    """Which unknown appears in which equation (the sparsity of ∂residual/∂unknowns), both ways."""
+
+    rows: tuple[tuple[int, ...], ...]   # equation → unknowns
+    cols: tuple[tuple[int, ...], ...]   # unknown → equations
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return len(self.rows), len(self.cols)
+
+
+def incidence(model, unknowns) -> Incidence:
+    """Equations × unknowns incidence (the sparsity of ∂residual/∂unknowns)."""
     res = ca.vertcat(*[model.structural(i) for i in range(len(model.equations))])
     x = ca.vertcat(*[model.symbols[u] for u in unknowns])
     J = ca.jacobian(res, x).sparsity()
     rows, cols = J.get_triplet()
-    return sp.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(J.size1(), J.size2()))
+    by_row = [[] for _ in range(J.size1())]
+    by_col = [[] for _ in range(J.size2())]
+    for i, j in zip(rows, cols):
+        by_row[i].append(j)
+        by_col[j].append(i)
+    return Incidence(tuple(map(tuple, by_row)), tuple(map(tuple, by_col)))
+
+
+def matching(A: Incidence) -> tuple[list[int], list[int]]:
+    """A maximum matching: (unknown matched to each equation, equation matched to each unknown), -1 if none.
+
+    Kuhn's augmenting-path algorithm, O(V·E): the systems here have at most a few hundred equations.
+    """
+    row_match, col_match = [-1] * len(A.rows), [-1] * len(A.cols)
+
+    def augment(i, seen):
+        for j in A.rows[i]:
+            if j in seen:
+                continue
+            seen.add(j)
+            if col_match[j] < 0 or augment(col_match[j], seen):
+                row_match[i], col_match[j] = j, i
+                return True
+        return False
+
+    for i in range(len(A.rows)):
+        augment(i, set())
+    return row_match, col_match
 
 
 def _alternating_reach(start, neighbours, partner):
@@ -78,18 +114,14 @@ def analyse(model, unknowns, knowns) -> Structure:
     unknowns, knowns = list(unknowns), list(knowns)
     A = incidence(model, unknowns)
     n_eq, n_x = A.shape
-    row_match = maximum_bipartite_matching(A, perm_type="column")  # eq -> unknown
-    col_match = maximum_bipartite_matching(A.T.tocsr(), perm_type="column")  # unknown -> eq
-    At = A.T.tocsr()
+    row_match, col_match = matching(A)   # eq -> unknown, unknown -> eq: one matching, both ways
     free_x = [j for j in range(n_x) if col_match[j] < 0]
     free_eq = [i for i in range(n_eq) if row_match[i] < 0]
     if free_x or free_eq:
         # under-determined: unknowns reachable from unmatched unknowns (x -> eq -> its matched x)
-        under, _ = _alternating_reach(free_x, lambda j: At.indices[At.indptr[j]:At.indptr[j + 1]],
-                                      lambda i: row_match[i])
+        under, _ = _alternating_reach(free_x, lambda j: A.cols[j], lambda i: row_match[i])
         # over-determined: equations reachable from unmatched equations (eq -> x -> its matched eq)
-        over_eq, over_x = _alternating_reach(free_eq, lambda i: A.indices[A.indptr[i]:A.indptr[i + 1]],
-                                             lambda j: col_match[j])
+        over_eq, over_x = _alternating_reach(free_eq, lambda i: A.rows[i], lambda j: col_match[j])
         raise IllPosedError(_message(model, unknowns, knowns, n_eq, n_x, under, over_eq, over_x))
     return Structure(tuple(unknowns), tuple(knowns), tuple(_blocks(model, unknowns, A, row_match)))
 
@@ -98,10 +130,10 @@ def _blocks(model, unknowns, A, row_match):
     """Fine BTF blocks (CasADi) ordered so that each block only needs earlier ones."""
     n = A.shape[0]
     # permute columns so the matching lies on the diagonal, then take CasADi's BTF
-    perm = np.empty(n, dtype=int)
-    perm[np.arange(n)] = row_match
-    Ad = A[:, perm].tocoo()
-    S = ca.Sparsity.triplet(n, n, Ad.row.tolist(), Ad.col.tolist())
+    perm = list(row_match)                       # diagonal position i holds unknown perm[i]
+    where = {j: k for k, j in enumerate(perm)}
+    tri = [(i, where[j]) for i in range(n) for j in A.rows[i]]
+    S = ca.Sparsity.triplet(n, n, [t[0] for t in tri], [t[1] for t in tri])
     nb, rowperm, colperm, rowblock, colblock, _, _ = S.btf()
     raw = []
     for k in range(nb):
@@ -111,7 +143,7 @@ def _blocks(model, unknowns, A, row_match):
     owner = {c: k for k, (_, cols) in enumerate(raw) for c in cols}
     deps = []
     for eqs, cols in raw:
-        needed = {owner[int(j)] for i in eqs for j in A.indices[A.indptr[i]:A.indptr[i + 1]]}
+        needed = {owner[int(j)] for i in eqs for j in A.rows[i]}
         deps.append(needed - {owner[cols[0]]})
     order, done = [], set()
     while len(order) < nb:  # topological order; the BTF guarantees there is no cycle

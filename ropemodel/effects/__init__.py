@@ -22,6 +22,7 @@ from ropemodel.effects.base import (
     effects_of,
     numerics_of,
     positive_number,
+    misplaced,
     models,
     register,
     resolve_effects,
@@ -40,6 +41,7 @@ __all__ = [
     "numerics_of",
     "positive_number",
     "models",
+    "misplaced",
     "register",
     "resolve_effects",
 ]

@@ -15,7 +15,12 @@ A submodel contributes
   it *defines* (the output it computes in the forward problem).  The residual is
   acausal: the solver may use it for any of its variables;
 * ``citations``: keys into :data:`ropemodel.citations.CITATIONS`;
-* ``validate(values)``: cross-parameter checks (e.g. L_ul ≤ L_u) on SI values.
+* ``rules(values)``: cross-parameter checks (e.g. L_ul ≤ L_u) on SI values, one message per
+  broken rule (or ``validate(values)`` raising :class:`~ropemodel.errors.InputError`).
+
+Every quantity is declared once per model: a second, different declaration of the same name
+raises at import (:func:`register`), so a default or a range cannot silently differ between
+the effects that share a quantity.
 """
 
 from __future__ import annotations
@@ -25,7 +30,7 @@ from typing import Callable, ClassVar
 
 import casadi as ca
 
-from ropemodel.errors import InputError, suggest
+from ropemodel.errors import InputError, Problems, suggest
 from ropemodel.quantity import Quantity
 
 
@@ -91,7 +96,26 @@ class Submodel:
         return []
 
     def validate(self, values: dict[str, float]) -> None:
-        """Raise :class:`InputError` on inconsistent SI parameter values."""
+        """Raise :class:`InputError` on inconsistent SI parameter values (or override :meth:`rules`)."""
+
+    def rules(self, values: dict[str, float]) -> list[str]:
+        """Every broken cross-parameter rule at the SI ``values`` (only names present are checked)."""
+        try:
+            self.validate(values)
+        except InputError as exc:
+            return list(exc.problems)
+        return []
+
+    def invalid(self, values: dict) -> list[str]:
+        """Why a solved point lies outside the physics (e.g. a slack rope), one message each; [] if valid.
+
+        ``values`` are the SI values of every known and solved quantity of the point.
+        """
+        return []
+
+    def invalid_mask(self, values: dict) -> dict[str, "object"]:
+        """Vectorised :meth:`invalid` for sweeps: reason → boolean array over the points of ``values``."""
+        return {}
 
     def frames(self, values: dict[str, float], scene) -> dict:
         """Extra tables (title → pandas DataFrame with units in its columns) for a solved point."""
@@ -110,6 +134,8 @@ class EffectSpec:
 
 #: model name → effect name → :class:`EffectSpec`
 REGISTRY: dict[str, dict[str, EffectSpec]] = {}
+#: model name → quantity name → (its one declaration, the first variant that declared it)
+DECLARED: dict[str, dict[str, tuple[Quantity, str]]] = {}
 
 
 def define_effect(model: str, effect: str, default: str, doc: str) -> None:
@@ -127,6 +153,12 @@ def register(model: str, effect: str, variant: str) -> Callable[[type[Submodel]]
         spec = REGISTRY[model][effect]
         if variant in spec.variants:
             raise RuntimeError(f"variant {model}.{effect}={variant} registered twice")
+        declared = DECLARED.setdefault(model, {})
+        for q in cls.quantities:
+            first = declared.setdefault(q.name, (q, f"{effect} = {variant!r}"))
+            if first[0] != q:
+                raise RuntimeError(f"quantity {q.name!r} of model {model!r} is declared twice, differently, by "
+                                   f"{first[1]} and {effect} = {variant!r}: declare it once and share it")
         cls.model, cls.effect, cls.variant = model, effect, variant
         spec.variants[variant] = cls
         return cls
@@ -146,26 +178,44 @@ def effects_of(model: str) -> dict[str, EffectSpec]:
     return REGISTRY[model]
 
 
-def resolve_effects(model: str, chosen: dict[str, str] | None) -> dict[str, str]:
-    """Fill in default variants and check every effect and variant name."""
+def resolve_effects(model: str, chosen: dict[str, str] | None, problems=None) -> dict[str, str]:
+    """Fill in default variants and check every effect and variant name.
+
+    With ``problems`` (a :class:`~ropemodel.errors.Problems`) every mistake is recorded there and the
+    default variant is used in its place; without, the first mistake raises :class:`InputError`.
+    """
+
+    found = Problems() if problems is None else problems
     specs = effects_of(model)
     chosen = dict(chosen or {})
     out = {}
     for name in chosen:
         if name not in specs:
-            raise InputError(
-                f"unknown effect {name!r} for model {model!r}; valid effects: "
-                f"{', '.join(sorted(specs))}{suggest(name, specs)}"
-            )
+            found.add(misplaced(model, name, "[effects]") or
+                      f"unknown effect {name!r} for model {model!r}; valid effects: "
+                      f"{', '.join(sorted(specs))}{suggest(name, specs)}")
     for name, spec in specs.items():
         variant = chosen.get(name, spec.default)
         if not isinstance(variant, str) or variant not in spec.variants:
-            raise InputError(
-                f"effect {name} = {variant!r} is not a variant; valid variants: "
-                f"{', '.join(sorted(spec.variants))}{suggest(str(variant), spec.variants)}"
-            )
+            found.add(f"effect {name} = {variant!r} is not a variant; valid variants: "
+                      f"{', '.join(sorted(spec.variants))}{suggest(str(variant), spec.variants)}")
+            variant = spec.default
         out[name] = variant
+    if problems is None:
+        found.raise_if_any()
     return out
+
+
+def misplaced(model: str, name: str, table: str) -> str | None:
+    """``"alpha_u is a parameter: move it to [parameters]"`` when ``name`` belongs in another table."""
+    where = {"[parameters]": name in all_quantities(model) if model in REGISTRY else False,
+             "[effects]": name in REGISTRY.get(model, {}),
+             "[numerics]": name in NUMERICS.get(model, {})}
+    kind = {"[parameters]": "a parameter", "[effects]": "an effect", "[numerics]": "a numerics option"}
+    for right, hit in where.items():
+        if hit and right != table:
+            return f"{name} is {kind[right]} of model {model!r}: move it to {right}"
+    return None
 
 
 def all_quantities(model: str) -> dict[str, Quantity]:

@@ -37,7 +37,6 @@ import math
 
 import casadi as ca
 import numpy as np
-import pandas as pd
 
 from ropemodel.effects.base import (Equation, Submodel, choice, define_effect, define_numerics,
                                     positive_number, register)
@@ -207,10 +206,7 @@ class PhysicalVoigtLining(AnisotropicVoigtLining):
         Quantity("G", "Pa", "shear modulus of the lining", "MPa", guess=2e7, **_pos),
         Quantity("eta_R", "Pa*s", "viscosity of the lining in compression", "MPa*s", guess=1e5, **_nonneg),
         Quantity("eta_T", "Pa*s", "viscosity of the lining in shear", "MPa*s", guess=1e5, **_nonneg),
-        *(Quantity(q.name, q.unit, q.description, q.display, low=0.0, equation=eq)
-          for q, eq in zip(AnisotropicVoigtLining.quantities[4:8],
-                           (f"{SRC}, eq. (6): h/(E R^2 a)", f"{SRC}, eq. (6): mu/(G R a)",
-                            f"{SRC}, eq. (1): eta_R/E", f"{SRC}, eq. (1): eta_T/G"))),
+        *AnisotropicVoigtLining.quantities[4:8],   # computed here (eq. (1), (6)): the same quantities
         S_OUT, S_RATIO,
     )
 
@@ -270,7 +266,7 @@ def _lining_of(scene) -> _Lining:
     return next(sm for sm in scene.built.submodels if isinstance(sm, _Lining))
 
 
-def distribution_frame(values: dict, scene, points: int | None = None) -> pd.DataFrame:
+def distribution_frame(values: dict, scene, points: int | None = None):
     """S along the arc at ``points`` equally spaced angles 0 … alpha for the SI ``values`` of a
     solved sheave point (columns with units); by the scene's method."""
     sm = _lining_of(scene)
@@ -288,5 +284,7 @@ def distribution_frame(values: dict, scene, points: int | None = None) -> pd.Dat
     else:
         y = np.asarray(hj.log_tension_ratio(values["mu"], alpha, q_R, k_R, q_T, k_T), float)
     s = np.exp(y)
+    import pandas as pd
+
     return pd.DataFrame({"alpha [deg]": np.degrees(alpha), "S [kN]": values["S_0"] * s / 1e3, "S/S_0 [-]": s,
                          "e^(mu alpha) [-]": np.exp(values["mu"] * alpha)})

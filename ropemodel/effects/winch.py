@@ -18,8 +18,9 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
-from ropemodel.errors import InputError
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.quantity import Quantity
 
@@ -31,10 +32,32 @@ _pos = dict(low=0.0, low_open=True, positive=True)
 _nonneg = dict(low=0.0)
 _coef = dict(low=0.0, high=1.0)
 
+#: where the usual ranges come from (warnings outside them; README, "Writing a scene")
+JUDGEMENT = "engineering judgement, a wide margin around the paper's example"
+
 
 def Q(name, unit, description, display=None, **kw) -> Quantity:
     """Shorthand for a winch quantity."""
     return Quantity(name, unit, description, display, **kw)
+
+
+def usual(low, high, source) -> dict:
+    """Keyword arguments of a usual range [low, high] (SI) and where it comes from."""
+    return dict(warn_low=low, warn_high=high, usual_source=source)
+
+
+# quantities several winch effects share, declared once (the registry refuses a second declaration)
+V_PJ = Q("v_pj", "m/s", "haulage speed of the load", "m/s", guess=2.5,
+         **usual(0.1, 8.0, f"rope-winch haulage speeds; {JUDGEMENT} (2.5 m/s)"), **_pos)
+ETA = Q("eta", "1", "efficiency of the drive train", low=0.0, high=1.0, low_open=True, guess=0.85, default=1.0,
+        default_note="no efficiency given: the power is the power at the drum rim",
+        **usual(0.5, 1.0, "gear-motor drive trains (judgement)"))
+STROKE = Q("stroke", "m", "installed stroke of the tensioner (return sheave): the rope take-up it allows", "mm",
+           low=0.0, low_open=True, positive=True, unlimited=True, guess=1.0, default=math.inf,
+           default_note="not given: unlimited (the take-up needed is reported)")
+D_DRUM = Q("D", "m", "diameter of the driving drum (at the rope centre line)", "mm", guess=3.0,
+           **usual(0.2, 8.0, "drums of 30 d for ropes of 8-60 mm, with margin (Krauze et al. 2025, introduction: "
+                             "D >= 30 d)"), **_pos)
 
 
 def per_direction(name, unit, description, display=None, **kw) -> tuple[Quantity, ...]:
@@ -51,6 +74,12 @@ define_effect(MODEL, "elongation", "krauze2025", "rope elongation and tensioner 
 define_effect(MODEL, "power", "none", "drive power per direction")
 
 
+_FORCES = ("F_S_up", "F_S_down", "F_C_up", "F_C_down")
+_ROPE = {"S": "unwinding", "C": "winding"}
+_TRAVEL = {"up": "upward travel", "down": "downward travel"}
+_ROPE_MU = usual(0.01, 0.5, f"{JUDGEMENT} (0.05): a rope on rollers to a rope dragging on the floor")
+
+
 @register(MODEL, "forces", "krauze2025")
 class HaulageForces(Submodel):
     """Forces of an endless-rope winch haulage on an incline, Krauze et al. (2025) eq. (1)-(14)."""
@@ -58,18 +87,28 @@ class HaulageForces(Submodel):
     description = "static forces in the winding (F_C) and unwinding (F_S) rope, both directions"
     citations = ("krauze2025",)
     quantities = (
-        Q("G_m", "N", "weight of the transported load", "kN", guess=4e5, **_pos),
-        Q("L_u", "m", "length of the inclined route", "m", guess=1000.0, **_pos),
+        Q("G_m", "N", "weight of the transported load", "kN", guess=4e5,
+          **usual(1e3, 5e6, f"{JUDGEMENT} (467 kN): from one light car to a heavy train"), **_pos),
+        Q("L_u", "m", "length of the inclined route", "m", guess=1000.0,
+          **usual(20.0, 5000.0, f"{JUDGEMENT} (1150 m): rope-winch routes are tens of metres to a few km"),
+          **_pos),
         Q("L_ul", "m", "distance of point A from the guiding sheave K_K", "m", guess=500.0, **_nonneg),
         Q("alpha_u", "rad", "inclination of the route", "deg", low=-math.pi / 2, high=math.pi / 2,
-          low_open=True, high_open=True, warn_low=-math.pi / 4, warn_high=math.pi / 4, guess=0.3),
-        Q("mu_pm", "1", "coefficient of resistance of the load", guess=0.05, **_coef),
-        Q("mu_pl", "1", "coefficient of resistance of the unwinding rope", guess=0.05, **_coef),
-        Q("mu_pl1", "1", "coefficient of resistance of the winding rope from K_ZN to point A", guess=0.05, **_coef),
-        Q("mu_pl2", "1", "coefficient of resistance of the winding rope from point A to the drive", guess=0.05,
+          low_open=True, high_open=True, guess=0.3,
+          **usual(-math.pi / 4, math.pi / 4, f"{SRC}, introduction: rope winches serve workings inclined up to 45 deg")),
+        Q("mu_pm", "1", "coefficient of resistance of the load", guess=0.05,
+          **usual(0.005, 0.2, f"{JUDGEMENT} (0.05): mine cars roll at about 0.01, a sliding load up to 0.2"),
           **_coef),
-        Q("q_l", "N/m", "weight of the rope per metre", "kN/m", guess=80.0, **_pos),
-        Q("F_nwl", "N", "initial tension from the tensioner", "kN", guess=2e4, **_nonneg),
+        Q("mu_pl", "1", "coefficient of resistance of the unwinding rope", guess=0.05, **_ROPE_MU, **_coef),
+        Q("mu_pl1", "1", "coefficient of resistance of the winding rope from K_ZN to point A", guess=0.05,
+          **_ROPE_MU, **_coef),
+        Q("mu_pl2", "1", "coefficient of resistance of the winding rope from point A to the drive", guess=0.05,
+          **_ROPE_MU, **_coef),
+        Q("q_l", "N/m", "weight of the rope per metre", "kN/m", guess=80.0,
+          **usual(1.0, 200.0, "EN 12385-4 ropes of 8 to 60 mm, q_l = g W d^2 (the paper's 42 mm rope: 0.08 kN/m)"),
+          **_pos),
+        Q("F_nwl", "N", "initial tension from the tensioner", "kN", guess=2e4,
+          **usual(500.0, 5e5, f"{JUDGEMENT} (20 kN)"), **_nonneg),
         Q("G_ml", "N", "load weight along the incline", "kN", equation=f"{SRC}, eq. (1)"),
         Q("G_l1", "N", "weight along the incline of the winding rope from K_ZN to A", "kN", equation=f"{SRC}, eq. (3)"),
         Q("G_l2", "N", "weight along the incline of the winding rope from A to the drive", "kN",
@@ -111,12 +150,31 @@ class HaulageForces(Submodel):
                 v["F_nwl"], v["G_lmC"], v["T_m"], v["T_l"], sign), "eq. (13)"))
         return eqs
 
-    def validate(self, values):
+    def invalid_mask(self, values):
+        """A rope force <= 0: the rope would have to push, so it is slack (the model no longer holds)."""
+        out = {}
+        for name in _FORCES:
+            if name in values:
+                mask = np.asarray(values[name]) <= 0.0
+                if np.any(mask):
+                    out[f"{name} <= 0: the {_ROPE[name[2]]} rope is slack ({_TRAVEL[name[4:]]})"] = mask
+        return out
+
+    def invalid(self, values):
+        forces = {n: values[n] for n in _FORCES if n in values}
+        if not forces or min(forces.values()) > 0.0:
+            return []
+        worst = min(forces, key=forces.get)
+        need = values.get("F_nwl", 0.0) - 2.0 * forces[worst]
+        return [f"{worst} = {forces[worst] / 1e3:.6g} kN: the {_ROPE[worst[2]]} rope would have to push "
+                f"({_TRAVEL[worst[4:]]}); a rope cannot, it is slack and the model no longer holds. "
+                f"Every rope stays taut with F_nwl > {need / 1e3:.6g} kN (now {values.get('F_nwl', 0.0) / 1e3:.6g} kN)"]
+
+    def rules(self, values):
         if "L_ul" in values and "L_u" in values and values["L_ul"] > values["L_u"]:
-            raise InputError(
-                f"L_ul = {values['L_ul']:g} m is beyond L_u = {values['L_u']:g} m: point A must lie on the "
-                f"route, 0 <= L_ul <= L_u"
-            )
+            return [f"L_ul = {values['L_ul']:g} m is beyond L_u = {values['L_u']:g} m: point A must lie on the "
+                    f"route, 0 <= L_ul <= L_u"]
+        return []
 
 
 @register(MODEL, "resistance", "case1")
@@ -152,7 +210,9 @@ class Elongation(Submodel):
     description = "elongation of both ropes and the minimum stroke of the return sheave"
     citations = ("krauze2025",)
     quantities = (
-        Q("q_lw", "m/N", "unit elongation of the installed rope", "mm/kN", guess=5.8e-6, **_pos),
+        Q("q_lw", "m/N", "unit elongation of the installed rope", "mm/kN", guess=5.8e-6,
+          **usual(3e-7, 1.2e-3, "q_lw = L_u/(E C d^2) for routes of 100-3000 m and EN 12385-4 ropes of 8-60 mm "
+                                "(E C of 40-70 GPa); the paper's rope: 5.8 mm/kN"), **_pos),
         Q("dF_nwl", "m", "elongation under the initial tension", "mm", equation=f"{SRC}, eq. (22)"),
         *per_direction("dF_C", "m", "elongation of the winding rope", "mm", equation=f"{SRC}, eq. (19)"),
         *per_direction("dF_S", "m", "elongation of the unwinding rope", "mm", equation=f"{SRC}, eq. (20)"),
@@ -197,8 +257,8 @@ class DrivePower(Submodel):
     description = "drive power per direction from the force balance on the drum"
     citations = ("krauze2025",)
     quantities = (
-        Q("v_pj", "m/s", "haulage speed of the load", "m/s", guess=2.5, **_pos),
-        Q("eta", "1", "efficiency of the drive train", low=0.0, high=1.0, low_open=True, guess=0.85),
+        V_PJ,
+        ETA,
         *per_direction("N_p", "W", "drive power", "kW", equation="force balance on the drum"),
     )
 

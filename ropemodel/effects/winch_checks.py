@@ -3,12 +3,13 @@
 ``none``    (default) no check is built.
 ``design``  margins (>= 0: the check passes):
 
-    safety_margin_d = F_min / (n_rope · F_C_d) − 1     rope safety F_min / F_C >= n_rope
-    slack_margin_d  = F_S_d − F_S_min        [N]       unwinding rope never slack
-    stroke_margin_d = stroke − ΔF_d          [m]       tensioner stroke covers eq. (23)
-    drum_margin     = D / (D_ratio_min · d) − 1         drum D >= D_ratio_min · d
+    safety_margin_w = F_min / (n_rope · F_C_w) − 1     rope safety F_min / F_C >= n_rope
+    slack_margin_w  = F_S_w − F_S_min        [N]       unwinding rope never slack
+    taut_margin_w   = F_C_w − F_S_min        [N]       winding rope never slack (lowering on gentle slopes)
+    stroke_margin_w = stroke − ΔF_w          [m]       tensioner stroke covers eq. (23)
+    drum_margin     = D / (D_ratio_min · d) − 1         drum D >= D_ratio_min · d (d the rope diameter)
 
-for d in (up, down).  The no-slip check is the lining effect's ``slip_margin_d``.
+for each way of travel w in (up, down).  The no-slip check is the lining effect's ``slip_margin_w``.
 Krauze et al. (2025) give eq. (23) (least stroke ΔF) and the rule D >= 30 d (their
 introduction, "Drum diameter D is selected based on rope diameter d, ensuring
 compliance with minimum conditions D >= 30d"): hence the default D_ratio_min = 30.
@@ -18,11 +19,8 @@ applies (mine haulage regulations differ by country and duty).
 
 from __future__ import annotations
 
-import pandas as pd
-
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
-from ropemodel.effects.winch import DIRECTIONS, MODEL, Q, per_direction
-from ropemodel.effects.winch_lining import D_DRUM
+from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, STROKE, Q, per_direction
 from ropemodel.effects.winch_rope import D_ROPE, F_MIN
 
 SRC = "Krauze et al. 2025"
@@ -34,6 +32,7 @@ CHECKS = (
     ("safety_margin", "rope safety F_min/F_C >= n_rope", "1"),
     ("slip_margin", "no slip on the drum (lining effect)", "1"),
     ("slack_margin", "unwinding rope not slack F_S >= F_S_min", "N"),
+    ("taut_margin", "winding rope not slack F_C >= F_S_min", "N"),
     ("stroke_margin", "tensioner stroke >= dF", "m"),
     ("drum_margin", "drum D >= D_ratio_min d", "1"),
 )
@@ -70,14 +69,18 @@ class DesignChecks(Submodel):
         F_MIN,
         D_DRUM,
         Q("n_rope", "1", "required safety factor of the rope F_min / F_C", low=1.0, guess=5.0),
-        Q("F_S_min", "N", "least tension allowed in the unwinding rope", "kN", low=0.0, default=0.0),
-        Q("stroke", "m", "installed stroke of the tensioner (return sheave)", "mm", low=0.0, guess=1.0),
+        Q("F_S_min", "N", "least tension allowed in either rope (unwinding F_S and winding F_C)", "kN", low=0.0,
+          default=0.0, default_note="no least tension given: the ropes need only stay taut (> 0)"),
+        STROKE,
         Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", low=1.0, default=30.0,
           equation=f"{SRC}, introduction: D >= 30 d"),
         *per_direction("safety_margin", "1", "margin of rope safety F_min/(n_rope F_C) - 1 (>= 0 passes)",
                        equation="F_min / (n_rope F_C) - 1"),
         *per_direction("slack_margin", "N", "margin against a slack unwinding rope F_S - F_S_min (>= 0 passes)",
                        "kN", equation="F_S - F_S_min"),
+        *per_direction("taut_margin", "N", "margin against a slack winding rope F_C - F_S_min (>= 0 passes; "
+                       "when lowering on a gentle slope the winding rope can go slack)", "kN",
+                       equation="F_C - F_S_min"),
         *per_direction("stroke_margin", "m", "stroke left over stroke - dF (>= 0 passes)", "mm",
                        equation=f"stroke - dF, {SRC} eq. (23)"),
         Q("drum_margin", "1", "margin of the drum D/(D_ratio_min d) - 1 (>= 0 passes)",
@@ -86,14 +89,16 @@ class DesignChecks(Submodel):
 
     def equations(self, v):
         eqs = []
-        for d in DIRECTIONS:
+        for way in DIRECTIONS:
             eqs += [
-                Equation(f"safety_margin_{d}",
-                         v["n_rope"] * v[f"F_C_{d}"] * (v[f"safety_margin_{d}"] + 1.0) - v["F_min"],
+                Equation(f"safety_margin_{way}",
+                         v["n_rope"] * v[f"F_C_{way}"] * (v[f"safety_margin_{way}"] + 1.0) - v["F_min"],
                          "F_min / (n_rope F_C) - 1"),
-                Equation(f"slack_margin_{d}", v[f"slack_margin_{d}"] - (v[f"F_S_{d}"] - v["F_S_min"]),
+                Equation(f"slack_margin_{way}", v[f"slack_margin_{way}"] - (v[f"F_S_{way}"] - v["F_S_min"]),
                          "F_S - F_S_min"),
-                Equation(f"stroke_margin_{d}", v[f"stroke_margin_{d}"] - (v["stroke"] - v[f"dF_{d}"]),
+                Equation(f"taut_margin_{way}", v[f"taut_margin_{way}"] - (v[f"F_C_{way}"] - v["F_S_min"]),
+                         "F_C - F_S_min"),
+                Equation(f"stroke_margin_{way}", v[f"stroke_margin_{way}"] - (v["stroke"] - v[f"dF_{way}"]),
                          "stroke - dF"),
             ]
         eqs.append(Equation("drum_margin", v["D_ratio_min"] * v["d"] * (v["drum_margin"] + 1.0) - v["D"],
@@ -104,14 +109,17 @@ class DesignChecks(Submodel):
         return {"design checks": checks_frame(values, scene.built.quantities)}
 
 
-def checks_frame(values: dict, quantities: dict) -> pd.DataFrame:
-    """Table of every margin present in ``values``: check, direction, margin (display unit), pass/fail."""
+def checks_frame(values: dict, quantities: dict):
+    """Table of every margin present in ``values`` (a pandas DataFrame): check, direction, margin
+    (display unit), pass/fail."""
+    import pandas as pd
+
     text = {base: t for base, t, _ in CHECKS}
     rows = []
     for n in margin_names(values):
-        base, _, d = n.rpartition("_") if n.endswith(("_up", "_down")) else (n, "", "")
+        base, _, way = n.rpartition("_") if n.endswith(("_up", "_down")) else (n, "", "")
         q = quantities[n]
         unit = "-" if q.display_unit == "1" else q.display_unit
-        rows.append({"check": text[base], "direction": d or "-", "margin": q.to_display(values[n]),
+        rows.append({"check": text[base], "direction": way or "-", "margin": q.to_display(values[n]),
                      "unit": unit, "pass": "yes" if values[n] >= 0 else "NO"})
     return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass"])

@@ -70,7 +70,7 @@ from ropemodel.effects.base import (
     positive_number,
     register,
 )
-from ropemodel.effects.winch_lining import D_DRUM
+from ropemodel.effects.winch import D_DRUM, STROKE
 from ropemodel.errors import InputError
 from ropemodel.quantity import Quantity
 
@@ -222,9 +222,7 @@ class ConstantForceTensioner(Submodel):
     quantities = (
         Quantity("m_t", "kg", "mass of the return sheave and its carriage", "kg", low=0.0, low_open=True,
                  default=1000.0, guess=1000.0),
-        # default 100 m: no limit in practice; give the installed stroke to have it checked
-        Quantity("stroke", "m", "rope take-up the tensioner allows (the paper's stroke)", "mm",
-                 default=100.0, guess=1.0, **_pos),
+        STROKE,
     )
 
 

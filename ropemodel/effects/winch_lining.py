@@ -30,22 +30,18 @@ import math
 
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.errors import InputError
-from ropemodel.effects.winch import DIRECTIONS, DrivePower, MODEL, per_direction
+from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, V_PJ, per_direction
 from ropemodel.papers import friction
 from ropemodel.papers import hajduk1992 as hj
 from ropemodel.quantity import Quantity
 
-V_PJ = next(q for q in DrivePower.quantities if q.name == "v_pj")
-
-#: drum diameter (the sizing helper imports this Quantity)
-D_DRUM = Quantity("D", "m", "diameter of the driving drum (at the rope centre line)", "mm",
-                  low=0.0, low_open=True, positive=True, guess=3.0)
-
 DRUM = (
     Quantity("mu_d", "1", "friction coefficient of the rope on the drum", low=0.0, low_open=True,
-             warn_high=1.0, guess=0.2),
+             warn_low=0.05, warn_high=1.0, usual_source="steel rope on steel (about 0.1) to polymer drum linings "
+             "(0.25-0.6), with margin (judgement)", guess=0.2),
     Quantity("alpha_d", "rad", "wrap angle of the rope on the drum", "deg", low=0.0, low_open=True,
-             warn_high=10 * math.pi, guess=math.pi),
+             warn_low=math.pi / 2, warn_high=10 * math.pi,
+             usual_source="a quarter turn to five turns on a friction drum (judgement)", guess=math.pi),
     Quantity("n_slip", "1", "required safety factor against slip of the rope on the drum", low=1.0,
              guess=1.5, default=1.0),
 )

@@ -25,7 +25,8 @@ SRC = "EN 12385-4"
 define_effect(MODEL, "rope", "given", "the rope: q_l, q_lw given (paper) or from a catalogue construction and d")
 
 
-D_ROPE = Q("d", "m", "nominal rope diameter", "mm", guess=0.03, high=0.5, warn_low=0.008, warn_high=0.06, **_pos)
+D_ROPE = Q("d", "m", "nominal rope diameter", "mm", guess=0.03, high=0.5, warn_low=0.008, warn_high=0.06,
+           usual_source="the diameters of ropemodel/data/ropes.toml (EN 12385-4 classes)", **_pos)
 F_MIN = Q("F_min", "N", "minimum breaking force of the rope", "kN", guess=1e6, **_pos)
 
 FACTORS = (
@@ -62,9 +63,10 @@ class RopeCatalogue(Submodel):
         F_MIN,
         *FACTORS,
         Q("rope_grade", "Pa", "rope grade R_r (EN 12385-4: 1570-2160 N/mm^2)", "N/mm^2", low=0.0, low_open=True,
-          warn_low=1570e6, warn_high=2160e6, guess=1770e6),
+          warn_low=1570e6, warn_high=2160e6, usual_source="EN 12385-4 rope grades", guess=1770e6),
         Q("rope_E", "Pa", "modulus of the rope referred to its metallic area", "kN/mm^2", low=0.0, low_open=True,
-          warn_low=5e10, warn_high=2.1e11, guess=1e11),
+          warn_low=5e10, warn_high=2.1e11, usual_source="rope makers quote 80-120 GPa on the metallic area; "
+          "steel wire itself is 210 GPa", guess=1e11),
         Q("A_m", "m^2", "metallic cross-section of the rope", "mm^2", equation=f"{SRC}: A = C d^2"),
         Q("m_l", "kg/m", "mass of the rope per metre", "kg/m", equation=f"{SRC}: m = W d^2"),
     )

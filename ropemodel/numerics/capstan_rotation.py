@@ -36,7 +36,6 @@ from functools import lru_cache
 
 import casadi as ca
 import numpy as np
-from scipy.optimize import brentq
 
 from ropemodel.numerics.capstan_laws import LAWS, switching_functions
 from ropemodel.errors import InputError
@@ -205,6 +204,8 @@ def regime1_rotation(F_T, mu, EA, R, L, F_p):
 
 def unwrap_load(mu, EA, R, L, alpha_0, F_p, variant="li", steps=32, sharpness=30.0) -> float:
     """The load F_T [N] at which the rotation reaches α0 (slack side unwrapped, α2 = 0)."""
+    from scipy.optimize import brentq
+
     def excess(F):
         return rotation(F, mu, EA, R, L, alpha_0, F_p, variant, steps, sharpness) / R - alpha_0
 

@@ -37,19 +37,10 @@ def parse_range(name: str, spec, unit: str) -> tuple[float, float]:
         lo, hi = spec
     except (TypeError, ValueError):
         raise InputError(f"{name}: a range is (low, high), got {spec!r}") from None
-    lo, hi = (to_si(name, _num(v), unit) for v in (lo, hi))
+    lo, hi = (to_si(name, v.strip() if isinstance(v, str) else v, unit, bare="si") for v in (lo, hi))
     if not lo < hi:
         raise InputError(f"{name}: range {spec!r} must have low < high")
     return lo, hi
-
-
-def _num(v):
-    if isinstance(v, str):
-        try:
-            return float(v)
-        except ValueError:
-            return v.strip()
-    return v
 
 
 def sobol_indices(func, ranges: dict[str, tuple[float, float]], n: int = 1024, seed: int = 0) -> pd.DataFrame:

@@ -29,63 +29,74 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ropemodel.errors import InputError
-from ropemodel.units import factor, to_si
+from ropemodel.errors import InputError, Problems
+from ropemodel.units import factor
+
+#: columns a sweep writes besides inputs and outputs (ignored when its output is read back as points)
+SWEEP_COLUMNS = ("solved", "valid", "invalid")
+#: the most points one grid axis and one sweep may have (a sweep of more is several sweeps)
+MAX_AXIS = 10**8
+MAX_POINTS = 10**10
 
 _LABEL = re.compile(r"^\s*(?P<name>[^\[\]]+?)\s*\[(?P<unit>[^\]]*)\]\s*$")
 
 
-def parse_axis(name: str, spec, unit: str) -> np.ndarray:
-    """One grid axis of quantity ``name`` (SI ``unit``) as an array of SI values.
+def parse_axis(name: str, spec, quantity, bare: str = "si") -> np.ndarray:
+    """One grid axis of ``quantity`` (a :class:`~ropemodel.quantity.Quantity`) as an array of SI values.
 
-    ``spec`` is ``"START:STOP:N"`` (START/STOP may carry units, N ≥ 1 points,
-    ends included), a ``(start, stop, n)`` tuple, a comma-separated text
-    ``"1,2,5"`` or a sequence of values (numbers are SI, strings carry units).
+    ``spec`` is ``"START:STOP:N"`` (START and STOP carry units where the quantity has one,
+    N ≥ 1 points, ends included), a ``(start, stop, n)`` tuple, a comma-separated text
+    ``"1 kN,2 kN,5 kN"`` or a sequence of values.  Text is read as a person typed it: a
+    dimensional value needs its unit.  Numbers follow ``bare`` (``"si"``: SI numbers, the
+    Python API; ``"refuse"``: only for pure numbers).
     """
     if isinstance(spec, str):
         text = spec.strip()
         if ":" in text:
             parts = text.split(":")
             if len(parts) != 3:
-                raise InputError(f"--vary {name}={spec}: expected START:STOP:N, e.g. {name}=0:1:11")
-            return _linspace(name, parts[0], parts[1], parts[2], unit, spec)
-        return _values(name, [p for p in text.split(",") if p.strip()], unit, spec)
+                raise InputError(f"--vary {name}={spec}: expected START:STOP:N, e.g. {name}={_example_axis(quantity)}")
+            return _linspace(name, parts[0], parts[1], parts[2], quantity, spec, "refuse")
+        return _values(name, [p for p in text.split(",") if p.strip()], quantity, spec, "refuse")
     if isinstance(spec, tuple) and len(spec) == 3 and not isinstance(spec[2], (str, float)):
-        return _linspace(name, spec[0], spec[1], spec[2], unit, spec)
+        return _linspace(name, spec[0], spec[1], spec[2], quantity, spec, bare)
     if np.isscalar(spec):
-        return _values(name, [spec], unit, spec)
-    return _values(name, list(spec), unit, spec)
+        return _values(name, [spec], quantity, spec, bare)
+    return _values(name, list(spec), quantity, spec, bare)
 
 
-def _number(name, value, unit):
-    if isinstance(value, str):
-        value = value.strip()
-        try:
-            value = float(value)
-        except ValueError:
-            pass
-    return to_si(name, value, unit)
+def _example_axis(q) -> str:
+    unit = "" if q.dimensionless else q.display_unit
+    return f"1{unit}:2{unit}:11"
 
 
-def _linspace(name, start, stop, n, unit, spec) -> np.ndarray:
+def _linspace(name, start, stop, n, quantity, spec, bare) -> np.ndarray:
     try:
         count = int(str(n).strip())
     except ValueError:
-        raise InputError(f"{name}={spec}: the number of points N must be an integer, got {n!r}") from None
+        raise InputError(f"{name}={spec}: the number of points N must be a whole number, got {n!r}") from None
     if count < 1:
-        raise InputError(f"{name}={spec}: the number of points N must be a positive integer, got {n!r}")
-    return np.linspace(_number(name, start, unit), _number(name, stop, unit), count)
+        raise InputError(f"{name}={spec}: the number of points N must be a positive whole number, got {n!r}")
+    if count > MAX_AXIS:
+        raise InputError(f"{name}={spec}: {count} points on one axis; at most {MAX_AXIS}")
+    lo, hi = (_si(quantity, v, bare) for v in (start, stop))
+    return np.linspace(lo, hi, count)
 
 
-def _values(name, values, unit, spec) -> np.ndarray:
+def _values(name, values, quantity, spec, bare) -> np.ndarray:
     if not values:
         raise InputError(f"{name}={spec!r}: no values")
     out = []
     for v in values:
         if isinstance(v, (np.floating, np.integer)):
             v = float(v)
-        out.append(_number(name, v, unit))
+        out.append(_si(quantity, v, bare))
     return np.asarray(out, dtype=float)
+
+
+def _si(quantity, value, bare) -> float:
+    """Text is read as typed (a dimensional value needs its unit); numbers follow ``bare``."""
+    return quantity.to_si(value.strip() if isinstance(value, str) else value, bare)
 
 
 def split_label(label: str) -> tuple[str, str | None]:
@@ -171,42 +182,68 @@ class Table(Points):
         return h.hexdigest()
 
 
-def grid(vary: dict, quantities: dict) -> Grid:
-    """A :class:`Grid` from ``{name: axis spec}`` (see :func:`parse_axis`)."""
+def grid(vary: dict, quantities: dict, bare: str = "si") -> Grid:
+    """A :class:`Grid` from ``{name: axis spec}`` (see :func:`parse_axis`); too many points are refused."""
     if not vary:
         raise InputError("nothing to vary: give at least one NAME=START:STOP:N or a table of points")
     axes = {}
     for name, spec in vary.items():
         if name not in quantities:
             raise InputError(f"cannot vary {name!r}: not an input of this problem")
-        axes[name] = parse_axis(name, spec, quantities[name].unit)
+        axes[name] = parse_axis(name, spec, quantities[name], bare)
+    n = math.prod(len(a) for a in axes.values())
+    if n > MAX_POINTS:
+        raise InputError(f"the grid has {n:.3g} points ({' x '.join(str(len(a)) for a in axes.values())}); at most "
+                         f"{MAX_POINTS:.0e} points per sweep: split it into several sweeps")
     return Grid(axes)
 
 
-def table(frame: pd.DataFrame, quantities: dict) -> Table:
-    """A :class:`Table` from a DataFrame with input names or ``"name [unit]"`` labels as columns.
+def table(frame: pd.DataFrame, quantities: dict, ignore=()) -> Table:
+    """A :class:`Table` from a DataFrame whose columns are ``"name [unit]"`` labels of inputs.
 
-    Columns that are not inputs of the problem (e.g. the outputs of an earlier
-    sweep fed back) are ignored only if they carry a unit label of a known
-    output; any other unknown column is an error, so a typo is not dropped.
+    A dimensional column needs its unit in brackets (``F_T [N]``) in a file (a frame from
+    :func:`read_points`); a pure number may go without (``mu`` or ``mu [-]``).  In a DataFrame
+    built in Python, a column named without a unit holds SI values (the Python API's numbers).  Columns named in ``ignore`` (the outputs of the problem, and the
+    ``solved``/``valid``/``invalid`` columns a sweep writes) are left out, so a sweep's own output
+    file is a valid points file.  Every problem of every column is listed at once.
     """
-    cols = {}
+    cols, found = {}, Problems()
+    if frame.shape[1] == 0 or len(frame) == 0:
+        raise InputError("the points table is empty: it needs a header row and at least one row of values")
     for col in frame.columns:
         name, unit = split_label(str(col))
+        if name in ignore or name in SWEEP_COLUMNS:
+            continue
         if name not in quantities:
-            raise InputError(f"points column {col!r}: {name!r} is not an input of this problem; "
-                             f"inputs: {', '.join(quantities)}")
+            found.add(f"points column {col!r}: {name!r} is not an input of this problem; inputs: "
+                      f"{', '.join(quantities)}")
+            continue
         if name in cols:
-            raise InputError(f"points give {name} twice")
-        raw = pd.to_numeric(frame[col], errors="coerce").to_numpy(dtype=float)
-        bad = np.flatnonzero(~np.isfinite(raw))
-        if bad.size:
-            raise InputError(f"points column {col!r}: row {int(bad[0])} is not a finite number "
-                             f"({frame[col].iloc[int(bad[0])]!r})")
-        si_unit = quantities[name].unit
-        f = 1.0 if unit is None else _factor_to_si(col, unit, si_unit)
-        cols[name] = raw * f
+            found.add(f"points give {name} twice")
+            continue
+        q = quantities[name]
+        if unit is None and not q.dimensionless and frame.attrs.get("source"):
+            found.add(f"points column {col!r} has no unit: label it with its unit, e.g. "
+                      f"\"{name} [{q.display_unit}]\"")
+            continue
+        with found.collect():
+            cols[name] = _column(col, frame[col]) * (1.0 if unit is None else _factor_to_si(col, unit, q.unit))
+    found.raise_if_any()
+    if not cols:
+        raise InputError("the points table has no input column")
     return Table(cols)
+
+
+def _column(col, series: pd.Series) -> np.ndarray:
+    """A column of finite numbers (booleans and text refused, naming the first bad row)."""
+    if series.dtype == bool or series.map(lambda v: isinstance(v, (bool, np.bool_))).any():
+        raise InputError(f"points column {col!r} holds true/false values, not numbers")
+    raw = pd.to_numeric(series, errors="coerce").to_numpy(dtype=float)
+    bad = np.flatnonzero(~np.isfinite(raw))
+    if bad.size:
+        raise InputError(f"points column {col!r}: row {int(bad[0]) + 1} is not a finite number "
+                         f"({series.iloc[int(bad[0])]!r})")
+    return raw
 
 
 def _factor_to_si(col, unit, si_unit) -> float:
@@ -217,14 +254,26 @@ def _factor_to_si(col, unit, si_unit) -> float:
 
 
 def read_points(path) -> pd.DataFrame:
-    """A points table from a CSV or Parquet file."""
+    """A points table from a CSV or Parquet file; any unreadable file is one clear error."""
     from pathlib import Path
 
     p = Path(path)
+    if p.is_dir():
+        raise InputError(f"points file {p} is a directory")
     if not p.exists():
         raise InputError(f"points file not found: {p}")
-    if p.suffix.lower() in (".parquet", ".pq"):
-        return pd.read_parquet(p)
-    if p.suffix.lower() in (".csv", ".txt"):
-        return pd.read_csv(p)
-    raise InputError(f"points file {p}: expected .csv or .parquet")
+    suffix = p.suffix.lower()
+    if suffix not in (".parquet", ".pq", ".csv", ".txt"):
+        raise InputError(f"points file {p}: expected .csv or .parquet")
+    try:
+        frame = pd.read_parquet(p) if suffix in (".parquet", ".pq") else pd.read_csv(p, encoding="utf-8",
+                                                                                      on_bad_lines="error")
+        frame.attrs["source"] = str(p)   # text a person wrote: dimensional columns need their units
+        return frame
+    except pd.errors.EmptyDataError:
+        raise InputError(f"points file {p} is empty: it needs a header row and at least one row") from None
+    except UnicodeDecodeError:
+        raise InputError(f"points file {p} is not UTF-8 text (a binary file, or another encoding)") from None
+    except (pd.errors.ParserError, ValueError, OSError) as exc:
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise InputError(f"cannot read points file {p}: {first}") from None

@@ -17,7 +17,6 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import json
-import math
 import os
 import sys
 from collections import deque
@@ -27,33 +26,21 @@ from pathlib import Path
 import casadi as ca
 import pandas as pd
 import pyarrow as pa
-from tqdm.auto import tqdm
 
 from ropemodel import __version__
 from ropemodel.core.evaluate import COMPILE_MIN, Job, evaluator
 from ropemodel.errors import InputError
+from ropemodel.progress import bar, enabled, status
 from ropemodel.problem import Problem
 from ropemodel.sweep.chunk import ChunkJob, run_chunk
-from ropemodel.sweep.limits import axis_counts, check_disk, check_size
+from ropemodel.sweep.files import OutputLock, check_disk, check_output, check_size
 from ropemodel.sweep.points import grid, table
-from ropemodel.sweep.store import (ChunkStore, OutputLock, check_output, complete_rows, discard_parts,
-                                   read_output)
+from ropemodel.sweep.store import ChunkStore, complete_rows, discard_parts, read_output
 from ropemodel.sweep.validate import check_ranges, check_rules
 from ropemodel.units import label
 
 CHUNK = 65536  # points per chunk: ~20 MB of results for 40 columns
 ERRORS = ("raise", "mark")
-
-
-def show_progress(flag: bool | None = None) -> bool:
-    """Whether to draw progress bars: ``flag`` decides if given (``--no-progress``/``--quiet`` give
-    False); None: only when stderr is a terminal (never into a log file or a pipe)."""
-    if flag is not None:
-        return bool(flag)
-    try:
-        return sys.stderr is not None and sys.stderr.isatty()
-    except (AttributeError, ValueError):  # replaced or closed stream
-        return False
 
 
 class SweepInterrupted(KeyboardInterrupt):
@@ -88,32 +75,6 @@ class SweepFile(os.PathLike):
         return str(self.path)
 
 
-class _Progress:
-    """A status line while preparing (``sweep: compiling…``), then the bar; nothing unless ``show``."""
-
-    def __init__(self, show: bool):
-        self.show = show
-        self.bar = None
-
-    def status(self, text: str) -> None:
-        if self.bar is None:
-            self.bar = tqdm(total=0, bar_format="{desc}", leave=False, disable=not self.show)
-        self.bar.set_description_str(f"sweep: {text}")
-
-    def start(self, total: int, initial: int) -> None:
-        self.close()
-        self.bar = tqdm(total=total, initial=initial, unit="pt", unit_scale=True, desc="sweep",
-                        disable=not self.show)
-
-    def update(self, n: int) -> None:
-        self.bar.update(n)
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.close()
-            self.bar = None
-
-
 def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out=None,
           chunk_size: int = CHUNK, executor=None, threads: int | None = None, backend: str = "auto",
           si: bool = False, errors: str = "raise", progress: bool | None = None, restart: bool = False,
@@ -141,7 +102,8 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
     si: SI units in the columns instead of display units.
     errors: ``"raise"`` — a point without a valid solution raises SolveError naming it;
         ``"mark"`` — keep it (NaN outputs) with ``solved`` False.
-    progress: show a progress bar (default: when stderr is a terminal; see :func:`show_progress`).
+    progress: show a progress bar (default: when stderr is a terminal and not silenced; see
+        :func:`ropemodel.progress.enabled`).
     restart: discard an unfinished sweep of ``out``, or recompute a finished one.
     collect: return the DataFrame (False: return a :class:`SweepFile`; memory stays bounded).
 
@@ -158,12 +120,11 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
         raise InputError(f"chunk_size = {chunk_size}: must be at least 1")
     if not collect and out is None:
         raise InputError("collect=False needs an output file (out=...)")
-    bar = _Progress(show_progress(progress))
+    show = enabled(progress)
     with contextlib.ExitStack() as stack:
         if out is not None:
             out = check_output(out)
             stack.enter_context(OutputLock(out))
-        stack.callback(bar.close)
         plan = _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out, collect)
         if out is not None and not restart:
             found = _found(plan, out, collect)
@@ -174,10 +135,10 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
             if store is not None:
                 check_disk(plan.n - store.done_points, len(plan.labels()), out)
             job = _job(plan, backend, threads or (1 if executor is not None else (os.cpu_count() or 1)))
-            if executor is None:
-                bar.status("compiling…")
-                evaluator(job.job)  # compiled once per process: here, while the status line says so
-            tables = _run(job, plan, store, executor, bar, collect)
+            if executor is None:  # compiled once per process: here, while a status line says so
+                with status("sweep: compiling", show):
+                    evaluator(job.job)
+            tables = _run(job, plan, store, executor, show, collect)
             return _finish(plan, store, out, tables, collect)
         except SweepInterrupted:
             raise
@@ -218,12 +179,7 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
         points, vary = vary, None
     if (vary is None) == (points is None):
         raise InputError("give either vary={name: axis} (a grid) or a table of points")
-    if vary is not None:
-        counts = axis_counts(vary, inputs)
-        outs = _outputs(problem, outputs, list(vary))
-        check_size(math.prod(counts.values()), len(counts) + len(outs) + (errors == "mark"),
-                   axes=counts, out=out, collect=collect)
-    pts = grid(vary, inputs) if vary is not None else table(points, inputs)
+    pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=model.outputs)
     if pts.n == 0:
         raise InputError("no points to sweep")
     outputs = _outputs(problem, outputs, pts.names)
@@ -249,12 +205,12 @@ def _found(plan: _Plan, out: Path, collect: bool):
     return SweepFile(out, rows, plan.labels(), "complete")
 
 
-def _run(job, plan: _Plan, store, executor, bar: _Progress, collect: bool) -> dict:
+def _run(job, plan: _Plan, store, executor, show: bool, collect: bool) -> dict:
     """Compute the chunks not yet on disk; {chunk: table} of those kept in memory."""
     todo = [k for k in range(len(plan.bounds)) if store is None or k not in store.done]
     done = 0 if store is None else store.done_points
     tables: dict[int, pa.Table] = {}
-    bar.start(plan.n, done)
+    shown = bar(plan.n, "sweep", unit="pt", flag=show, initial=done, unit_scale=True)
     results = _results(job, plan.pts, plan.bounds, todo, executor)
     try:
         for k, t in results:
@@ -263,13 +219,13 @@ def _run(job, plan: _Plan, store, executor, bar: _Progress, collect: bool) -> di
             if collect:
                 tables[k] = t
             done += t.num_rows
-            bar.update(t.num_rows)
+            shown.update(t.num_rows)
     except KeyboardInterrupt:  # points kept on disk; without a file, those computed (and dropped)
         raise SweepInterrupted(done if store is None else store.done_points, plan.n,
                                store is not None and store.resumable) from None
     finally:
         results.close()
-        bar.close()
+        shown.close()
     return tables
 
 

@@ -1,18 +1,7 @@
-"""Output files of sweeps: checked before any work, locked, written atomically, resumable.
+"""Chunked, resumable storage of a sweep's results, and finished outputs found again.
 
-Checks
-    :func:`check_output` refuses an output that cannot be written (unknown suffix, a
-    directory, a path under a regular file or in a missing directory, a directory without
-    write permission) before anything is computed.
-Lock
-    :class:`OutputLock` holds an exclusive ``flock`` on ``FILE.lock`` beside the output for
-    the whole run, so a second writer of the same output is refused at once.  The kernel
-    releases the lock when its process ends, however it ends: a killed sweep never leaves a
-    stale lock (the file may stay; the next run takes it over and removes it).
-Atomic files
-    The output is written under a temporary name (``.FILE.tmp``), flushed to disk (fsync),
-    then renamed over ``FILE`` (``os.replace``): ``FILE`` is the complete old file or the
-    complete new one, never a part of either.  A failed write removes the temporary file.
+The output itself is checked, locked and written atomically by :mod:`ropemodel.sweep.files`.
+
 Parts
     While a sweep runs, each finished chunk goes to its own Arrow file in a parts directory
     beside the output (``FILE.parquet.parts/part-000012.arrow``), written to a temporary
@@ -37,12 +26,9 @@ renamed: the worst moment to die.
 
 from __future__ import annotations
 
-import csv
-import fcntl
 import hashlib
 import json
 import os
-import shutil
 import signal
 from pathlib import Path
 
@@ -50,20 +36,12 @@ import pyarrow as pa
 import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 
-from ropemodel.errors import InputError, RopeModelError
+from ropemodel.errors import InputError
+from ropemodel.sweep.files import OutputError, cause, remove, tmp_of, verified, write_atomic
 
 KILL_HOOK = "ROPEMODEL_SWEEP_KILL_AFTER"
 META_KEY = b"ropemodel.sweep"
 SIDECAR = ".sweep.json"
-
-
-class OutputError(RopeModelError):
-    """An output file could not be written (disk full, I/O error); CLI exit status 1."""
-
-
-def cause(exc: OSError) -> str:
-    """The reason of an OSError in words, without the errno number."""
-    return getattr(exc, "strerror", None) or str(exc)
 
 
 def _write_parquet(tables, schema, path):
@@ -83,171 +61,8 @@ def _write_part(table, path):
         writer.write_table(table)
 
 
-#: output suffix → writer(tables iterator, schema, path)
+#: output suffix (:data:`ropemodel.sweep.files.SUFFIXES`) → writer(tables iterator, schema, path)
 FORMATS = {".parquet": _write_parquet, ".pq": _write_parquet, ".csv": _write_csv}
-
-
-def check_format(path: Path) -> None:
-    if path.suffix.lower() not in FORMATS:
-        raise InputError(f"output {path}: the file name must end in {', '.join(FORMATS)}")
-
-
-def check_output(path) -> Path:
-    """``path`` as a Path, or :class:`InputError` if an output cannot be written there."""
-    p = Path(path)
-    if p.is_dir():
-        raise InputError(f"output {p} is a directory; name a file in it ending in {', '.join(FORMATS)}")
-    check_format(p)
-    parent = p.parent
-    if not parent.is_dir():
-        above = next((a for a in parent.parents if a.exists()), None) if not parent.exists() else parent
-        if above is not None and not above.is_dir():
-            raise InputError(f"cannot write {p}: {above} is a file, not a directory")
-        raise InputError(f"cannot write {p}: directory {parent} does not exist")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise InputError(f"cannot write {p}: no permission to create files in {parent}")
-    return p
-
-
-class OutputLock:
-    """Exclusive lock on ``path`` for one writer: ``with OutputLock(path): ...``."""
-
-    def __init__(self, path):
-        self.path = Path(path)
-        self.file = self.path.with_name(self.path.name + ".lock")
-        self.fd = None
-
-    def __enter__(self):
-        while self.fd is None:
-            try:
-                fd = os.open(self.file, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o644)
-            except OSError as exc:
-                raise InputError(f"cannot write {self.path}: {cause(exc)} ({self.file})") from None
-            try:
-                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            except OSError as exc:
-                holder = os.pread(fd, 32, 0).decode(errors="replace").strip()
-                os.close(fd)
-                if isinstance(exc, BlockingIOError):
-                    raise InputError(f"{self.path} is being written by another process"
-                                     f"{f' (pid {holder})' if holder.isdigit() else ''}; wait for it "
-                                     f"to finish, or write to another file") from None
-                raise InputError(f"cannot lock {self.file}: {cause(exc)}") from None
-            if _same_file(fd, self.file):
-                self.fd = fd
-            else:  # its previous holder removed it between our open and flock: take the new one
-                os.close(fd)
-        try:
-            os.ftruncate(self.fd, 0)
-            os.pwrite(self.fd, f"{os.getpid()}\n".encode(), 0)
-        except OSError:  # the pid is only for the message of a refused writer
-            pass
-        for left in (self.path, self.path.with_name(self.path.name + SIDECAR)):
-            _remove(_tmp_of(left))  # left by a killed writer: no writer holds them now
-        return self
-
-    def __exit__(self, *exc):
-        _remove(self.file)  # while still locked: a process that opened it retries on a new file
-        os.close(self.fd)
-        self.fd = None
-
-
-def _same_file(fd, path) -> bool:
-    try:
-        a, b = os.fstat(fd), os.stat(path)
-    except FileNotFoundError:
-        return False
-    return (a.st_dev, a.st_ino) == (b.st_dev, b.st_ino)
-
-
-def _tmp_of(path: Path) -> Path:
-    return path.with_name(f".{path.name}.tmp")
-
-
-def _remove(path: Path) -> None:
-    try:
-        if path.is_dir() and not path.is_symlink():
-            shutil.rmtree(path)
-        else:
-            path.unlink()
-    except FileNotFoundError:
-        pass
-
-
-def _fsync(path: Path) -> None:
-    fd = os.open(path, os.O_RDONLY)
-    try:
-        os.fsync(fd)
-    except OSError:  # a directory on a file system that cannot sync one
-        if not path.is_dir():
-            raise
-    finally:
-        os.close(fd)
-
-
-def table_shape(path: Path, suffix: str | None = None) -> tuple[int, list[str]]:
-    """(rows, column names) of a CSV or Parquet file, read from the file itself: a Parquet footer;
-    a CSV's header as a CSV row (quoted names, commas inside them) and then every row parsed, so
-    a torn or ragged file raises (``pyarrow.ArrowInvalid``).  ``suffix``: the format, if not the path's."""
-    if (suffix or path.suffix).lower() != ".csv":
-        meta = pq.read_metadata(path)
-        return meta.num_rows, meta.schema.to_arrow_schema().names
-    with open(path, newline="", encoding="utf-8") as f:
-        columns = next(csv.reader(f), [])
-    # every row is split into its fields (a ragged row raises); one column is kept, as text
-    first = columns[:1] if len(set(columns)) == len(columns) else []
-    as_text = pacsv.ConvertOptions(include_columns=first, column_types={c: pa.string() for c in columns})
-    with pacsv.open_csv(path, convert_options=as_text) as reader:
-        rows = sum(batch.num_rows for batch in reader)
-    return rows, columns
-
-
-def _verified(tmp: Path, path: Path, rows: int, columns: list[str]) -> tuple[int, list[str]]:
-    """The shape of ``tmp`` just written for ``path``; it must be ``rows`` x ``columns`` (else OSError)."""
-    try:
-        shape = table_shape(tmp, path.suffix)
-    except (ValueError, pa.ArrowException) as exc:
-        raise OSError(f"the file written cannot be read back ({exc})") from None
-    if shape != (rows, list(columns)):
-        raise OSError(f"the file written holds {shape[0]} rows x {len(shape[1])} columns, "
-                      f"not {rows} x {len(columns)}")
-    return shape
-
-
-def write_atomic(path: Path, write, check=None, durable: bool = True):
-    """``write(tmp)`` writes the file, ``check(tmp)`` (if given) reads it back; then it is renamed to
-    ``path``, flushed to disk first if ``durable`` (the output, so that a file reported written
-    survives a power cut; not the bookkeeping files, whose loss only costs a recompute).  Returns
-    what ``check`` returned.  OSError propagates, the temporary file removed."""
-    tmp = _tmp_of(path)
-    try:
-        write(tmp)
-        checked = check(tmp) if check is not None else None
-        if durable:
-            _fsync(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        _remove(tmp)
-        raise
-    if durable:
-        _fsync(path.parent)
-    return checked
-
-
-def write_frame(frame, path: Path) -> tuple[int, list[str]]:
-    """A pandas DataFrame to CSV or Parquet, atomically, checked by reading it back; its (rows,
-    columns); :class:`OutputError` if it cannot be written."""
-    if path.suffix.lower() == ".csv":
-        def write(tmp):
-            frame.to_csv(tmp, index=False)
-    else:
-        def write(tmp):
-            frame.to_parquet(tmp, index=False)
-    columns = [str(c) for c in frame.columns]
-    try:
-        return write_atomic(path, write, lambda tmp: _verified(tmp, path, len(frame), columns))
-    except OSError as exc:
-        raise OutputError(f"cannot write {path}: {cause(exc)}; nothing was written") from None
 
 
 def _sha256(path: Path) -> str:
@@ -285,7 +100,7 @@ def discard_parts(path: Path, signature: dict) -> None:
     parts = path.with_name(path.name + ".parts")
     try:
         if json.loads((parts / "manifest.json").read_text()) == signature:
-            _remove(parts)
+            remove(parts)
     except (OSError, ValueError):
         pass
 
@@ -309,6 +124,7 @@ class ChunkStore:
         self.signature, self.bounds = signature, list(bounds)
         self._committed = 0
         self._kill_after = int(os.environ.get(KILL_HOOK, "-1"))
+        remove(tmp_of(self.path.with_name(self.path.name + SIDECAR)))  # left by a killed writer
         try:
             self.done = self._open(restart)
         except OSError as exc:
@@ -328,7 +144,7 @@ class ChunkStore:
                              f"({', '.join(changed)} differ); rerun that sweep, or restart "
                              f"(--restart / restart=True) to discard it")
         if old is None:  # the parts directory is made when the first chunk is committed
-            _remove(self.parts)
+            remove(self.parts)
             return set()
         for tmp in self.parts.glob("*.tmp"):  # a part being written when its writer died
             tmp.unlink()
@@ -386,10 +202,10 @@ class ChunkStore:
                 os.kill(os.getpid(), signal.SIGKILL)
             os.replace(tmp, part)
         except OSError as exc:
-            _remove(self.parts if not self.done else tmp)
+            remove(self.parts if not self.done else tmp)
             raise self._failed(exc, part) from None
         except BaseException:
-            _remove(tmp)
+            remove(tmp)
             raise
         self.done.add(k)
         self._committed += 1
@@ -412,7 +228,7 @@ class ChunkStore:
         try:
             shape = write_atomic(self.path, lambda tmp: writer((self.read(k) for k in range(len(self.bounds))),
                                                                schema, tmp),
-                                 lambda tmp: _verified(tmp, self.path, rows, schema.names))
+                                 lambda tmp: verified(tmp, self.path, rows, schema.names))
             if self.path.suffix.lower() == ".csv":
                 side = {"signature": self.signature, "rows": rows,
                         "bytes": self.path.stat().st_size, "sha256": _sha256(self.path)}
@@ -420,5 +236,5 @@ class ChunkStore:
                              lambda tmp: tmp.write_text(json.dumps(side, indent=1, sort_keys=True)), durable=False)
         except OSError as exc:
             raise self._failed(exc, self.path) from None
-        _remove(self.parts)
+        remove(self.parts)
         return shape

@@ -44,10 +44,11 @@ def check_ranges(points, quantities: dict) -> None:
         with np.errstate(invalid="ignore"):
             beyond = (v < q.warn_low) | (v > q.warn_high)
         if beyond.any():
-            from ropemodel.scene import BeyondSourceWarning
+            from ropemodel.scene import SceneWarning
 
-            warnings.warn(f"{name}: {int(beyond.sum())} value(s) are beyond the range the source covers "
-                          f"({q.description})", BeyondSourceWarning, stacklevel=3)
+            source = f"; {q.usual_source}" if q.usual_source else ""
+            warnings.warn(f"{name}: {int(beyond.sum())} value(s) outside the range usual for the field, "
+                          f"{q.usual_text()} ({q.description}{source})", SceneWarning, stacklevel=3)
 
 
 class _Recorder(dict):
@@ -91,10 +92,9 @@ def check_rules(model, points, base: dict) -> None:
 
 
 def _call(sm, values, points, where):
-    try:
-        sm.validate(values)
-    except InputError as exc:
-        raise InputError(f"{where}: {exc}" if where else str(exc)) from None
+    broken = sm.rules(values)
+    if broken:
+        raise InputError(problems=[f"{where}: {b}" if where else b for b in broken])
 
 
 def _combinations(points, reads):

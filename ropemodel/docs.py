@@ -1,0 +1,105 @@
+"""The README's reference tables, generated from the effect registry (``python -m ropemodel.docs``).
+
+The README holds each table between ``<!-- generated: NAME -->`` and ``<!-- end: NAME -->``;
+:func:`render` returns the tables, :func:`update` rewrites them in a README, and a test checks
+that the committed README equals what :func:`update` would write (so the tables never drift from
+the code).  Tables: ``effects`` (every effect and variant of every model), and per model
+``parameters-MODEL`` (unit, meaning, default and why, valid range, usual range and its source)
+and ``outputs-MODEL`` (unit, meaning, equation).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import sys
+from pathlib import Path
+
+from ropemodel.effects import REGISTRY, all_quantities, effects_of, models
+
+_BLOCK = re.compile(r"(<!-- generated: (?P<name>[\w-]+) -->\n)(?P<body>.*?)(<!-- end: (?P=name) -->)", re.S)
+
+
+def effects_table() -> str:
+    """Markdown: model, effect, variants (default in bold), what the effect does."""
+    rows = ["| model | effect | variants (default in bold) | what it builds |", "|---|---|---|---|"]
+    for model in models():
+        for name, spec in effects_of(model).items():
+            variants = ", ".join(f"**`{v}`**" if v == spec.default else f"`{v}`" for v in spec.variants)
+            rows.append(f"| {model} | `{name}` | {variants} | {spec.doc} |")
+    return "\n".join(rows)
+
+
+def _roles(model: str) -> tuple[list[str], list[str]]:
+    """(parameters, outputs) of ``model`` over every variant (a name computed by one variant and given
+    to another, e.g. the sheave's Q_R, is in both)."""
+    from ropemodel.core.model import Model
+
+    outputs: dict[str, None] = {}
+    parameters: dict[str, None] = {}
+    for effect, spec in effects_of(model).items():
+        for variant in spec.variants:
+            m = Model(model, {effect: variant})
+            outputs.update(dict.fromkeys(m.outputs))
+            parameters.update(dict.fromkeys(m.parameters))
+    declared = list(all_quantities(model))
+    return [n for n in declared if n in parameters], [n for n in declared if n in outputs]
+
+
+def _unit(q) -> str:
+    return "-" if q.display_unit in ("1", "") else q.display_unit
+
+
+def parameters_table(model: str) -> str:
+    """Markdown: every parameter of ``model``, with default, valid range and usual range (and source)."""
+    q = all_quantities(model)
+    rows = ["| name | unit | meaning | default | valid range | usual range (source) |", "|---|---|---|---|---|---|"]
+    for name in _roles(model)[0]:
+        x = q[name]
+        default = "required" if x.default is None else (
+            f"{x.show(x.default)}: {x.default_note}" if x.default_note else x.show(x.default))
+        usual = ("" if x.warn_low == -math.inf and x.warn_high == math.inf
+                 else f"{x.usual_text()}" + (f" ({x.usual_source})" if x.usual_source else ""))
+        rows.append(f"| `{name}` | {_unit(x)} | {x.description} | {default} | {x.range_text()} | {usual} |")
+    return "\n".join(rows)
+
+
+def outputs_table(model: str) -> str:
+    """Markdown: every quantity ``model`` computes, with its unit and equation."""
+    q = all_quantities(model)
+    rows = ["| name | unit | meaning | source |", "|---|---|---|---|"]
+    for name in _roles(model)[1]:
+        rows.append(f"| `{name}` | {_unit(q[name])} | {q[name].description} | {q[name].equation} |")
+    return "\n".join(rows)
+
+
+def render() -> dict[str, str]:
+    """Every generated table by its block name."""
+    out = {"effects": effects_table()}
+    for model in REGISTRY:
+        out[f"parameters-{model}"] = parameters_table(model)
+        out[f"outputs-{model}"] = outputs_table(model)
+    return out
+
+
+def update(text: str) -> str:
+    """``text`` with every generated block replaced by its current table (unknown blocks are an error)."""
+    tables = render()
+
+    def fill(m):
+        if m["name"] not in tables:
+            raise KeyError(f"no generated table {m['name']!r}; known: {', '.join(tables)}")
+        return f"{m.group(1)}{tables[m['name']]}\n{m.group(4)}"
+
+    return _BLOCK.sub(fill, text)
+
+
+def main(argv=None) -> int:
+    """``python -m ropemodel.docs [README.md]``: rewrite the generated tables in place."""
+    path = Path((argv or sys.argv[1:] or ["README.md"])[0])
+    path.write_text(update(path.read_text(encoding="utf-8")), encoding="utf-8")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,95 @@
+"""Signs of life for long work: a progress bar or a status line on stderr, only where a person watches.
+
+Shown when stderr is a terminal and not silenced (``ropemodel --quiet``, :func:`quiet`, or
+``ROPEMODEL_QUIET=1``); never in a pipe, a file or a test run.  Two forms:
+
+* :func:`bar` — a tqdm bar over a known amount of work (points of a sweep, seconds of a transient);
+* :func:`status` — a context manager that shows what is being done with a spinner and the time
+  elapsed, refreshed by a background thread, for work without a natural count (an IPOPT solve).
+
+Library code calls these; it never prints otherwise.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+import threading
+import time
+
+_QUIET = False
+_FRAMES = "|/-\\"
+
+
+def quiet(on: bool = True) -> None:
+    """Silence every progress display of this process (``ropemodel --quiet``)."""
+    global _QUIET
+    _QUIET = on
+
+
+def enabled(flag: bool | None = None) -> bool:
+    """Whether to show progress: ``flag`` if given, else when stderr is a terminal and not silenced."""
+    if flag is not None:
+        return bool(flag)
+    if _QUIET or os.environ.get("ROPEMODEL_QUIET"):
+        return False
+    try:
+        return sys.stderr.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
+def bar(total: float, desc: str, unit: str = "it", flag: bool | None = None, **kw):
+    """A tqdm progress bar on stderr (disabled where :func:`enabled` says no)."""
+    from tqdm.auto import tqdm
+
+    return tqdm(total=total, desc=desc, unit=unit, disable=not enabled(flag), file=sys.stderr,
+                mininterval=0.2, **kw)
+
+
+class _Status:
+    def __init__(self, text: str):
+        self.text, self.start, self.stop = text, time.perf_counter(), threading.Event()
+        self.thread = threading.Thread(target=self._run, daemon=True)
+
+    def update(self, text: str) -> None:
+        """Show ``text`` as the current step."""
+        self.text = text
+
+    def _line(self, i: int) -> str:
+        return f"\r{_FRAMES[i % 4]} {self.text} ({time.perf_counter() - self.start:.1f} s)\x1b[K"
+
+    def _run(self):
+        i = 0
+        while not self.stop.wait(0.2):
+            sys.stderr.write(self._line(i))
+            sys.stderr.flush()
+            i += 1
+
+
+class _Silent:
+    def update(self, text: str) -> None:
+        """Nothing shown."""
+
+
+@contextlib.contextmanager
+def status(text: str, flag: bool | None = None):
+    """``with status("sizing: continuous optimum") as s: ... s.update("catalogue size")``.
+
+    Writes the line at once, refreshes it every 0.2 s, and clears it at the end.
+    """
+    if not enabled(flag):
+        yield _Silent()
+        return
+    s = _Status(text)
+    sys.stderr.write(s._line(0))
+    sys.stderr.flush()
+    s.thread.start()
+    try:
+        yield s
+    finally:
+        s.stop.set()
+        s.thread.join()
+        sys.stderr.write("\r\x1b[K")
+        sys.stderr.flush()
