@@ -227,7 +227,9 @@ def test_disk_full_at_the_end_keeps_the_parts_and_resumes(tmp_path, capsys, monk
 
 
 @pytest.mark.parametrize("fail_at, kept", [(0, 0), (3, 300)])
-def test_disk_full_while_computing(tmp_path, capsys, monkeypatch, count_chunks, reference, fail_at, kept):
+def test_disk_full_while_computing(tmp_path, tmp_path_factory, capsys, monkeypatch, count_chunks, fail_at, kept):
+    whole = tmp_path_factory.mktemp("whole") / "whole.parquet"
+    assert cli(ARGS + ["-o", str(whole)]) == 0
     out = tmp_path / "p.parquet"
     real = store._write_part
     written = []
@@ -254,7 +256,25 @@ def test_disk_full_while_computing(tmp_path, capsys, monkeypatch, count_chunks, 
     count_chunks.clear()
     assert cli(ARGS + ["-o", str(out)]) == 0
     assert count_chunks == list(range(kept, 1500, 100))
-    pd.testing.assert_frame_equal(pd.read_parquet(out), reference, check_exact=True)
+    assert out.read_bytes() == whole.read_bytes()
+
+
+def test_a_file_that_does_not_read_back_is_not_reported(tmp_path, capsys, monkeypatch):
+    """A writer that ends without an error but leaves a torn file: caught by reading it back."""
+    out = tmp_path / "t.parquet"
+    real = store.FORMATS[".parquet"]
+
+    def torn(tables, schema, path):
+        real(tables, schema, path)
+        with open(path, "r+b") as f:
+            f.truncate(f.seek(0, 2) // 2)
+
+    monkeypatch.setitem(store.FORMATS, ".parquet", torn)
+    assert cli(ARGS + ["-o", str(out)]) == 1
+    line = _one_error_line(capsys.readouterr().err)
+    assert line.startswith(f"error: cannot write {out}: the file written cannot be read back (")
+    assert line.endswith("rerun the same command to resume") and capsys.readouterr().out == ""
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["t.parquet.parts"]
 
 
 def test_sizing_output_is_written_atomically(tmp_path, monkeypatch):
@@ -345,12 +365,19 @@ def test_rerun_of_a_finished_sweep_says_complete(tmp_path, capsys, monkeypatch, 
     frame = rm.sweep(rm.load_scene(), VARY, OUTPUTS, out=out, chunk_size=100)
     pd.testing.assert_frame_equal(frame, reference, check_exact=True)
     assert calls == []
+    written = rm.sweep(rm.load_scene(), VARY, OUTPUTS, out=out, chunk_size=100, collect=False)
+    assert (os.fspath(written), written.rows, written.columns, written.status) == (
+        str(out), 1500, list(reference.columns), "complete")
     # --restart recomputes it
     assert cli(ARGS + ["-o", str(out), "--restart"]) == 0 and calls == list(range(0, 1500, 100))
     assert out.read_bytes() == first
+    calls.clear()
+    written = rm.sweep(rm.load_scene(), VARY, OUTPUTS, out=out, chunk_size=100, collect=False, restart=True)
+    assert (written.rows, written.status, len(calls)) == (1500, "written", 15)
     # other settings: not this sweep's output, so it is computed (and replaced)
     calls.clear()
     assert cli(ARGS[:-3] + ["--chunk-size", "500", "-o", str(out)]) == 0 and calls == [0, 500, 1000]
+    capsys.readouterr()
 
 
 def test_an_edited_csv_is_not_taken_as_complete(tmp_path, capsys, monkeypatch, reference):
