@@ -18,7 +18,6 @@ import contextlib
 import hashlib
 import json
 import os
-import sys
 from collections import deque
 from dataclasses import dataclass
 from pathlib import Path
@@ -110,21 +109,14 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
     Raises
     ------
     InputError: bad input, an output that cannot be written or is being written by another
-        process, work that cannot fit (points beyond an int64 index, results beyond memory or disk).
+        process, work that cannot fit (beyond the grid limits, results beyond memory or disk).
     OutputError: the output could not be written (disk full, I/O error); finished chunks are kept.
     SweepInterrupted: a KeyboardInterrupt; finished chunks are kept.
     """
-    if errors not in ERRORS:
-        raise InputError(f"errors={errors!r}: valid: {', '.join(ERRORS)}")
-    if chunk_size < 1:
-        raise InputError(f"chunk_size = {chunk_size}: must be at least 1")
-    if not collect and out is None:
-        raise InputError("collect=False needs an output file (out=...)")
+    _check_options(errors, chunk_size, collect, out)
     show = enabled(progress)
-    with contextlib.ExitStack() as stack:
-        if out is not None:
-            out = check_output(out)
-            stack.enter_context(OutputLock(out))
+    out = check_output(out) if out is not None else None
+    with OutputLock(out) if out is not None else contextlib.nullcontext():
         plan = _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out, collect)
         if out is not None and not restart:
             found = _found(plan, out, collect)
@@ -145,6 +137,15 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
         except KeyboardInterrupt:
             raise SweepInterrupted(store.done_points if store else 0, plan.n,
                                    store is not None and store.resumable) from None
+
+
+def _check_options(errors, chunk_size, collect, out) -> None:
+    if errors not in ERRORS:
+        raise InputError(f"errors={errors!r}: valid: {', '.join(ERRORS)}")
+    if chunk_size < 1:
+        raise InputError(f"chunk_size = {chunk_size}: must be at least 1")
+    if not collect and out is None:
+        raise InputError("collect=False needs an output file (out=...)")
 
 
 @dataclass
