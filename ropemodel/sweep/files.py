@@ -207,8 +207,9 @@ def write_frame(frame, path: Path) -> tuple[int, list[str]]:
         raise OutputError(f"cannot write {path}: {cause(exc)}; nothing was written") from None
 
 
-def _gib(nbytes: float) -> str:
-    return f"{nbytes / 2**30:,.1f} GiB"
+def _size(nbytes: float) -> str:
+    """Bytes in GiB, or MiB below 1 GiB."""
+    return f"{nbytes / 2**30:,.1f} GiB" if nbytes >= 2**30 else f"{nbytes / 2**20:,.1f} MiB"
 
 
 def available_memory() -> int | None:
@@ -237,7 +238,7 @@ def check_size(n: int, columns: int, *, out=None, collect: bool = True) -> None:
     if mem is not None and n * columns * 8 > mem:
         where = "" if out is None else f"; its file {out} is written either way, collect=False returns only its path"
         raise InputError(f"collect=True keeps every result in memory: {n:,} points x {columns} columns need "
-                         f"{_gib(n * columns * 8)}, {_gib(mem)} of memory is available{where}")
+                         f"{_size(n * columns * 8)}, {_size(mem)} of memory is available{where}")
 
 
 def check_disk(todo: int, columns: int, out: Path) -> None:
@@ -245,5 +246,5 @@ def check_disk(todo: int, columns: int, out: Path) -> None:
     need = todo * 8 * columns  # the parts alone (uncompressed Arrow, 8 bytes a value): a lower bound
     free = shutil.disk_usage(out.parent).free
     if need > free:
-        raise InputError(f"{todo:,} points x {columns} columns need at least {_gib(need)} of disk "
-                         f"for the sweep's parts beside {out}; {_gib(free)} is free there")
+        raise InputError(f"{todo:,} points x {columns} columns need at least {_size(need)} of disk "
+                         f"for the sweep's parts beside {out}; {_size(free)} is free there")
