@@ -3,11 +3,16 @@
 The points are the product of the ``--vary`` grids (START and STOP may carry
 units: ``alpha_u=0deg:45deg:1000``; ``NAME=v1,v2,v3`` lists values), or the
 rows of ``--points FILE`` (CSV or Parquet; columns are names in SI or
-``"name [unit]"`` labels).  Results are written in chunks; rerunning an
-interrupted sweep with the same arguments resumes it.
+``"name [unit]"`` labels).  The output is checked and locked before any work
+(a second writer of it is refused, exit 2), written in chunks, and appears only
+complete.  Rerunning an interrupted sweep (Ctrl-C: exit 130; disk full: exit 1)
+with the same arguments resumes it; rerunning a finished one says it is complete.
 """
 
 from __future__ import annotations
+
+import json
+import sys
 
 from ropemodel.cli._common import add_scene_arguments, assignments, scene_from_args
 from ropemodel.errors import InputError
@@ -36,12 +41,14 @@ def add_arguments(parser) -> None:
     parser.add_argument("--si", action="store_true", help="SI units in the columns (default: display units)")
     parser.add_argument("--mark-failures", action="store_true",
                         help="keep points without a valid solution (solved = false) instead of stopping")
-    parser.add_argument("--restart", action="store_true", help="discard an unfinished sweep instead of resuming")
+    parser.add_argument("--restart", action="store_true",
+                        help="discard an unfinished sweep instead of resuming, or recompute a finished one")
     parser.add_argument("--sizing", action="store_true",
                         help="at every point, the sizing optimum (d, F_nwl, stroke) instead of the outputs; "
                              "each optimisation warm-starts from its neighbour (not resumable)")
     parser.add_argument("--cold", action="store_true", help="with --sizing: no warm start")
-    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    parser.add_argument("--no-progress", action="store_true",
+                        help="no progress bar, as --quiet (default: a bar on stderr when it is a terminal)")
 
 
 def _names(items):
@@ -49,7 +56,9 @@ def _names(items):
 
 
 def main(args) -> int:
+    from ropemodel.progress import enabled
     from ropemodel.sweep import read_points, sweep
+    from ropemodel.sweep.runner import SweepInterrupted
 
     scene = scene_from_args(args)
     vary = {}
@@ -67,51 +76,46 @@ def main(args) -> int:
         return _sizing(scene, vary, points, args)
     given = {g.strip(): None for g in args.given if "=" not in g}
     given.update(assignments([g for g in args.given if "=" in g], "--given"))
-    sweep(scene, vary or None, _names(args.outputs) or None, points=points, given=given,
-          find=_names(args.find), out=args.output, chunk_size=args.chunk_size, threads=args.threads,
-          backend=args.backend, si=args.si, errors="mark" if args.mark_failures else "raise",
-          progress=False if args.no_progress else None, restart=args.restart, collect=False)
-    _summary(args.output, args.json)
+    try:
+        written = sweep(scene, vary or None, _names(args.outputs) or None, points=points, given=given,
+                        find=_names(args.find), out=args.output, chunk_size=args.chunk_size,
+                        threads=args.threads, backend=args.backend, si=args.si,
+                        errors="mark" if args.mark_failures else "raise",
+                        progress=enabled(False if args.no_progress else None),
+                        restart=args.restart, collect=False)
+    except SweepInterrupted as exc:
+        print(f"interrupted: {exc}", file=sys.stderr)
+        return 130
+    _summary(written.path, args.json, written.rows, written.columns, written.status)
     return 0
 
 
-def _summary(path, as_json: bool) -> None:
-    """One line (or JSON object) saying what was written."""
-    import json
-    from pathlib import Path
-
-    p = Path(path)
-    if p.suffix.lower() == ".csv":
-        with open(p, "rb") as f:
-            header = f.readline().decode().strip()
-            rows = sum(chunk.count(b"\n") for chunk in iter(lambda: f.read(1 << 20), b""))
-        columns = [c.strip('"') for c in header.split('","')]
-    else:
-        import pyarrow.parquet as pq
-
-        meta = pq.ParquetFile(p).metadata
-        rows, columns = meta.num_rows, meta.schema.to_arrow_schema().names
+def _summary(path, as_json: bool, rows: int, columns: list[str], status: str = "written") -> None:
+    """One line (or JSON object) saying what the output holds (counted in the file before it was
+    put in place, or found complete)."""
     if as_json:
-        print(json.dumps({"output": str(p), "rows": rows, "columns": columns}))
+        print(json.dumps({"output": str(path), "rows": rows, "columns": columns, "status": status}))
+    elif status == "complete":
+        print(f"already complete: {path} ({rows} points)")
     else:
-        print(f"wrote {rows} points x {len(columns)} columns to {p}")
+        print(f"wrote {rows} points x {len(columns)} columns to {path}")
 
 
 def _sizing(scene, vary, points, args) -> int:
-    from pathlib import Path
-
     from optimisation.sweep import sizing_sweep
-    from ropemodel.sweep.store import check_format
+    from ropemodel.progress import enabled
+    from ropemodel.sweep.files import OutputLock, check_output, write_frame
 
     if args.given or args.find or args.outputs:
         raise InputError("--sizing computes d, F_nwl and stroke; it takes no --given, --find or --outputs")
-    out = Path(args.output)
-    check_format(out)
-    frame = sizing_sweep(scene, vary or None, points=points, warm=not args.cold,
-                         progress=False if args.no_progress else None)
-    if out.suffix.lower() == ".csv":
-        frame.to_csv(out, index=False)
-    else:
-        frame.to_parquet(out, index=False)
-    _summary(out, args.json)
+    out = check_output(args.output)
+    with OutputLock(out):
+        try:
+            frame = sizing_sweep(scene, vary or None, points=points, warm=not args.cold,
+                                 progress=enabled(False if args.no_progress else None))
+        except KeyboardInterrupt:
+            print("interrupted: nothing written (a sizing sweep is not resumable)", file=sys.stderr)
+            return 130
+        rows, columns = write_frame(frame, out)
+    _summary(out, args.json, rows, columns)
     return 0

@@ -14,27 +14,64 @@ read through their unit labels.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
 from collections import deque
+from dataclasses import dataclass
+from pathlib import Path
 
 import casadi as ca
 import pandas as pd
 import pyarrow as pa
-from tqdm.auto import tqdm
 
+from ropemodel import __version__
+from ropemodel.core.evaluate import COMPILE_MIN, Job, evaluator
 from ropemodel.errors import InputError
+from ropemodel.progress import bar, enabled, status
 from ropemodel.problem import Problem
-from ropemodel.core.evaluate import COMPILE_MIN, Job
 from ropemodel.sweep.chunk import ChunkJob, run_chunk
+from ropemodel.sweep.files import OutputLock, check_disk, check_output, check_size
 from ropemodel.sweep.points import grid, table
-from ropemodel.sweep.store import ChunkStore
+from ropemodel.sweep.store import ChunkStore, complete_rows, discard_parts, read_output
 from ropemodel.sweep.validate import check_ranges, check_rules
 from ropemodel.units import label
 
 CHUNK = 65536  # points per chunk: ~20 MB of results for 40 columns
 ERRORS = ("raise", "mark")
+
+
+class SweepInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a sweep: ``done`` of ``total`` points are kept on disk (``resumable``: in the
+    output's parts, and a rerun of the same sweep resumes from them)."""
+
+    def __init__(self, done: int, total: int, resumable: bool):
+        super().__init__(done, total, resumable)
+        self.done, self.total, self.resumable = done, total, resumable
+
+    def __str__(self):
+        text = f"{self.done} of {self.total} points done"
+        return text + ("; rerun the same command to resume" if self.resumable else "")
+
+
+@dataclass
+class SweepFile(os.PathLike):
+    """What ``sweep(..., collect=False)`` returns: the output file (path-like) and what it holds.
+
+    status: ``"written"`` (computed now, or resumed) or ``"complete"`` (found finished: nothing computed).
+    """
+
+    path: Path
+    rows: int
+    columns: list[str]
+    status: str
+
+    def __fspath__(self) -> str:
+        return str(self.path)
+
+    def __str__(self) -> str:
+        return str(self.path)
 
 
 def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out=None,
@@ -52,8 +89,10 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
     points: a DataFrame of points (alternative to ``vary``); columns are names (SI) or ``"name [unit]"``.
     given, find: an inverse problem, as in :class:`~ropemodel.problem.Problem`: ``given`` outputs
         (varied, or values in a dict ``{name: value}``; None: varied) replace the ``find`` parameters.
-    out: ``.csv`` or ``.parquet`` path: results are written chunk by chunk and an interrupted
-        sweep rerun with the same arguments resumes where it stopped (see :mod:`ropemodel.sweep.store`).
+    out: ``.csv`` or ``.parquet`` path, checked and locked before any work (a second writer of it
+        is refused); results are written chunk by chunk and an interrupted sweep rerun with the
+        same arguments resumes where it stopped; a finished one is found complete and not
+        recomputed (see :mod:`ropemodel.sweep.store`).
     chunk_size: points per chunk (bounded memory: one chunk per worker in flight).
     executor: a ``concurrent.futures.Executor`` or a ``dask.distributed.Client``: chunks are
         submitted to it (the compiled Function travels pickled; each worker compiles it once).
@@ -62,16 +101,77 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
     si: SI units in the columns instead of display units.
     errors: ``"raise"`` — a point without a valid solution raises SolveError naming it;
         ``"mark"`` — keep it (NaN outputs) with ``solved`` False.
-    progress: show a progress bar (default: on a terminal, when there is more than one chunk).
-    restart: discard an unfinished sweep of ``out`` instead of resuming it.
-    collect: return the DataFrame (False: return the path of ``out``; memory stays bounded).
+    progress: show a progress bar (default: when stderr is a terminal and not silenced; see
+        :func:`ropemodel.progress.enabled`).
+    restart: discard an unfinished sweep of ``out``, or recompute a finished one.
+    collect: return the DataFrame (False: return a :class:`SweepFile`; memory stays bounded).
+
+    Raises
+    ------
+    InputError: bad input, an output that cannot be written or is being written by another
+        process, work that cannot fit (beyond the grid limits, results beyond memory or disk).
+    OutputError: the output could not be written (disk full, I/O error); finished chunks are kept.
+    SweepInterrupted: a KeyboardInterrupt; finished chunks are kept.
     """
+    _check_options(errors, chunk_size, collect, out)
+    show = enabled(progress)
+    out = check_output(out) if out is not None else None
+    with OutputLock(out) if out is not None else contextlib.nullcontext():
+        plan = _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out, collect)
+        if out is not None and not restart:
+            found = _found(plan, out, collect)
+            if found is not None:
+                return found
+        store = ChunkStore(out, plan.signature, plan.bounds, restart) if out is not None else None
+        try:
+            if store is not None:
+                check_disk(plan.n - store.done_points, len(plan.labels()), out)
+            job = _job(plan, backend, threads or (1 if executor is not None else (os.cpu_count() or 1)))
+            if executor is None:  # compiled once per process: here, while a status line says so
+                with status("sweep: compiling", show):
+                    evaluator(job.job)
+            tables = _run(job, plan, store, executor, show, collect)
+            return _finish(plan, store, out, tables, collect)
+        except SweepInterrupted:
+            raise
+        except KeyboardInterrupt:
+            raise SweepInterrupted(store.done_points if store else 0, plan.n,
+                                   store is not None and store.resumable) from None
+
+
+def _check_options(errors, chunk_size, collect, out) -> None:
     if errors not in ERRORS:
         raise InputError(f"errors={errors!r}: valid: {', '.join(ERRORS)}")
     if chunk_size < 1:
         raise InputError(f"chunk_size = {chunk_size}: must be at least 1")
     if not collect and out is None:
         raise InputError("collect=False needs an output file (out=...)")
+
+
+@dataclass
+class _Plan:
+    """A sweep checked and ready to run: its problem, points, outputs, chunks and signature."""
+
+    problem: Problem
+    pts: object
+    base: dict
+    outputs: list[str]
+    si: bool
+    errors: str
+    bounds: list[tuple[int, int]]
+    signature: dict
+
+    @property
+    def n(self) -> int:
+        return self.pts.n
+
+    def labels(self) -> list[str]:
+        q = self.problem.model.quantities
+        cols = [label(k, q[k].unit if self.si else q[k].display_unit) for k in [*self.pts.names, *self.outputs]]
+        return cols + (["solved"] if self.errors == "mark" else [])
+
+
+def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out, collect) -> _Plan:
     given_values = {k: v for k, v in given.items() if v is not None} if isinstance(given, dict) else {}
     problem = Problem(scene, list(given), find)
     model = problem.model
@@ -84,41 +184,62 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
     if pts.n == 0:
         raise InputError("no points to sweep")
     outputs = _outputs(problem, outputs, pts.names)
+    check_size(pts.n, len(pts.names) + len(outputs) + (errors == "mark"), out=out, collect=collect)
     base = problem.inputs({**given_values, **{n: float(pts.values_of(n)[0]) for n in pts.names}})
     check_ranges(pts, inputs)
     check_rules(model, pts, base)
-    if backend == "auto" and pts.n < COMPILE_MIN:
-        backend = "casadi"  # a C compile costs more than it saves on small sweeps
-    job = _job(problem, pts.names, base, outputs, si, errors, backend,
-               threads or (1 if executor is not None else (os.cpu_count() or 1)))
     n_chunks = -(-pts.n // chunk_size)
     bounds = [(k * chunk_size, min(pts.n, (k + 1) * chunk_size)) for k in range(n_chunks)]
-    store = None
-    if out is not None:
-        store = ChunkStore(out, _signature(scene, problem, pts, base, outputs, chunk_size, si, errors), restart)
-    todo = [k for k in range(n_chunks) if store is None or k not in store.done]
+    signature = _signature(scene, problem, pts, base, outputs, chunk_size, si, errors)
+    return _Plan(problem, pts, base, outputs, si, errors, bounds, signature)
+
+
+def _found(plan: _Plan, out: Path, collect: bool):
+    """The finished output of this very sweep, if ``out`` is one (nothing is computed then)."""
+    rows = complete_rows(out, plan.signature)
+    if rows is None:
+        return None
+    discard_parts(out, plan.signature)  # left if the output was finished just before they were removed
+    if collect:
+        types = {c: (pa.bool_() if c == "solved" else pa.float64()) for c in plan.labels()}
+        return read_output(out, types).to_pandas()
+    return SweepFile(out, rows, plan.labels(), "complete")
+
+
+def _run(job, plan: _Plan, store, executor, show: bool, collect: bool) -> dict:
+    """Compute the chunks not yet on disk; {chunk: table} of those kept in memory."""
+    todo = [k for k in range(len(plan.bounds)) if store is None or k not in store.done]
+    done = 0 if store is None else store.done_points
     tables: dict[int, pa.Table] = {}
-    bar = tqdm(total=pts.n, initial=sum(bounds[k][1] - bounds[k][0] for k in range(n_chunks) if k not in todo),
-               unit="pt", unit_scale=True, desc="sweep",
-               disable=(not progress) if progress is not None else (n_chunks < 2 or None))
+    shown = bar(plan.n, "sweep", unit="pt", flag=show, initial=done, unit_scale=True)
+    results = _results(job, plan.pts, plan.bounds, todo, executor)
     try:
-        for k, t in _results(job, pts, bounds, todo, executor):
+        for k, t in results:
             if store is not None:
                 store.write(k, t)
             if collect:
                 tables[k] = t
-            bar.update(t.num_rows)
+            done += t.num_rows
+            shown.update(t.num_rows)
+    except KeyboardInterrupt:  # points kept on disk; without a file, those computed (and dropped)
+        raise SweepInterrupted(done if store is None else store.done_points, plan.n,
+                               store is not None and store.resumable) from None
     finally:
-        bar.close()
+        results.close()
+        shown.close()
+    return tables
+
+
+def _finish(plan: _Plan, store, out, tables, collect):
     if store is not None:
         if collect:
-            for k in range(n_chunks):
+            for k in range(len(plan.bounds)):
                 if k not in tables:
                     tables[k] = store.read(k)
-        store.finish(n_chunks)
-    if not collect:
-        return out
-    return pa.concat_tables([tables[k] for k in range(n_chunks)]).to_pandas()
+        rows, columns = store.finish()
+        if not collect:
+            return SweepFile(out, rows, columns, "written")
+    return pa.concat_tables([tables[k] for k in range(len(plan.bounds))]).to_pandas()
 
 
 def _outputs(problem, outputs, varied):
@@ -135,13 +256,17 @@ def _outputs(problem, outputs, varied):
     return list(dict.fromkeys(outputs))
 
 
-def _job(problem, varied, base, outputs, si, errors, backend, threads) -> ChunkJob:
+def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
     """The problem's Function restricted to ``outputs``, inputs ordered varied first.
 
     For an inverse problem the forward model is also evaluated at each solution, so that a
     Newton iteration that stopped without converging (no such parameter value) is caught
     per point: the given outputs must be reproduced (relative 1e-6, as ``Problem.solve``).
     """
+    problem, varied, base, outputs, si, errors = (plan.problem, plan.pts.names, plan.base, plan.outputs,
+                                                  plan.si, plan.errors)
+    if backend == "auto" and plan.n < COMPILE_MIN:
+        backend = "casadi"  # a C compile costs more than it saves on small sweeps
     fun = problem.function
     order = list(varied) + [k for k in problem.knowns if k not in varied]
     syms = {k: ca.MX.sym(k) for k in problem.knowns}
@@ -185,6 +310,7 @@ def _signature(scene, problem, pts, base, outputs, chunk_size, si, errors) -> di
         "chunk_size": chunk_size,
         "si": si,
         "errors": errors,
+        "version": __version__,
     }
     return json.loads(json.dumps(sig))
 
@@ -199,19 +325,23 @@ def _results(job, pts, bounds, todo, executor):
     window = max(2, 2 * _workers(executor))
     pending: deque = deque()
     it = iter(todo)
-    for k in it:
-        start, stop = bounds[k]
-        pending.append((k, executor.submit(run_chunk, job, start, pts.chunk(start, stop))))
-        if len(pending) >= window:
-            break
-    while pending:
-        k, fut = pending.popleft()
-        result = fut.result()
-        nxt = next(it, None)
-        if nxt is not None:
-            start, stop = bounds[nxt]
-            pending.append((nxt, executor.submit(run_chunk, job, start, pts.chunk(start, stop))))
-        yield k, result
+    try:
+        for k in it:
+            start, stop = bounds[k]
+            pending.append((k, executor.submit(run_chunk, job, start, pts.chunk(start, stop))))
+            if len(pending) >= window:
+                break
+        while pending:
+            k, fut = pending.popleft()
+            result = fut.result()
+            nxt = next(it, None)
+            if nxt is not None:
+                start, stop = bounds[nxt]
+                pending.append((nxt, executor.submit(run_chunk, job, start, pts.chunk(start, stop))))
+            yield k, result
+    finally:  # interrupted or failed: chunks not started are not started
+        for _, fut in pending:
+            fut.cancel()
 
 
 def _workers(executor) -> int:
