@@ -47,9 +47,11 @@ class Equation:
     residual: ca.SX | None
     source: str
     call: tuple[ca.Function, tuple[str, ...]] | None = None
+    #: the equation as a person reads it, plain Unicode (``"G_ml = G_m sin α_u"``), for reports
+    formula: str = ""
 
     @classmethod
-    def from_call(cls, defines: str, fun: ca.Function, args, source: str) -> "Equation":
+    def from_call(cls, defines: str, fun: ca.Function, args, source: str, formula: str = "") -> "Equation":
         """``defines = fun(*args)``: ``fun`` takes one scalar per name in ``args`` and returns one scalar.
 
         The compiled solver calls ``fun`` directly when it solves for ``defines``,
@@ -59,7 +61,7 @@ class Equation:
         args = tuple(args)
         if fun.n_in() != len(args) or fun.n_out() != 1:
             raise RuntimeError(f"{fun.name()}: expected {len(args)} inputs and one output for {defines}")
-        return cls(defines, None, source, (fun, args))
+        return cls(defines, None, source, (fun, args), formula)
 
     def names(self) -> list[str]:
         """Every quantity the equation involves."""

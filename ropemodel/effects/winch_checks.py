@@ -93,16 +93,16 @@ class DesignChecks(Submodel):
             eqs += [
                 Equation(f"safety_margin_{way}",
                          v["n_rope"] * v[f"F_C_{way}"] * (v[f"safety_margin_{way}"] + 1.0) - v["F_min"],
-                         "F_min / (n_rope F_C) - 1"),
+                         "F_min / (n_rope F_C) - 1", formula="m = F_min / (n_rope F_C) − 1"),
                 Equation(f"slack_margin_{way}", v[f"slack_margin_{way}"] - (v[f"F_S_{way}"] - v["F_S_min"]),
-                         "F_S - F_S_min"),
+                         "F_S - F_S_min", formula="m = F_S − F_S_min"),
                 Equation(f"taut_margin_{way}", v[f"taut_margin_{way}"] - (v[f"F_C_{way}"] - v["F_S_min"]),
-                         "F_C - F_S_min"),
+                         "F_C - F_S_min", formula="m = F_C − F_S_min"),
                 Equation(f"stroke_margin_{way}", v[f"stroke_margin_{way}"] - (v["stroke"] - v[f"dF_{way}"]),
-                         "stroke - dF"),
+                         "stroke - dF", formula="m = stroke − ΔF"),
             ]
         eqs.append(Equation("drum_margin", v["D_ratio_min"] * v["d"] * (v["drum_margin"] + 1.0) - v["D"],
-                            "D / (D_ratio_min d) - 1"))
+                            "D / (D_ratio_min d) - 1", formula="m = D / (D_ratio_min d) − 1"))
         return eqs
 
     def frames(self, values, scene):

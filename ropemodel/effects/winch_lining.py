@@ -58,7 +58,8 @@ def _margin_equations(v, traction):
         m, t = v[f"slip_margin_{d}"], traction(d)
         eqs.append(Equation(f"slip_margin_{d}",
                             v["n_slip"] * v[f"F_C_{d}"] * (m + 1.0) - v[f"F_S_{d}"] * t,
-                            "slip_margin = F_S traction / (n_slip F_C) - 1"))
+                            "slip_margin = F_S traction / (n_slip F_C) - 1",
+                            formula="m = F_S traction / (n_slip F_C) − 1"))
     return eqs
 
 
@@ -92,7 +93,7 @@ class RigidLining(Submodel):
     def equations(self, v):
         eqs = [Equation(f"traction_{d}",
                         v[f"traction_{d}"] - friction.euler_eytelwein_ratio(v["mu_d"], v["alpha_d"]),
-                        "Euler-Eytelwein, Hajduk 1992 eq. (8)")
+                        "Euler-Eytelwein, Hajduk 1992 eq. (8)", formula="traction = e^(μ_d α_d)")
                for d in DIRECTIONS]
         return eqs + _margin_equations(v, lambda d: v[f"traction_{d}"])
 
@@ -126,7 +127,8 @@ class VoigtDrumLining(Submodel):
         k = v["lambda"] * 2.0 * v["v_pj"] / v["D"]
         eqs = [Equation(f"traction_{d}",
                         v[f"traction_{d}"] - hj.tension_ratio(v["mu_d"], v["alpha_d"], v["Q"] * v[f"F_S_{d}"], k),
-                        "Hajduk 1992, eq. (19), S_0 = F_S, omega = 2 v_pj / D")
+                        "Hajduk 1992, eq. (19), S_0 = F_S, omega = 2 v_pj / D",
+                        formula="ln s + Q F_S s (1 − e^(−α_d/(λω))) = μ_d α_d, ω = 2 v_pj / D")
                for d in DIRECTIONS]
         return eqs + _margin_equations(v, lambda d: v[f"traction_{d}"])
 

@@ -67,8 +67,8 @@ class RopeCatalogue(Submodel):
         Q("rope_E", "Pa", "modulus of the rope referred to its metallic area", "kN/mm^2", low=0.0, low_open=True,
           warn_low=5e10, warn_high=2.1e11, usual_source="rope makers quote 80-120 GPa on the metallic area; "
           "steel wire itself is 210 GPa", guess=1e11),
-        Q("A_m", "m^2", "metallic cross-section of the rope", "mm^2", equation=f"{SRC}: A = C d^2"),
-        Q("m_l", "kg/m", "mass of the rope per metre", "kg/m", equation=f"{SRC}: m = W d^2"),
+        Q("A_m", "m^2", "metallic cross-section of the rope", "mm^2", equation=f"{SRC}: A = C d^2", formula="A_m = C d²"),
+        Q("m_l", "kg/m", "mass of the rope per metre", "kg/m", equation=f"{SRC}: m = W d^2", formula="m_l = W d²"),
     )
 
     def _factors(self, v):
@@ -79,12 +79,12 @@ class RopeCatalogue(Submodel):
         d = v["d"]
         return [
             Equation("F_min", v["F_min"] - ropes.minimum_breaking_force(K, d, v["rope_grade"]),
-                     f"{SRC}: F_min = K d^2 R_r"),
-            Equation("m_l", v["m_l"] - ropes.rope_mass_per_metre(W, d), f"{SRC}: m = W d^2"),
-            Equation("q_l", v["q_l"] - ropes.rope_weight_per_metre(W, d), "q_l = g W d^2"),
-            Equation("A_m", v["A_m"] - ropes.metallic_area(C, d), f"{SRC}: A = C d^2"),
+                     f"{SRC}: F_min = K d^2 R_r", formula="F_min = K d² R_r"),
+            Equation("m_l", v["m_l"] - ropes.rope_mass_per_metre(W, d), f"{SRC}: m = W d^2", formula="m_l = W d²"),
+            Equation("q_l", v["q_l"] - ropes.rope_weight_per_metre(W, d), "q_l = g W d^2", formula="q_l = g W d²"),
+            Equation("A_m", v["A_m"] - ropes.metallic_area(C, d), f"{SRC}: A = C d^2", formula="A_m = C d²"),
             Equation("q_lw", v["q_lw"] - ropes.unit_elongation(v["L_u"], v["rope_E"], C, d),
-                     "q_lw = L_u / (E C d^2)"),
+                     "q_lw = L_u / (E C d^2)", formula="q_lw = L_u / (E C d²)"),
         ]
 
 
