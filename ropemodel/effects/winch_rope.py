@@ -67,8 +67,8 @@ class RopeCatalogue(Submodel):
         Q("rope_E", "Pa", "modulus of the rope referred to its metallic area", "kN/mm^2", low=0.0, low_open=True,
           warn_low=5e10, warn_high=2.1e11, usual_source="rope makers quote 80-120 GPa on the metallic area; "
           "steel wire itself is 210 GPa", guess=1e11),
-        Q("A_m", "m^2", "metallic cross-section of the rope", "mm^2", equation=f"{SRC}: A = C d^2", formula="A_m = C d²"),
-        Q("m_l", "kg/m", "mass of the rope per metre", "kg/m", equation=f"{SRC}: m = W d^2", formula="m_l = W d²"),
+        Q("A_m", "m^2", "metallic cross-section of the rope", "mm^2", equation=f"{SRC}: A = C d^2"),
+        Q("m_l", "kg/m", "mass of the rope per metre", "kg/m", equation=f"{SRC}: m = W d^2"),
     )
 
     def _factors(self, v):
