@@ -315,11 +315,15 @@ def _route(data: dict, effects: dict, given: dict, found: Problems):
             if key not in seg:
                 found.add(f"[[route]] segment {i} has no {key} (e.g. {key} = "
                           f"{chr(34)}{'400 m' if key == 'length' else '10 deg'}{chr(34)})")
+                values[ROUTE_KEYS[key].format(i=i)] = (None, None)   # said: not "missing" again
     return tuple("mu_winding" in seg for seg in segments), values
 
 
 def _route_parameters(model: Model, values: dict, bare: str, params: dict, origin: dict, found: Problems) -> None:
     for name, (label, value) in values.items():
+        if label is None:
+            origin[name] = "route (missing)"
+            continue
         q = model.quantities[name]
         try:
             params[name] = to_si(label, value, q.unit, q.display_unit, bare)
