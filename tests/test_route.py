@@ -1,7 +1,7 @@
 """Routes of several segments: the paper as a special case, the sums by hand, bad routes refused.
 
 Truths: Krauze et al. (2025) Fig. 9 as printed (one segment), the paper's case 2 evaluated by
-hand from its eq. (17)-(18) (two segments of equal inclination), and the sums of MODELS.md §4
+hand from its eq. (17)-(18) (two segments of equal inclination), and the sums of docs/physics.md §4
 written out in numpy here (several segments, the load on each).
 """
 
@@ -55,7 +55,7 @@ SEGMENTS = [(400.0, 22.0, 0.06), (650.0, 9.0, None), (300.0, -4.0, 0.03), (250.0
 
 
 def _by_hand(x, direction):
-    """MODELS.md §4, written out: F_C, F_S [N] with the load at x [m] from the drive."""
+    """docs/physics.md §4, written out: F_C, F_S [N] with the load at x [m] from the drive."""
     q_l, G_m, F_nwl, mu_pm, mu_pl = 80.0, 467e3, 20e3, 0.05, 0.05
     s = 1.0 if direction == "up" else -1.0
     L = np.array([seg[0] for seg in SEGMENTS])

@@ -23,7 +23,7 @@ def test_tornado_fast(tmp_path):
 def test_sweep_performance_fast(tmp_path):
     res = load_study("sweep_performance").main(tmp_path, fast=True)
     head = res["cli_vs_numpy"]
-    # the numpy peer written by hand from MODELS.md agrees with the CLI's file
+    # the numpy peer written by hand from docs/physics.md §1 agrees with the CLI's file
     assert head["max_rel_diff"] < 1e-12
     assert head["ratio"] > 0 and (tmp_path / "sweep_performance.png").exists()
     assert len(pd.read_csv(tmp_path / "scaling.csv")) == 2

@@ -1,6 +1,6 @@
 """Rope on a friction sheave (``model = "sheave"``): tension along the arc of contact.
 
-Hajduk (1992), :mod:`ropemodel.papers.hajduk1992`; MODELS.md §2.  Outputs: ``S``
+Hajduk (1992), :mod:`ropemodel.papers.hajduk1992`; docs/physics.md §3.  Outputs: ``S``
 (tension where the rope leaves the sheave, after the wrap ``alpha``) and
 ``S_ratio`` = S/S_0; the distribution S(α) along the arc is the table
 "tension along the arc" (``Result.frames``, and :func:`ropemodel.sheave.distribution`).
