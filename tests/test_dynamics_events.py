@@ -18,10 +18,10 @@ from scipy.optimize import brentq
 
 import ropemodel as rm
 from ropemodel.dynamics import simulate
-from ropemodel.dynamics.chain import G_N
 from ropemodel.dynamics.hybrid import hermite_min
 
 DATA = resources.files("ropemodel.data")
+G_N = 9.80665            # standard gravity [m/s²]
 
 
 def scene(name, effects=None, params=None, numerics=None):
