@@ -13,5 +13,6 @@ parameters (for dynamic sizing).  Modules: :mod:`.assemble` (the scene's variant
 
 from ropemodel.dynamics.history import Simulation
 from ropemodel.dynamics.simulate import simulate
+from ropemodel.dynamics.smooth import SmoothMode, smooth_mode
 
-__all__ = ["Simulation", "simulate"]
+__all__ = ["Simulation", "SmoothMode", "simulate", "smooth_mode"]

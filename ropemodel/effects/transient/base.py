@@ -198,6 +198,8 @@ class TransientSubmodel(Submodel):
     gathered: ClassVar[bool] = True
     #: added to the message of a rope slack at the start (why this variant may be the cause)
     slack_hint: ClassVar[str] = ""
+    #: parameters that fix the structure (numbers of nodes, which span exists): never symbols
+    structural: ClassVar[tuple[str, ...]] = ()
 
     def equations(self, v):
         if not self.gathered:

@@ -50,6 +50,7 @@ class Rope(TransientSubmodel):
     citations = ("krauze2025",)
     quantities = (V_EPS,)
     order = 10
+    structural = ("L_u", "L_ul", "x_m")
 
     def bind(self, setup):
         super().bind(setup)

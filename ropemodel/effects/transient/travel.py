@@ -30,6 +30,7 @@ class Travel(TransientSubmodel):
     citations = ("krauze2025",)
     quantities = (X_M,)
     order = 0
+    structural = ("x_m", "L_u")
     sign = +1
     start_text = ""
 
