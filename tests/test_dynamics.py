@@ -39,15 +39,16 @@ def scene(name="winch_start.toml", effects=None, params=None, numerics=None):
 
 @pytest.mark.parametrize("travel", ["up", "down"])
 def test_start_settles_on_static_forces(travel):
-    """Ends at constant speed: F_C, F_S within 0.5 % of Krauze eq. (12)-(13), default damping."""
-    sc = scene(effects={"travel": travel}, params={"t_end": "100 s"})
+    """Ends at constant speed: F_C, F_S on Krauze eq. (12)-(13) to 1e-9 by t = 200 s, default damping
+    (measured 4e-14 up, 3e-13 down; the load mode decays with ζ ≈ 0.05: 3e-5 after 100 s)."""
+    sc = scene(effects={"travel": travel}, params={"t_end": "200 s"})
     assert sc.parameters["rope_damping"] == 0.05                      # the default
     sim = simulate(sc)
     static = rm.run(rm.load_scene())                                  # the paper's Fig. 9 scene
     s = sim.summary
     assert not s["slip"] and not s["slack"]
-    assert s["F_C_end"] == pytest.approx(static[f"F_C_{travel}"], rel=5e-3)
-    assert s["F_S_end"] == pytest.approx(static[f"F_S_{travel}"], rel=5e-3)
+    assert s["F_C_end"] == pytest.approx(static[f"F_C_{travel}"], rel=1e-9)
+    assert s["F_S_end"] == pytest.approx(static[f"F_S_{travel}"], rel=1e-9)
     assert s["dynamic_factor"] == pytest.approx(s["F_C_max"] / static[f"F_C_{travel}"], rel=1e-12)
 
 
@@ -56,7 +57,7 @@ def test_start_settles_on_static_forces(travel):
 @pytest.mark.parametrize("travel,sign", [("up", 1), ("down", -1)])
 def test_rigid_ramp_gives_static_plus_mass_times_acceleration(travel, sign):
     """F_C = F_C,static + (G_m + q_l L_u)/g · a and F_S = F_S,static − q_l L_u/g · a (moving masses:
-    load and winding rope on the C side, unwinding rope on the S side), to 1e-6."""
+    load and winding rope on the C side, unwinding rope on the S side), to 1e-12 (measured 2e-16)."""
     sc = scene(effects={"travel": travel, "rope_elasticity": "rigid"}, params={"t_end": "8 s"})
     sim = simulate(sc)
     v = sc.parameters
@@ -67,10 +68,10 @@ def test_rigid_ramp_gives_static_plus_mass_times_acceleration(travel, sign):
     assert len(ramp) > 100
     F_C = st[f"F_C_{travel}"] + (v["G_m"] + v["q_l"] * v["L_u"]) / G_N * a
     F_S = st[f"F_S_{travel}"] - v["q_l"] * v["L_u"] / G_N * a
-    np.testing.assert_allclose(ramp["F_C [N]"], F_C, rtol=1e-6)
-    np.testing.assert_allclose(ramp["F_S [N]"], F_S, rtol=1e-6)
+    np.testing.assert_allclose(ramp["F_C [N]"], F_C, rtol=1e-12)
+    np.testing.assert_allclose(ramp["F_S [N]"], F_S, rtol=1e-12)
     after = h[h["t [s]"] > v["t_ramp"] + 1e-9]
-    np.testing.assert_allclose(after["F_C [N]"], st[f"F_C_{travel}"], rtol=1e-6)
+    np.testing.assert_allclose(after["F_C [N]"], st[f"F_C_{travel}"], rtol=1e-12)
     assert sim.summary["moving_masses"]["load"] == pytest.approx(v["G_m"] / G_N)
 
 
@@ -121,9 +122,9 @@ def test_rigid_slip_onset_and_distance_match_newton():
     assert s["slip"]
     t0, t1, dist = _rigid_slip_truth(sc.parameters, math.exp(sc.parameters["mu_d"] * sc.parameters["alpha_d"]))
     (ev,) = s["slip_events"]
-    assert ev["t_start"] == pytest.approx(t0, rel=1e-8)
-    assert ev["t_end"] == pytest.approx(t1, rel=1e-7)
-    assert ev["distance"] == pytest.approx(dist, rel=1e-7)
+    assert ev["t_start"] == pytest.approx(t0, rel=1e-9)          # measured 4e-11
+    assert ev["t_end"] == pytest.approx(t1, rel=1e-8)            # 2e-10
+    assert ev["distance"] == pytest.approx(dist, rel=1e-8)       # 2.5e-9
     assert "SLIP on the drum from t = " in sim.report()
 
 
@@ -230,8 +231,8 @@ def test_single_spring_natural_frequency():
     c = v["rope_damping"] * k
     w_d = math.sqrt(2 * k / m - (c / m) ** 2)
     w, sigma = _load_mode_fit(sim, v["t_ramp"], v["v_pj"], [w_d * 1.01, c / m])
-    assert w == pytest.approx(w_d, rel=1e-6)
-    assert sigma == pytest.approx(c / m, rel=1e-5)
+    assert w == pytest.approx(w_d, rel=1e-6)                        # measured 2e-7
+    assert sigma == pytest.approx(c / m, rel=1e-5)                  # measured 5e-6
 
 
 @pytest.mark.parametrize("contact", ["rigid", "capstan"])
@@ -282,7 +283,7 @@ def test_spring_scene_two_mode_frequencies(contact):
     assert np.max(np.abs(res)) < 1e-5 * np.max(np.abs(y))          # two modes explain the motion
     assert min(np.hypot(coef[0], coef[1]), np.hypot(coef[2], coef[3])) > 1e-4   # both are excited
     assert fit.x[0] == pytest.approx(w[0], rel=1e-7)                # the load's mode (large amplitude)
-    assert fit.x[1] == pytest.approx(w[1], rel=1e-5)                # the sheave's mode (small amplitude)
+    assert fit.x[1] == pytest.approx(w[1], rel=3e-6)                # the sheave's mode (small amplitude): 1.8e-6
 
 
 # --- energy ---------------------------------------------------------------------------------------
@@ -303,7 +304,8 @@ def test_energy_balance_to_integrator_tolerance(name):
 
 def test_rest_take_up_converges_to_the_continuum_integral():
     """Take-up at rest = loop elongation = ∫T dx / EA of the continuum (no resistance at rest): the
-    lumped value converges at first order as segments are added."""
+    lumped value converges at second order as segments are added (errors 4.7e-3, 1.2e-3, 2.9e-4 at
+    4, 8, 16 segments)."""
     errs = []
     for n in (2, 4, 8, 16):
         sc = scene(params={"t_end": "1 s", "t_ramp": "1 s"}, numerics={"segments": n})
@@ -318,9 +320,9 @@ def test_rest_take_up_converges_to_the_continuum_integral():
                  + h * C2 + w * C2 ** 2 / 2                             # sheave → load
                  + (h + w * C2 + v["G_m"] * s) * x + w * x ** 2 / 2) / EA  # load → drum
         errs.append(abs(z0 - exact) / exact)
-    assert errs[-1] < 4e-3
+    assert errs[-1] < 4e-4
     for e0, e1 in zip(errs, errs[1:]):
-        assert e1 < 0.6 * e0
+        assert e1 < 0.3 * e0
 
 
 @pytest.mark.slow
@@ -478,8 +480,8 @@ def test_rigid_cosine_ramp_gives_static_plus_mass_times_its_acceleration():
     sc = scene(effects={"rope_elasticity": "rigid", "ramp": "cosine"}, params={"t_end": "6 s"})
     v, st = sc.parameters, rm.run(sc)
     h = simulate(sc).history
-    ramp = h[(h["t [s]"] > 0.5) & (h["t [s]"] < v["t_ramp"])]
+    ramp = h[(h["t [s]"] > 1.0) & (h["t [s]"] < v["t_ramp"])]         # |v| > 20 v_eps: tanh = 1
     a = 0.5 * math.pi * v["v_pj"] / v["t_ramp"] * np.sin(math.pi * ramp["t [s]"] / v["t_ramp"])
     np.testing.assert_allclose(ramp["v_drum [m/s]"],
                                v["v_pj"] * 0.5 * (1 - np.cos(math.pi * ramp["t [s]"] / v["t_ramp"])), rtol=1e-12)
-    np.testing.assert_allclose(ramp["F_C [N]"], st["F_C_up"] + (v["G_m"] + v["q_l"] * v["L_u"]) / G_N * a, rtol=1e-6)
+    np.testing.assert_allclose(ramp["F_C [N]"], st["F_C_up"] + (v["G_m"] + v["q_l"] * v["L_u"]) / G_N * a, rtol=1e-12)
