@@ -108,7 +108,7 @@ class Simulation:
             lines += p.report(s)
         masses = ", ".join(f"{k} {v:.6g} kg" for k, v in s["moving_masses"].items())
         lines += [f"  moving masses: {masses}", f"  energy balance residual {s['energy_residual']:.2e} of the drum's work"]
-        return "\n".join(lines)
+        return "\n".join(lines + [line for p in self.system.parts for line in p.ending(s)])
 
 
 def _finite(obj):

@@ -174,18 +174,19 @@ class TransientSystem:
         """Fire every switching function below −TOL (in assembly order) until the mode is consistent, then
         project the state onto the mode (the variants' :meth:`project`).
 
-        Terminal functions are not fired here: a tension the jump of an event leaves below zero (e.g. the
-        damping force lost when the carriage stops on its end stop) ends the run only if it is still
-        negative once armed, when it crosses zero during the integration."""
+        A terminal function below −TOL ends the run here: e.g. the rope at the return sheave left slack
+        when the carriage stops on its end stop (its damping force is lost with the carriage's speed).
+        """
         events = list(events)
         for _ in range(MAX_SETTLE):
             fns = self.functions(k, mode)
-            g = np.array(fns.g(x, t)).ravel()
-            low = [i for i in np.flatnonzero(g < -TOL) if not fns.switches[i].terminal]
-            if not low:
+            low = np.flatnonzero(np.array(fns.g(x, t)).ravel() < -TOL)
+            if not low.size:
                 return Settled(np.array(fns.project(x, t)).ravel(), mode, tuple(events), False)
             x, mode, event = self._fire(k, mode, int(low[0]), x, t)
             events.append(event)
+            if event.mode is None:
+                return Settled(x, mode, tuple(events), True)
         raise SolveError(f"the modes chatter at t = {t:.6g} s (more than {MAX_SETTLE} events at one instant: "
                          f"{', '.join(e.name for e in events[-4:])}); refine the model or check the traction")
 

@@ -276,6 +276,10 @@ class TransientSubmodel(Submodel):
         """Its lines of the readable report."""
         return []
 
+    def ending(self, summary: dict) -> list[str]:
+        """Lines that close the report (why the run ended early)."""
+        return []
+
 
 def transient_effects(model: str = MODEL) -> list[str]:
     """Names of the effects whose variants are transient submodels."""

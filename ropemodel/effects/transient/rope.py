@@ -138,7 +138,7 @@ class Rope(TransientSubmodel):
         return {"slack": bool(slack), "t_slack": slack[0]["t"] if slack else None,
                 "T_min": float(run.history["T_min [N]"].min()), "n_nodes": self.chain.n}
 
-    def report(self, s):
+    def ending(self, s):
         if not s["slack"]:
             return []
         return [f"  STOPPED at t = {s['t_slack']:.3f} s: the rope went slack (a tension reached 0); the linear rope "
