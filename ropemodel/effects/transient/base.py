@@ -200,11 +200,14 @@ class TransientSubmodel(Submodel):
     slack_hint: ClassVar[str] = ""
     #: parameters that fix the structure (numbers of nodes, which span exists): never symbols
     structural: ClassVar[tuple[str, ...]] = ()
+    #: quantities of the static model the variant reads (declared there, e.g. q_lw): scene parameters of a
+    #: transient like its own ``quantities``, without claiming them (messages name their static owners)
+    reads: ClassVar[tuple[str, ...]] = ()
 
     def equations(self, v):
         if not self.gathered:
-            for q in self.quantities:
-                v[q.name]  # noqa: B018 - creating the symbol makes it a parameter of the scene
+            for name in (*(q.name for q in self.quantities), *self.reads):
+                v[name]  # noqa: B018 - creating the symbol makes it a parameter of the scene
         return []
 
     def bind(self, setup: Setup) -> None:
@@ -287,13 +290,14 @@ def transient_effects(model: str = MODEL) -> list[str]:
             if any(issubclass(c, TransientSubmodel) for c in spec.variants.values())]
 
 
-def gathered_quantities(model: str = MODEL) -> list:
-    """Quantities of every gathered transient variant (parameters of every transient scene)."""
+def gathered_parameters(model: str = MODEL) -> list[str]:
+    """Names of the quantities every gathered transient variant declares or reads (parameters of every
+    transient scene)."""
     out = []
     for effect in transient_effects(model):
         for cls in REGISTRY[model][effect].variants.values():
             if issubclass(cls, TransientSubmodel) and cls.gathered:
-                out += [q for q in cls.quantities if q not in out]
+                out += [n for n in (*(q.name for q in cls.quantities), *cls.reads) if n not in out]
     return out
 
 

@@ -7,7 +7,7 @@ direction of ``travel`` (+1 upward, −1 downward), with the ``ramp`` shape.
 The profile is a list of *phases* (t0, t1, v(t), a(t)): within a phase the speed is smooth, and the
 integrator is stopped and restarted at every phase boundary (the ramp's pieces, then the hold at
 constant speed).  A transient variant of this effect also declares the scene parameters of every
-*gathered* transient variant (:func:`~ropemodel.effects.transient.base.gathered_quantities`): a
+*gathered* transient variant (:func:`~ropemodel.effects.transient.base.gathered_parameters`): a
 submodel is built without knowing the other effects' variants, so their parameters are declared here,
 once a scene has a transient, and stay out of static scenes.
 """
@@ -19,8 +19,7 @@ from typing import Callable
 
 from ropemodel._math import if_else
 from ropemodel.effects.base import Submodel, define_effect, register
-from ropemodel.effects.transient.base import MODEL, TransientSubmodel, gathered_quantities
-from ropemodel.effects.winch import V_PJ
+from ropemodel.effects.transient.base import MODEL, TransientSubmodel, gathered_parameters
 from ropemodel.quantity import Quantity
 
 define_effect(MODEL, "dynamics", "none", "time-domain transient: none, start (drive ramps up) or stop (ramps down)")
@@ -51,14 +50,16 @@ class Profile(TransientSubmodel):
     """A transient: the drum's surface speed as phases; ``initial_fraction``, ``final_fraction`` of v_pj."""
 
     citations = ("krauze2025",)
-    quantities = (T_RAMP, T_END, V_PJ)
+    quantities = (T_RAMP, T_END)
+    reads = ("v_pj",)                    # declared by the static model's power and lining effects
     order = 2
     gathered = False
     initial_fraction = 0.0
 
     def equations(self, v):
-        for q in (*self.quantities, *gathered_quantities()):
-            v[q.name]  # noqa: B018 - creating the symbol makes it a parameter
+        super().equations(v)
+        for name in gathered_parameters():
+            v[name]  # noqa: B018 - creating the symbol makes it a parameter
         return []
 
     def rules(self, values):

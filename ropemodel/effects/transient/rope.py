@@ -31,13 +31,11 @@ from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.transient.base import MODEL, State, Switch, TransientSubmodel, event_table
 from ropemodel.effects.transient.chain import build_elastic, build_rigid
 from ropemodel.effects.transient.route import incline
-from ropemodel.effects.winch import Elongation
 from ropemodel.errors import InputError
 from ropemodel.quantity import Quantity
 
 define_effect(MODEL, "rope_elasticity", "segments", "rope model of the transient: rigid, spring or segments")
 
-Q_LW = next(q for q in Elongation.quantities if q.name == "q_lw")
 V_EPS = Quantity("v_eps", "m/s", "speed scale of the smoothed Coulomb resistance tanh(v/v_eps)", "m/s",
                  default=0.01, warn_high=0.1, guess=0.01, low=0.0, low_open=True, positive=True)
 ROPE_DAMPING = Quantity("rope_damping", "s", "Kelvin-Voigt retardation time c/k of the rope (zeta = tau omega / 2)",
@@ -151,7 +149,8 @@ class RopeSegments(Rope):
     Krauze et al. 2025 eq. (19)-(20)); the rope's mass q_l ℓ/g lumped half on each node."""
 
     description = "lumped-mass rope, [numerics] segments Kelvin-Voigt elements per span"
-    quantities = (V_EPS, ROPE_DAMPING, Q_LW)
+    quantities = (V_EPS, ROPE_DAMPING)
+    reads = ("q_lw",)                    # EA = L_u/q_lw, Krauze eq. (19)-(20) (the elongation effect's)
 
     def segments(self) -> int:
         return self.setup.options["segments"]
