@@ -88,10 +88,6 @@ class Layout:
         """Name → part of ``x`` (a scalar for a scalar state)."""
         return {s.name: x[self.index(s.name)] if s.size == 1 else x[self.slice(s.name)] for s in self.states}
 
-    def get(self, x, name: str):
-        """The value of a state in a numeric ``x``: a float, or an array for a vector state."""
-        return float(x[self.index(name)]) if self.size(name) == 1 else x[self.slice(name)]
-
 
 @dataclass(frozen=True)
 class Mode:
