@@ -174,7 +174,7 @@ def test_voigt_lining_slip_onset_matches_an_independent_solve():
         return ratio(F_S, acc * t) * F_S - F_C
 
     t_slip = brentq(margin, 1e-9, v["t_ramp"], xtol=1e-14)
-    assert s["slip_events"][0]["t_start"] == pytest.approx(t_slip, rel=1e-8)
+    assert s["slip_events"][0]["t_start"] == pytest.approx(t_slip, rel=1e-9)        # measured 5e-11
     assert s["traction_ratio"] < math.exp(v["mu_d"] * v["alpha_d"])    # the lining costs traction
 
 
