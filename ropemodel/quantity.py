@@ -66,7 +66,10 @@ class Quantity:
         return value * factor(self.unit, self.display_unit)
 
     def to_si(self, value, bare: str = "refuse") -> float:
-        """``value`` (string with unit, pint Quantity or number) in SI; see :func:`ropemodel.units.to_si`."""
+        """``value`` (string with unit, pint Quantity or number) in SI; see :func:`ropemodel.units.to_si`.
+        The float ``math.inf`` is accepted for an ``unlimited`` quantity (its "not given")."""
+        if self.unlimited and isinstance(value, float) and value == math.inf:
+            return value
         return to_si(self.name, value, self.unit, self.display_unit, bare)
 
     @property

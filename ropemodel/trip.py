@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ropemodel.errors import InputError
+from ropemodel.papers import route as rt
 
 #: samples of the history per phase (the summary does not depend on them)
 SAMPLES = 200
@@ -74,7 +75,7 @@ class Trip:
 
     def position(self, t: float) -> float:
         """The load's distance from the drive at time t [m]."""
-        return self.start - self.sign * _distance(self.phases, t)
+        return self.start - self.sign * rt.distance_travelled(self.phases, t)
 
     @property
     def history(self):
@@ -112,42 +113,17 @@ def _power(mechanical: float, eta: float) -> float:
     return mechanical / eta if mechanical >= 0 else mechanical * eta
 
 
-def profile(length: float, v_pj: float, t_ramp: float) -> list[tuple[float, float, float, float]]:
-    """Phases (t0, t1, v0, a) of a trip of ``length`` [m]: ramp up, cruise, ramp down (or a triangle)."""
-    if length <= 0 or v_pj <= 0 or t_ramp <= 0:
-        raise InputError(f"a trip needs a route, a speed and a ramp time > 0 (L_u = {length:g} m, "
-                         f"v_pj = {v_pj:g} m/s, t_ramp = {t_ramp:g} s)")
-    a = v_pj / t_ramp
-    if length <= v_pj * t_ramp:         # never at full speed: up at a, down at a
-        t_half = math.sqrt(length / a)
-        return [(0.0, t_half, 0.0, a), (t_half, 2 * t_half, a * t_half, -a)]
-    cruise = (length - v_pj * t_ramp) / v_pj
-    return [(0.0, t_ramp, 0.0, a), (t_ramp, t_ramp + cruise, v_pj, 0.0),
-            (t_ramp + cruise, 2 * t_ramp + cruise, v_pj, -a)]
+#: the effects a trip needs: the whole-trip profile, the ramps' inertia in the forces, the drive's power
+TRIP_EFFECTS = {"dynamics": "trip", "inertia": "rigid", "power": "drive"}
 
 
-def _distance(phases, t: float) -> float:
-    """Distance travelled at time t [m]."""
-    s = 0.0
-    for t0, t1, v0, a in phases:
-        dt = min(max(t - t0, 0.0), t1 - t0)
-        s += v0 * dt + 0.5 * a * dt * dt
-    return s
-
-
-def _crossing(phases, distance: float) -> float:
-    """The time the trip has travelled ``distance`` [m] (the distance is strictly increasing in time)."""
-    s = 0.0
-    for t0, t1, v0, a in phases:
-        step = v0 * (t1 - t0) + 0.5 * a * (t1 - t0) ** 2
-        if s + step >= distance:
-            d = distance - s
-            if a == 0.0:
-                return t0 + d / v0
-            disc = max(v0 * v0 + 2.0 * a * d, 0.0)
-            return t0 + (math.sqrt(disc) - v0) / a if a > 0 else t0 + (v0 - math.sqrt(disc)) / -a
-        s += step
-    return phases[-1][1]
+def prepare(scene):
+    """The scene as a trip needs it (:data:`TRIP_EFFECTS`; a scene that says nothing of them works)."""
+    if scene.model != "winch":
+        raise InputError(f"a trip is for winch scenes; this scene's model is {scene.model!r}")
+    if all(scene.effects.get(k) == v for k, v in TRIP_EFFECTS.items()):
+        return scene
+    return scene.with_effects(TRIP_EFFECTS)
 
 
 def trip(scene, direction: str | None = None) -> Trip:
@@ -158,7 +134,7 @@ def trip(scene, direction: str | None = None) -> Trip:
     scene : Scene
         A winch scene with ``v_pj`` and ``t_ramp`` (and ``eta``, default 1), a straight route or a
         route of ``[[route]]`` segments.  Its forces must include the ramps' inertia
-        (``inertia = "rigid"``); :func:`prepare` makes a scene so.
+        (``inertia = "rigid"``); :func:`prepare` makes a scene so (what ``ropemodel trip`` does).
     direction : {"up", "down"}, optional
         The trip's direction; default the scene's ``travel`` effect, else up.
 
@@ -167,6 +143,23 @@ def trip(scene, direction: str | None = None) -> Trip:
     Trip
         ``summary`` with ``t_trip`` [s], ``F_C_max`` [N], ``F_S_min`` [N], ``P_max`` [W], ``P_rms`` [W],
         ``E_trip`` [J], ``E_regen`` [J], ``stroke_needed`` [m]; ``history`` (samples).
+
+    Raises
+    ------
+    InputError
+        Not a winch scene, no ramp inertia, a bad direction.
+    SolveError
+        A rope goes slack somewhere on the trip (the least F_nwl that keeps it taut is named).
+
+    Examples
+    --------
+    The paper's incline (Fig. 9) as a whole upward trip, 1150 m at 2.5 m/s with 5 s ramps: the
+    start's inertia adds (G_m + q_l L_u)/g · 0.5 m/s² = 28.5 kN to the paper's 190.95 kN.
+
+    >>> import ropemodel as rm
+    >>> t = trip(rm.load_scene("trip_fig9"))
+    >>> round(t.summary["t_trip"], 1), round(t.summary["F_C_max"] / 1e3, 2)
+    (465.0, 219.45)
     """
     from ropemodel.problem import Problem
 
@@ -178,27 +171,48 @@ def trip(scene, direction: str | None = None) -> Trip:
                          '(ropemodel trip sets it)')
     v = scene.parameters
     problem = Problem(scene)
-    L_u = v["L_u"] if "L_u" in v else float(problem.solve()["L_u"])
+    L_u = v["L_u"] if "L_u" in v else sum(_segment_lengths(v))
     eta = v.get("eta", 1.0)
-    phases = profile(L_u, v["v_pj"], v["t_ramp"])
+    if L_u <= 0 or v["v_pj"] <= 0 or v["t_ramp"] <= 0:
+        raise InputError("a trip needs a route, a speed and a ramp time > 0")
+    phases = rt.trip_phases(L_u, v["v_pj"], v["t_ramp"])
     start, sign = (L_u, 1.0) if direction == "up" else (0.0, -1.0)
     out = Trip(scene, direction, eta, phases, start, sign)
     out.pieces = _pieces(problem, out, _cuts(scene, out, L_u))
+    _taut(out, v["F_nwl"])
     out.summary = summarise(out.pieces, eta)
+    return out
+
+
+def _taut(trip: Trip, F_nwl: float) -> None:
+    """:class:`SolveError` where a rope would have to push somewhere on the trip (it is slack)."""
+    from ropemodel.errors import SolveError
+
+    worst = min(trip.pieces, key=lambda p: min(p.F_C, p.F_S))
+    least = min(worst.F_C, worst.F_S)
+    if least > 0.0:
+        return
+    side = "winding" if worst.F_C <= worst.F_S else "unwinding"
+    raise SolveError(f"the {side} rope would have to push ({least / 1e3:.6g} kN) at t = {worst.t0:.6g} s of the "
+                     f"{trip.direction}ward trip, the load at x_m = {trip.position(worst.t0):.6g} m: it is slack and "
+                     f"the model no longer holds; every rope stays taut with F_nwl > {(F_nwl - 2 * least) / 1e3:.6g} kN")
+
+
+def _segment_lengths(values: dict) -> list[float]:
+    """L_1, L_2, … of a route of segments (none on a straight route)."""
+    out, i = [], 1
+    while f"L_{i}" in values:
+        out.append(values[f"L_{i}"])
+        i += 1
     return out
 
 
 def _cuts(scene, trip: Trip, L_u: float) -> list[float]:
     """Times of the phase boundaries and of the load crossing a joint of the route, in order."""
     times = {t for t0, t1, _, _ in trip.phases for t in (t0, t1)}
-    ends, total = [], 0.0
-    i = 1
-    while f"L_{i}" in scene.parameters:
-        total += scene.parameters[f"L_{i}"]
-        ends.append(total)
-        i += 1
+    ends = list(np.cumsum(_segment_lengths(scene.parameters)))
     for end in ends[:-1]:
-        times.add(_crossing(trip.phases, trip.sign * (trip.start - end)))
+        times.add(rt.time_at_distance(trip.phases, trip.sign * (trip.start - end)))
     return sorted(times)
 
 

@@ -20,8 +20,8 @@ from ropemodel.problem import run
 
 def chosen(scene) -> dict:
     """Effect → a fresh instance of the scene's variant (the registry's classes)."""
-    specs = effects_of(scene.model)
-    return {effect: specs[effect].variants[variant](scene.numerics) for effect, variant in scene.effects.items()}
+    specs, options = effects_of(scene.model), scene.built.options
+    return {effect: specs[effect].variants[variant](options, scene.effects) for effect, variant in scene.effects.items()}
 
 
 def transient_parts(scene, submodels: dict) -> list[TransientSubmodel]:

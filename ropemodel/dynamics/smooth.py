@@ -31,7 +31,6 @@ import numpy as np
 
 from ropemodel.core.compile import forward_of
 from ropemodel.dynamics.assemble import bind, chosen, transient_parts
-from ropemodel.dynamics.system import Initial
 from ropemodel.effects.transient.base import Layout, Setup
 from ropemodel.effects.transient.profile import Profile
 from ropemodel.errors import InputError

@@ -162,7 +162,7 @@ class RigidInertia(Submodel):
     citations = ("krauze2025",)
     quantities = (
         Q("a_h", "m/s^2", "acceleration of the haulage in its direction of travel (< 0: slowing down)", "m/s^2",
-          guess=0.5),
+          guess=0.5, default=0.0, default_note="not given: steady motion (a trip sets it along its ramps)"),
         Q("I_C", "N", "inertia force of the winding side (load and winding rope), (G_m + q_l L_u)/g a_h", "kN",
           equation="rigid-body inertia (not in the paper)"),
         Q("I_S", "N", "inertia force of the unwinding rope, q_l L_u/g a_h", "kN",

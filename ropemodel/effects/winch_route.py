@@ -175,6 +175,15 @@ class SegmentedRoute(Submodel):
                      f"eq. (11), {src}", formula="T_ls = Σ μ_pl q_l L_i cos α_i"),
         ]
 
+    def transient_route(self, values: dict, numbers: dict):
+        """The route as the transient's rope model asks it (:class:`ropemodel.effects.transient.route.Segments`):
+        lengths as numbers (geometry), inclinations and coefficients as the values (may be symbols)."""
+        from ropemodel.effects.transient.route import Segments
+
+        n = range(1, len(self.segments) + 1)
+        return Segments(values, [float(numbers[f"L_{i}"]) for i in n], [values[f"alpha_{i}"] for i in n],
+                        [values[f"mu_w{i}"] for i in n])
+
     def rules(self, values):
         lengths = [values.get(f"L_{i}") for i in range(1, len(self.segments) + 1)]
         if any(v is None for v in lengths):

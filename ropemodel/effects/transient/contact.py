@@ -25,7 +25,7 @@ from __future__ import annotations
 import casadi as ca
 
 from ropemodel.effects.base import define_effect, register
-from ropemodel.effects.transient.base import MODEL, State, Switch, TransientSubmodel, event_table
+from ropemodel.effects.transient.base import MODEL, State, Switch, TransientSubmodel
 
 define_effect(MODEL, "drum_contact", "rigid",
               "rope-on-drum contact of the transient: rigid, or capstan (Li et al. slip-zone stiffness in series)")

@@ -20,9 +20,12 @@ from typing import Callable
 from ropemodel._math import if_else
 from ropemodel.effects.base import Submodel, define_effect, register
 from ropemodel.effects.transient.base import MODEL, TransientSubmodel, gathered_parameters
+from ropemodel.errors import InputError
+from ropemodel.papers import route as rt
 from ropemodel.quantity import Quantity
 
-define_effect(MODEL, "dynamics", "none", "time-domain transient: none, start (drive ramps up) or stop (ramps down)")
+define_effect(MODEL, "dynamics", "none",
+              "time-domain transient: none, start (drive ramps up), stop (ramps down) or a whole trip")
 
 _pos = dict(low=0.0, low_open=True, positive=True)
 T_RAMP = Quantity("t_ramp", "s", "duration of the drive's speed ramp", "s", guess=5.0, **_pos)
@@ -37,6 +40,9 @@ class Phase:
     t1: object
     v: Callable
     a: Callable
+    #: where the load is during this phase [m from the drive], when the phase moves it along the route
+    #: (a trip: the load's segment is constant within a phase); None when the load stays put
+    x_load: float | None = None
 
 
 @register(MODEL, "dynamics", "none")
@@ -131,3 +137,68 @@ class Braking(Profile):
     @staticmethod
     def _accel(V, T, df):
         return lambda t: -V / T * df(t / T)
+
+
+@register(MODEL, "dynamics", "trip")
+class Trip(Profile):
+    """A whole trip along the route: ramp 0 → v_pj in t_ramp, run at v_pj, ramp down to rest in t_ramp.
+
+    The load starts at one end of the route (upward: at the return sheave, x_m = L_u; downward: at the
+    drive) and travels to the other; a route shorter than v_pj·t_ramp never reaches full speed (a
+    triangle at the same acceleration).  The phases are cut where the load crosses a joint of the route
+    (known times: the drum's speed is prescribed and the rope inextensible), and each phase carries the
+    load's place, so its segment is constant within a phase.  Linear ramps and an inextensible rope only
+    (an elastic rope's spans are frozen over a transient, and a trip moves the load along the whole
+    route): the transient version of :func:`ropemodel.trip.trip`, with which it agrees.
+    """
+
+    description = "a whole trip: ramp up, run, ramp down, the load along the whole route"
+    quantities = (T_RAMP,)
+
+    def rules(self, values):
+        return []
+
+    def bind(self, setup):
+        TransientSubmodel.bind(self, setup)
+        if setup.part("ramp").variant != "linear" or setup.part("rope_elasticity").variant != "rigid":
+            raise InputError('dynamics = "trip" needs ramp = "linear" and rope_elasticity = "rigid" (a trip moves '
+                             "the load along the whole route; the elastic rope's spans are frozen over a transient)")
+        if setup.part("travel").x_m_given:
+            raise InputError("dynamics = \"trip\" starts at one end of the route and ends at the other: "
+                             "leave x_m out")
+        nums = setup.numbers
+        L_u = float(nums["L_u"])
+        kinematics = rt.trip_phases(L_u, float(nums["v_pj"]), float(nums["t_ramp"]))
+        start, sign = (L_u, 1.0) if setup.travel == "up" else (0.0, -1.0)
+        cuts = sorted({t for t0, t1, _, _ in kinematics for t in (t0, t1)}
+                      | {rt.time_at_distance(kinematics, sign * (start - end)) for end in _joints(nums)})
+        phases = []
+        for t0, t1 in zip(cuts[:-1], cuts[1:]):
+            if t1 <= t0:
+                continue
+            k = next(p for p in kinematics if p[0] <= 0.5 * (t0 + t1) <= p[1])
+            x = start - sign * rt.distance_travelled(kinematics, 0.5 * (t0 + t1))
+            phases.append(Phase(t0, t1, _linear(setup.direction, k[2], k[3], k[0]), _const(setup.direction * k[3]), x))
+        setup.phases, setup.speed0 = phases, 0.0
+        setup.numbers["t_end"] = setup.values["t_end"] = cuts[-1]
+
+    def summary(self, run):
+        return {"dynamics": self.variant}
+
+
+def _joints(numbers: dict) -> list[float]:
+    """Distances from the drive of the joints between the route's segments (none on a straight route)."""
+    ends, total, i = [], 0.0, 1
+    while f"L_{i}" in numbers:
+        total += float(numbers[f"L_{i}"])
+        ends.append(total)
+        i += 1
+    return ends[:-1]
+
+
+def _linear(direction, v0, a, t0):
+    return lambda t: direction * (v0 + a * (t - t0))
+
+
+def _const(a):
+    return lambda t: a + 0 * t

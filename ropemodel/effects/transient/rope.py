@@ -30,7 +30,7 @@ import casadi as ca
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.transient.base import MODEL, State, Switch, TransientSubmodel, event_table
 from ropemodel.effects.transient.chain import build_elastic, build_rigid
-from ropemodel.effects.transient.route import incline
+from ropemodel.effects.transient.route import route_of
 from ropemodel.errors import InputError
 from ropemodel.quantity import Quantity
 
@@ -53,7 +53,7 @@ class Rope(TransientSubmodel):
     def bind(self, setup):
         super().bind(setup)
         if setup.route is None:
-            setup.route = incline(setup.values, setup.numbers)
+            setup.route = route_of(setup)
         setup.chain = self.build(setup)
 
     def build(self, setup):
@@ -170,6 +170,12 @@ class RopeSpring(RopeSegments):
         return 1
 
 
+def _travelled(phases, k: int) -> float:
+    """Distance [m] the drum's surface has moved by the start of phase k (exact: each phase's speed is
+    linear in time, so its mean is the mean of its ends)."""
+    return sum(abs(0.5 * (float(ph.v(ph.t0)) + float(ph.v(ph.t1))) * (ph.t1 - ph.t0)) for ph in phases[:k])
+
+
 @register(MODEL, "rope_elasticity", "rigid")
 class RopeRigid(Rope):
     """Inextensible rope: load and both rope sides move as one body; the tensioner's constant force
@@ -187,7 +193,36 @@ class RopeRigid(Rope):
 
     def build(self, setup):
         nums = setup.numbers
-        return build_rigid(setup.route, float(nums["L_u"]), float(nums["x_m"]))
+        self._phase = None
+        chain = build_rigid(setup.route, float(nums["L_u"]), float(nums["x_m"]))
+        self._moving = self._moving_load(setup, chain)
+        return chain
+
+    def _moving_load(self, setup, chain) -> dict:
+        """For phases that move the load along the route (a trip): phase index → (the chain with the load
+        where it is in that phase, the offset that keeps the potential energy −∫w du continuous)."""
+        out, offset, w_prev = {}, 0.0, chain.weight[0]
+        for k, phase in enumerate(setup.phases or ()):
+            if getattr(phase, "x_load", None) is None:
+                continue
+            at = build_rigid(setup.route, float(setup.numbers["L_u"]), phase.x_load)
+            u_start = setup.direction * _travelled(setup.phases, k)
+            offset = offset + (at.weight[0] - w_prev) * u_start
+            out[k], w_prev = (at, offset), at.weight[0]
+        return out
+
+    @property
+    def chain(self):
+        return self._moving[self._phase][0] if self._phase in getattr(self, "_moving", {}) else self.setup.chain
+
+    def publish(self, v, mode):
+        index = next((k for k, ph in enumerate(self.setup.phases or ()) if ph is v["phase"]), None)
+        self._phase = index
+        super().publish(v, mode)
+
+    def energy(self, v, mode):
+        pe_offset = self._moving[self._phase][1] if self._phase in self._moving else 0.0
+        return super().energy(v, mode) + pe_offset
 
     def _tangent_tensions(self, T):
         half = self.values["F_nwl"] / 2

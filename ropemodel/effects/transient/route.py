@@ -23,6 +23,7 @@ from typing import NamedTuple, Protocol
 
 from ropemodel.effects.transient.base import G_N
 from ropemodel.papers import krauze2025 as kr
+from ropemodel.papers import route as rt
 
 
 class Loads(NamedTuple):
@@ -71,6 +72,47 @@ class Incline:
                      kr.load_resistance(v["mu_pm"], v["G_m"], v["alpha_u"]))               # eq. (7)
 
 
+def route_of(setup) -> Route:
+    """The scene's route for the rope model: its ``route`` effect's (a route of segments), else the incline."""
+    route = setup.submodels.get("route")
+    transient = getattr(route, "transient_route", None)
+    return transient(setup.values, setup.numbers) if transient else incline(setup.values, setup.numbers)
+
+
 def incline(values: dict, numbers: dict) -> Incline:
     """The paper's route from the scene's values (L_ul taken as a number: it is geometry)."""
     return Incline(values, float(numbers["L_ul"]))
+
+
+@dataclass
+class Segments:
+    """A route of straight segments (:mod:`ropemodel.papers.route`): ``lengths`` (numbers, from the drive),
+    ``inclinations`` and ``mus`` (the winding rope's coefficient per segment) may be symbols; ``values``
+    gives q_l, mu_pl, G_m, mu_pm.  A stretch of rope sums its parts of every segment it covers."""
+
+    values: dict
+    lengths: list
+    inclinations: list
+    mus: list
+
+    def _parts(self, s0: float, s1: float):
+        start = 0.0
+        for length, alpha, mu in zip(self.lengths, self.inclinations, self.mus):
+            part = max(0.0, min(start + length, s1) - max(start, s0))
+            if part > 0.0:
+                yield part, alpha, mu
+            start += length
+
+    def rope(self, side: str, s0: float, s1: float) -> Loads:
+        v, mass, weight, resistance = self.values, 0.0, 0.0, 0.0
+        for part, alpha, mu in self._parts(s0, s1):
+            coefficient = v["mu_pl"] if side == "unwinding" else mu
+            mass = mass + v["q_l"] * part / G_N
+            weight = weight + kr.rope_weight_along_incline(v["q_l"], part, alpha)          # eq. (2), (6) per segment
+            resistance = resistance + kr.rope_resistance(coefficient, v["q_l"], part, alpha)   # eq. (10), (11)
+        return Loads(mass, weight, resistance)
+
+    def load(self, x: float) -> Loads:
+        v = self.values
+        return Loads(v["G_m"] / G_N, rt.load_weight_along_route(v["G_m"], x, self.lengths, self.inclinations),
+                     rt.load_resistance_route(v["mu_pm"], v["G_m"], x, self.lengths, self.inclinations))
