@@ -7,6 +7,7 @@ written out in numpy here (several segments, the load on each).
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -126,3 +127,16 @@ def _two(a2):
     a1 = math.radians(22)
     return (10e3 + 80 * (400 * math.sin(a1) + 650 * math.sin(a2)) + 467e3 * math.sin(a2)
             + 0.05 * 467e3 * math.cos(a2) + 0.05 * 80 * (400 * math.cos(a1) + 650 * math.cos(a2)))
+
+
+def test_run_worst_puts_the_load_where_F_C_up_is_largest(capsys):
+    """--worst: the segment of the largest F_C_up, by hand (MODELS.md §4: the load term G_m (sin α_j + μ_pm cos α_j))."""
+    from ropemodel.cli import main
+
+    assert main(["run", "route_segments", "--worst", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    slopes = [(400.0, 22.0), (650.0, 9.0), (300.0, 3.0)]
+    j = max(range(3), key=lambda i: math.sin(math.radians(slopes[i][1])) + 0.05 * math.cos(math.radians(slopes[i][1])))
+    assert j == 0 and out["G_ml"] == pytest.approx(467e3 * math.sin(math.radians(22.0)), rel=1e-12)
+    assert main(["run", "example", "--worst"]) == 2
+    assert "--worst needs a route of segments" in capsys.readouterr().err
