@@ -106,13 +106,12 @@ def states(scene) -> list[State]:
     lengths = [v[f"L_{i}"] for i in range(1, 10_000) if f"L_{i}" in v]
     steady = {"a_h": 0.0} if "a_h" in v else {}
     if not lengths:
-        out = [State("", dict(steady))]
-        L_u, far, near = v.get("L_u", 0.0), {}, {}
+        out, far, near = [State("", dict(steady))], {}, {}
     else:
         ends = np.cumsum(lengths)
         mids = [end - L / 2 for end, L in zip(ends, lengths)]
         out = [State(f"segment {j}", {"x_m": x, **steady}) for j, x in enumerate(mids, start=1)]
-        L_u, far, near = float(ends[-1]), {"x_m": mids[-1]}, {"x_m": mids[0]}
+        far, near = {"x_m": mids[-1]}, {"x_m": mids[0]}
     if scene.effects.get("dynamics") == "trip" and "a_h" in v:
         a = v["v_pj"] / v["t_ramp"]        # the same in a triangular profile (a route shorter than v_pj t_ramp)
         out += [State("start of an upward trip", {**far, "a_h": a}, ("up",)),
