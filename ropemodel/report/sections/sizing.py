@@ -1,0 +1,42 @@
+"""Section "sizing": the recommended rope, pretension and stroke, the active constraints, every check at
+the recommended design; or, when no design exists, which checks conflict and by how much."""
+
+from __future__ import annotations
+
+from ropemodel.report import page
+from ropemodel.report.registry import section
+from ropemodel.report.sections.results import checks_html
+
+INTRO = """<p>The lightest catalogue rope, then the least pretension, then the least stroke, with every design check
+met in both directions of travel (<code>ropemodel size</code>; catalogue diameter by {{ method }}).
+Rounded up to practical steps; every check holds at the printed values.</p>"""
+
+
+@section("sizing", "Sizing", when=lambda ctx: ctx.sizing)
+def sizing(ctx):
+    design = ctx.design
+    q = design.scene.built.quantities
+    html = page.fragment(INTRO, method=design.method)
+    if design.continuous:
+        rows = [[k, page.show(q[k], design.design[k]) if design.design else "-",
+                 page.show(q[k], design.continuous[k]), q[k].description] for k in ("d", "F_nwl", "stroke")]
+        html += page.table(["design variable", "recommended (catalogue)", "continuous optimum", "meaning"], rows,
+                           kinds=["name", "num", "num", ""], cls="design")
+    if not design.feasible:
+        html += page.verdict(False, "No design meets every check.")
+        return html + page.fragment("<pre>{{ m }}</pre>", m=design.message)
+    html += page.verdict(True, f"Design found: d = {q['d'].show(design.design['d'])}, "
+                               f"F_nwl = {q['F_nwl'].show(design.design['F_nwl'])}, "
+                               f"stroke = {q['stroke'].show(design.design['stroke'])}.")
+    html += page.fragment("<h3>Active constraints</h3><p>What fixes the design (at the recommended design):</p>"
+                          "<ul>{% for a in active %}<li><code>{{ a }}</code></li>{% endfor %}</ul>",
+                          active=design.active)
+    extra = [[k, page.show(q[k], v), q[k].description] for k, v in design.power.items()]
+    if design.least_drum is not None:
+        extra.append(["D_min", page.show(q["D"], design.least_drum),
+                      "no drum diameter given: the least drum, D_ratio_min d"])
+    if extra:
+        html += page.table(["quantity", "value", "meaning"], extra, kinds=["name", "num", ""])
+    html += page.fragment("<h3>Checks at the recommended design</h3>")
+    html += checks_html(design.margins, q)
+    return html + page.fragment('<p class="note">{{ m }}</p>', m=design.message)

@@ -1,0 +1,78 @@
+"""``ropemodel report``: the page written atomically, bad input refused before any work in one line
+(exit 2), Chromium or the ``report`` extra missing named with how to install it, the layering."""
+
+from __future__ import annotations
+
+import re
+import sys
+from pathlib import Path
+
+import pytest
+
+from ropemodel.cli import main
+from test_report import Page
+
+def test_cli_writes_the_page_atomically(tmp_path, capsys):
+    out = tmp_path / "report.html"
+    out.write_text("old")
+    assert main(["report", "example", "--set", "alpha_u=18deg", "-o", str(out)]) == 0
+    assert capsys.readouterr().out.strip() == f"wrote {out}"
+    html = out.read_text()
+    assert html.startswith("<!DOCTYPE html>") and html.rstrip().endswith("</html>")
+    inputs = {r["parameter"]: r for r in Page(html).table("inputs")}
+    assert inputs["alpha_u"]["value"] == "18 deg" and inputs["alpha_u"]["from"] == "--set on the command line"
+    assert inputs["G_m"]["from"] == "scene file"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report.html"]   # no temporary or lock file left
+
+
+def test_cli_bad_scene_lists_its_problems_and_leaves_the_output(tmp_path, capsys):
+    scene = tmp_path / "bad.toml"
+    scene.write_text('[scene]\nname = "bad"\n[parameters]\nL_u = 1150\nalpha_u = "16 deg"\nG_mm = "467 kN"\n')
+    out = tmp_path / "r.html"
+    out.write_text("old")
+    assert main(["report", str(scene), "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and "problems" in err and "L_u" in err and "G_mm" in err
+    assert "Traceback" not in err
+    assert out.read_text() == "old" and sorted(p.name for p in tmp_path.iterdir()) == ["bad.toml", "r.html"]
+
+
+@pytest.mark.parametrize("args, words", [
+    (["-o", "{d}/missing/r.html"], "does not exist"),
+    (["-o", "{d}/file.txt/r.html"], "is a file, not a directory"),
+    (["-o", "{d}"], "is a directory"),
+    (["-o", "{d}/r.pdf"], "must end in .html, .htm"),
+    (["--pdf", "{d}/r.html"], "must end in .pdf"),
+    ([], "nothing to write"),
+    (["-o", "{d}/r.html", "--set", "alpha_u=16"], "alpha_u"),
+])
+def test_cli_refuses_before_any_work_in_one_line(tmp_path, capsys, args, words):
+    (tmp_path / "file.txt").write_text("x")
+    assert main(["report", "example", *[a.format(d=tmp_path) for a in args]]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and words in err and len(err.strip().splitlines()) == 1, err
+
+
+def test_cli_pdf_without_chromium_says_how_to_install_it(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("PATH", str(tmp_path))          # no browser on PATH
+    assert main(["report", "example", "--pdf", str(tmp_path / "r.pdf")]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "apt-get install chromium" in err
+    assert not (tmp_path / "r.pdf").exists()
+
+
+def test_cli_without_the_report_extra_names_it(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "jinja2", None)   # as if Jinja2 were not installed
+    assert main(["report", "example", "-o", str(tmp_path / "r.html")]) == 2
+    assert 'pip install "ropemodel[report]"' in capsys.readouterr().err
+
+
+def test_only_the_command_imports_the_report_package():
+    root = Path(__file__).resolve().parents[1]
+    imports = re.compile(r"^\s*(?:from ropemodel\.report\b|import ropemodel\.report\b|from ropemodel import .*\breport\b)",
+                         re.M)
+    users = [p.relative_to(root).as_posix() for d in ("ropemodel", "optimisation", "studies") for p in
+             (root / d).rglob("*.py") if imports.search(p.read_text(encoding="utf-8"))]
+    assert {u for u in users if not u.startswith("ropemodel/report/")} == {"ropemodel/cli/report.py"}
+    inside = "".join(p.read_text() for p in (root / "ropemodel/report").rglob("*.py"))
+    assert not re.search(r"^\s*(?:from|import) ropemodel\.cli\b", inside, re.M)
