@@ -20,6 +20,7 @@ import ropemodel as rm
 from ropemodel.cli import main
 from ropemodel.effects.winch_checks import margin_names
 from ropemodel.errors import SolveError
+from ropemodel.scene import builtin_scenes
 from test_krauze2025 import FIG9
 
 #: the built-in scenes every report test covers
@@ -157,7 +158,8 @@ def test_every_check_of_the_sizing_scene_with_its_margin_and_verdict():
         assert value == pytest.approx(hand[r["margin"]], rel=2e-5, abs=2e-5 * max(1.0, abs(value))), r
         assert r["result"] == ("pass" if hand[r["margin"]] >= 0 else "FAIL"), r
     failed = [r["margin"] for r in rows if r["result"] == "FAIL"]
-    assert {"stroke_margin_up", "stroke_margin_down"} <= set(failed)   # 1000 mm is far too short for this rope
+    # 1000 mm is far too short for this rope's stretch; 1.5 wraps at mu_d = 0.2 slip when hauling up
+    assert sorted(failed) == ["slip_margin_up", "stroke_margin_down", "stroke_margin_up"]
     assert f"{len(failed)} of 11 checks FAIL" in page_of("winch_sizing_fig9")
 
 
@@ -262,7 +264,7 @@ def test_the_checker_finds_network_references():
     assert network_references('<html><body><a href="#x">x</a><img src="data:image/png;base64,AA=="></body></html>') == []
 
 
-@pytest.mark.parametrize("name", SCENES)
+@pytest.mark.parametrize("name", builtin_scenes())
 def test_the_page_refers_to_nothing_outside_itself(name):
     html = page_of(name)
     assert network_references(html) == []

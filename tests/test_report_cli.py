@@ -76,3 +76,36 @@ def test_only_the_command_imports_the_report_package():
     assert {u for u in users if not u.startswith("ropemodel/report/")} == {"ropemodel/cli/report.py"}
     inside = "".join(p.read_text() for p in (root / "ropemodel/report").rglob("*.py"))
     assert not re.search(r"^\s*(?:from|import) ropemodel\.cli\b", inside, re.M)
+
+
+def test_cli_an_infeasible_sizing_is_reported_with_its_conflict(tmp_path, capsys):
+    """By hand: the strongest catalogue rope (60 mm, K = 0.356, 1770 N/mm^2) breaks at K d^2 R_r = 2.27 MN,
+    less than n_rope = 40 times the load's pull along the incline alone, 467 kN sin 16 deg: no design exists."""
+    import math
+
+    from ropemodel.papers import en12385
+
+    strongest = 0.356 * max(en12385.diameters()) ** 2 * 1770e6
+    assert strongest < 40 * 467e3 * math.sin(math.radians(16))
+    out = tmp_path / "r.html"
+    assert main(["report", "winch_sizing_fig9", "--set", "n_rope=40", "-o", str(out)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == f"wrote {out}" and "sizing: no design meets every check" in lines
+    html = out.read_text()
+    assert "No design meets every check." in html and "these checks conflict: safety_margin_up" in html
+
+
+def test_unused_parameters_and_warnings_are_on_the_page(tmp_path):
+    from importlib import resources
+
+    from ropemodel.report import build, load
+
+    text = resources.files("ropemodel.data").joinpath("krauze2025_fig9.toml").read_text()
+    scene = tmp_path / "s.toml"
+    scene.write_text(text.replace('alpha_u = "16 deg"', 'alpha_u = "75 deg"\nmu_d = 0.2'))
+    report = build(load(scene))
+    page = Page(report.html)
+    unused = {r["parameter"]: r["used by"] for r in page.table("unused")}
+    assert "mu_d" in unused and "lining" in unused["mu_d"]
+    text = "".join(page.text)
+    assert "mu_d is not used" in text and "alpha_u = 75 deg is outside the range usual for the field" in text

@@ -102,6 +102,8 @@ def main(args) -> int:
             except OSError as exc:
                 raise OutputError(f"cannot write {path}: {cause(exc)}; nothing was written") from None
             print(f"wrote {path}")
+    for line in report.verdicts:
+        print(line)
     for name, why in report.incomplete:
         warn([f"section {name!r} could not be computed (the page says why): {why.splitlines()[0]}"])
     return 1 if report.incomplete else 0

@@ -20,6 +20,8 @@ class Report:
     shown: list[str] = field(default_factory=list)
     #: (section name, why it could not be computed)
     incomplete: list[tuple[str, str]] = field(default_factory=list)
+    #: the conclusions, one line each (checks, sizing)
+    verdicts: list[str] = field(default_factory=list)
 
 
 def requirements() -> None:
@@ -43,4 +45,31 @@ def build(ctx: Context) -> Report:
         parts.append((s.name, s.title, html))
         report.shown.append(s.name)
     report.html = page.page(f"Design report: {ctx.scene.name}", version(), stamp(ctx), parts)
+    report.verdicts = verdicts(ctx)
     return report
+
+
+def verdicts(ctx: Context) -> list[str]:
+    """The report's conclusions in one line each: the checks, the sizing (what was computed)."""
+    from ropemodel.report.sections.results import margins_of
+    from ropemodel.report.sections.sizing import design_text
+
+    out = []
+    try:
+        values = ctx.result.values
+        names = margins_of(ctx.result.outputs)
+    except RopeModelError:
+        names = []
+    if names:
+        failed = [n for n in names if values[n] < 0]
+        where = "at the recommended design" if ctx.at_design else "at the scene's values"
+        out.append(f"checks {where}: " + (f"{len(failed)} of {len(names)} FAIL ({', '.join(failed)})" if failed
+                                          else f"all {len(names)} pass"))
+    if ctx.sizing:
+        try:
+            design = ctx.design
+            out.append(f"sizing: design {design_text(design)}, every check met" if design.feasible
+                       else "sizing: no design meets every check")
+        except RopeModelError:
+            pass
+    return out

@@ -8,8 +8,13 @@ from ropemodel.report.registry import section
 from ropemodel.report.sections.results import checks_html
 
 INTRO = """<p>The lightest catalogue rope, then the least pretension, then the least stroke, with every design check
-met in both directions of travel (<code>ropemodel size</code>; catalogue diameter by {{ method }}).
-Rounded up to practical steps; every check holds at the printed values.</p>"""
+met in both directions of travel (<code>ropemodel size</code>; catalogue diameter by {{ method }}).</p>"""
+
+
+def design_text(design) -> str:
+    """``d = 38 mm, F_nwl = 43.6 kN, stroke = 4763 mm`` of a feasible design."""
+    q = design.scene.built.quantities
+    return ", ".join(f"{k} = {q[k].show(design.design[k])}" for k in ("d", "F_nwl", "stroke"))
 
 
 @section("sizing", "Sizing", when=lambda ctx: ctx.sizing)
@@ -25,9 +30,9 @@ def sizing(ctx):
     if not design.feasible:
         html += page.verdict(False, "No design meets every check.")
         return html + page.fragment("<pre>{{ m }}</pre>", m=design.message)
-    html += page.verdict(True, f"Design found: d = {q['d'].show(design.design['d'])}, "
-                               f"F_nwl = {q['F_nwl'].show(design.design['F_nwl'])}, "
-                               f"stroke = {q['stroke'].show(design.design['stroke'])}.")
+    html += page.verdict(True, f"Design found: {design_text(design)}.")
+    html += page.fragment("<p>Rounded up to practical steps (F_nwl to 0.1 kN, the stroke to 1 mm where the checks "
+                          "allow); every check holds at the printed values.</p>")
     html += page.fragment("<h3>Active constraints</h3><p>What fixes the design (at the recommended design):</p>"
                           "<ul>{% for a in active %}<li><code>{{ a }}</code></li>{% endfor %}</ul>",
                           active=design.active)
