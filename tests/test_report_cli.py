@@ -69,8 +69,8 @@ def test_cli_without_the_report_extra_names_it(tmp_path, capsys, monkeypatch):
 
 def test_only_the_command_imports_the_report_package():
     root = Path(__file__).resolve().parents[1]
-    imports = re.compile(r"^\s*(?:from ropemodel\.report\b|import ropemodel\.report\b|from ropemodel import .*\breport\b)",
-                         re.M)
+    imports = re.compile(r"^\s*(?:from ropemodel\.report\b|import ropemodel\.report\b"
+                         r"|from ropemodel import .*\breport\b)", re.M)
     users = [p.relative_to(root).as_posix() for d in ("ropemodel", "optimisation", "studies") for p in
              (root / d).rglob("*.py") if imports.search(p.read_text(encoding="utf-8"))]
     assert {u for u in users if not u.startswith("ropemodel/report/")} == {"ropemodel/cli/report.py"}
@@ -109,3 +109,49 @@ def test_unused_parameters_and_warnings_are_on_the_page(tmp_path):
     assert "mu_d" in unused and "lining" in unused["mu_d"]
     text = "".join(page.text)
     assert "mu_d is not used" in text and "alpha_u = 75 deg is outside the range usual for the field" in text
+
+
+def _fake_browser(tmp_path, body: str) -> Path:
+    """A stand-in 'chromium' first on PATH, running the shell ``body``."""
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    exe = bin_dir / "chromium"
+    exe.write_text(f"#!/bin/sh\n{body}\n")
+    exe.chmod(0o755)
+    return bin_dir
+
+
+def test_cli_a_failing_browser_is_one_line_and_leaves_no_file(tmp_path, capsys, monkeypatch):
+    bin_dir = _fake_browser(tmp_path, 'echo "[1:2:ERROR] dbus noise" >&2; echo "cannot print: no display" >&2; exit 3')
+    monkeypatch.setenv("PATH", f"{bin_dir}:/usr/bin:/bin")
+    out = tmp_path / "r.pdf"
+    assert main(["report", "example", "--pdf", str(out)]) == 1
+    err = capsys.readouterr().err
+    assert err.strip() == f"error: cannot write {out}: Chromium failed printing the page (exit status 3): " \
+                          "cannot print: no display"
+    assert "Traceback" not in err and "dbus" not in err and len(err.strip().splitlines()) == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bin"]
+
+
+def test_a_browser_that_hangs_is_ended_with_its_helpers(tmp_path, monkeypatch):
+    import time
+
+    from ropemodel.report import browser
+    from ropemodel.sweep.files import OutputError
+
+    pids = tmp_path / "pids"
+    bin_dir = _fake_browser(tmp_path, f"sleep 60 & echo $! > {pids}; sleep 60")
+    monkeypatch.setattr(browser, "TIMEOUT", 1.0)
+    page = tmp_path / "p.html"
+    page.write_text("<html></html>")
+    start = time.monotonic()
+    with pytest.raises(OutputError, match="did not finish"):
+        browser.print_pdf(page, tmp_path / "p.pdf", str(bin_dir / "chromium"))
+    assert time.monotonic() - start < 30
+    helper = Path(f"/proc/{int(pids.read_text())}/stat")
+    for _ in range(50):   # the helper it started is ended too: gone, or a zombie awaiting its reaper
+        if not helper.exists() or helper.read_text().rsplit(")", 1)[1].split()[0] in ("Z", "X"):
+            break
+        time.sleep(0.1)
+    else:
+        pytest.fail("the browser's helper process is still running")

@@ -101,6 +101,8 @@ def main(args) -> int:
                 write(path)
             except OSError as exc:
                 raise OutputError(f"cannot write {path}: {cause(exc)}; nothing was written") from None
+            except OutputError as exc:   # the browser could not print
+                raise OutputError(f"cannot write {path}: {exc}") from None
             print(f"wrote {path}")
     for line in report.verdicts:
         print(line)

@@ -47,11 +47,22 @@ def run(html: Path, args, what: str, browser: str | None = None) -> None:
         try:
             out, err = proc.communicate(timeout=TIMEOUT)
         except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)   # Chromium and the helpers it started (its own group)
-            proc.communicate()
+            _end(proc)
             raise OutputError(f"Chromium did not finish {what} within {TIMEOUT:g} s") from None
+        except BaseException:   # Ctrl-C: Chromium runs in its own session and would not see it
+            _end(proc)
+            raise
     if proc.returncode != 0:
         raise OutputError(f"Chromium failed {what} (exit status {proc.returncode}): {_last_words(err)}")
+
+
+def _end(proc) -> None:
+    """End Chromium and the helpers it started (the process group it leads) and reap it."""
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    proc.communicate()
 
 
 def _last_words(err: bytes) -> str:
@@ -62,12 +73,12 @@ def _last_words(err: bytes) -> str:
 
 def print_pdf(html: Path, pdf: Path, browser: str | None = None) -> None:
     """Print the page ``html`` to ``pdf`` (A4, as the page's ``@page`` rule says; no browser header)."""
-    run(html, ["--no-pdf-header-footer", f"--print-to-pdf={Path(pdf).resolve()}"], f"printing {html}", browser)
+    run(html, ["--no-pdf-header-footer", f"--print-to-pdf={Path(pdf).resolve()}"], "printing the page", browser)
     if not Path(pdf).exists():
-        raise OutputError(f"Chromium printed nothing for {html}")
+        raise OutputError("Chromium printed nothing")
 
 
 def screenshot(html: Path, png: Path, width: int = 1100, height: int = 1500, browser: str | None = None) -> None:
     """A PNG of the top ``width`` x ``height`` pixels of the page ``html``."""
     run(html, ["--hide-scrollbars", f"--window-size={width},{height}", f"--screenshot={Path(png).resolve()}"],
-        f"taking a screenshot of {html}", browser)
+        "taking a screenshot of the page", browser)

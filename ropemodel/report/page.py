@@ -115,7 +115,9 @@ TABLE = """<table{% if cls %} class="{{ cls }}"{% endif %}>
 <tbody>
 {% for row in rows %}
 <tr{% if row_class and row_class[loop.index0] %} class="{{ row_class[loop.index0] }}"{% endif %}>
-{% for cell in row %}<td{% if kinds[loop.index0] %} class="{{ kinds[loop.index0] }}"{% endif %}>{{ cell }}</td>{% endfor %}
+{% for cell in row %}
+<td{% if kinds[loop.index0] %} class="{{ kinds[loop.index0] }}"{% endif %}>{{ cell }}</td>
+{% endfor %}
 </tr>
 {% endfor %}
 </tbody>

@@ -11,7 +11,8 @@ GROUP = """<h3>{{ effect }} = "{{ variant }}": {{ description }}{% if refs %} [{
 {% for e in equations %}
 <div class="eq"><span class="formula">{{ e.formula | typeset }}</span><span class="eqno">{{ e.label }}</span></div>
 <div class="numbers"><span class="name">{{ e.defines }}</span> = {{ e.value }}{% if e.note %} ({{ e.note }}){% endif %}
-{% if e.inputs %}&ensp;with {% for n, v in e.inputs %}<span class="name">{{ n }}</span> = {{ v }}{{ ", " if not loop.last }}
+{% if e.inputs %}&ensp;with {% for n, v in e.inputs %}
+<span class="name">{{ n }}</span> = {{ v }}{{ ", " if not loop.last }}
 {% endfor %}{% endif %}</div>
 {% endfor %}"""
 

@@ -61,8 +61,8 @@ def results(ctx):
             rows.append([b] + [page.show(q[f"{b}_{d}"], values[f"{b}_{d}"]) if f"{b}_{d}" in values else ""
                                for d in ("down", "up")] + [meaning, _source(model, one)])
         html += page.fragment("<h3>Both directions of travel</h3>")
-        html += page.table(["quantity", "down", "up", "meaning", "equation"], rows, kinds=["name", "num", "num", "", ""],
-                           cls="pairs")
+        html += page.table(["quantity", "down", "up", "meaning", "equation"], rows,
+                           kinds=["name", "num", "num", "", ""], cls="pairs")
     if singles:
         rows = [[n, page.show(q[n], values[n]), q[n].description, _source(model, n)] for n in singles]
         html += page.fragment("<h3>Single quantities</h3>")
