@@ -10,6 +10,7 @@ the sign of each margin for pass/fail.
 from __future__ import annotations
 
 import base64
+import sys
 import functools
 import re
 from html.parser import HTMLParser
@@ -324,16 +325,16 @@ def registry():
 def test_a_registered_section_appears_when_it_applies(registry):
     from ropemodel.report import build, load, section
 
-    @section("demo", "Demo section", when=lambda ctx: ctx.scene.model == "capstan")
+    @section("demo", "Demo section", when=lambda ctx: ctx.scene.model == "sheave")
     def demo(ctx):
-        return "<p>demo of " + str(ctx.result.values["K"] > 0) + "</p>"
+        return "<p>demo of " + str(ctx.result.values["S"] > 0) + "</p>"
 
     with pytest.raises(RuntimeError):
         section("demo", "again")(demo)
-    capstan = build(load("capstan_li_experiment"))
-    assert "demo" in capstan.shown and "<p>demo of True</p>" in capstan.html
-    assert '<a href="#demo">Demo section</a>' in capstan.html
-    assert "demo" not in build(load("sheave_hajduk_fig5")).shown
+    sheave = build(load("sheave_hajduk_fig5"))
+    assert sheave.shown[-1] == "demo" and "<p>demo of True</p>" in sheave.html
+    assert '<a href="#demo">Demo section</a>' in sheave.html
+    assert "demo" not in build(load("example")).shown
 
 
 def test_a_section_that_cannot_be_computed_says_why(registry, tmp_path, capsys, monkeypatch):
@@ -348,3 +349,56 @@ def test_a_section_that_cannot_be_computed_says_why(registry, tmp_path, capsys, 
     err = capsys.readouterr().err
     assert "section 'broken' could not be computed" in err and "Traceback" not in err
     assert "Not computed: no valid solution here (test)" in out.read_text()
+
+
+ROUTE = """[scene]
+name = "two segments"
+[effects]
+route = "segments"
+[parameters]
+mu_pm = 0.05
+mu_pl = 0.05
+G_m = "467 kN"
+F_nwl = "20 kN"
+q_l = "0.08 kN/m"
+q_lw = "5.8 mm/kN"
+x_m = "900 m"
+[[route]]
+length = "500 m"
+inclination = "16 deg"
+[[route]]
+length = "650 m"
+inclination = "10 deg"
+"""
+
+
+def test_the_documented_way_to_add_the_trip_section_works(registry, tmp_path, monkeypatch):
+    """The example of ropemodel.report's docstring, run as written, against a stand-in ropemodel.trip with
+    the history columns the trip will have: the section shows on a route of segments, and only there."""
+    import textwrap
+    import types
+
+    import numpy as np
+    import pandas as pd
+
+    import ropemodel.report
+    from ropemodel.report import build, load
+
+    code = textwrap.dedent(ropemodel.report.__doc__.split("trip.py``::\n", 1)[1].split("\nand its name", 1)[0])
+    t = np.linspace(0.0, 480.0, 200)
+
+    class Run:
+        history = pd.DataFrame({"t [s]": t, "x_m [m]": 2.4 * t, "v [m/s]": np.minimum(t / 5, 2.5),
+                                "F_C [N]": 1.9e5 + 0 * t, "F_S [N]": 3.1e4 + 0 * t, "P [W]": 4.0e5 + 0 * t})
+        summary = {"E_trip [J]": 1.9e8}
+
+    stand_in = types.ModuleType("ropemodel.trip")
+    stand_in.trip = lambda scene: Run()
+    monkeypatch.setitem(sys.modules, "ropemodel.trip", stand_in)
+    exec(compile(code, "trip.py", "exec"), {})
+    scene = tmp_path / "route.toml"
+    scene.write_text(ROUTE)
+    report = build(load(scene))
+    assert report.incomplete == [] and report.shown[-1] == "trip"
+    assert "E_trip [J]" in report.html and network_references(report.html) == []
+    assert "trip" not in build(load("example")).shown
