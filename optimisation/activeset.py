@@ -26,7 +26,7 @@ takes it from a solved neighbour (:func:`identify`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 
 import casadi as ca
@@ -57,7 +57,6 @@ class Mode:
     x: np.ndarray
     lam_g: np.ndarray
     lam_x: np.ndarray
-    accepted: int = field(default=0, compare=False)
 
     @property
     def size(self) -> int:
@@ -75,8 +74,10 @@ class Batch:
 
 
 def _function(inputs, outputs, name):
-    """A Function of (x, p_varied, p_const) with its outputs stacked in one dense column; SX if it expands."""
-    fun = ca.Function(name, inputs, [ca.densify(ca.vertcat(*[ca.vec(o) for o in outputs]))])
+    """A Function of (x, p_varied, p_const[, lam]) with its outputs stacked in one dense column (column-major
+    blocks, in order); SX if it expands."""
+    names = ["x", "p_varied", "p_const", "lam"][:len(inputs)]
+    fun = ca.Function(name, inputs, [ca.densify(ca.vertcat(*[ca.vec(o) for o in outputs]))], names, ["stacked"])
     try:
         return fun.expand()
     except RuntimeError:   # a rootfinder inside (e.g. the Voigt lining): evaluate the MX graph
