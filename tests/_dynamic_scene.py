@@ -50,3 +50,37 @@ def write_scene(tmp_path, extra: str = "", name: str = "dyn.toml"):
     path = tmp_path / name
     path.write_text(SCENE.format(extra=extra))
     return path
+
+
+#: the four manoeuvres: (dynamics, travel) → where the load is when the scene gives no x_m [fraction of L_u]
+NATURAL = {("start", "up"): 1.0, ("stop", "up"): 0.0, ("start", "down"): 0.0, ("stop", "down"): 1.0}
+
+
+def simulated_failures(scene, design: dict, values: dict | None = None) -> list[str]:
+    """Every check of the four manoeuvres judged from ``ropemodel.dynamics.simulate`` alone (the hybrid
+    simulator at rtol 1e-10), written here from the simulator's history and events, independently of the
+    sizing package: rope safety F_min = K d² R_r (EN 12385-4) against n_rope·max F_C and n_rope·max F_S, no
+    slip, no stroke stop reached, no slack element, take-up within the stroke, F_S and F_C ≥ F_S_min."""
+    import dataclasses
+
+    from ropemodel.dynamics import simulate
+    from ropemodel.papers import en12385
+
+    v = scene.parameters
+    F_min = en12385.minimum_breaking_force(en12385.construction(scene.effects["rope"]).K, design["d"],
+                                           v["rope_grade"])
+    failures = []
+    for (dynamics, travel), where in NATURAL.items():
+        sc = scene.with_effects({"dynamics": dynamics, "travel": travel}, optional=("d", "F_nwl", "stroke"))
+        sc = sc.with_values({"x_m": where * v["L_u"], **design, **(values or {})})
+        sc = dataclasses.replace(sc, numerics={**sc.numerics, "sim_rtol": 1e-10, "sim_dt": 1e-3})
+        sim = simulate(sc)
+        s, h, tag = sim.summary, sim.history, f"{travel} {dynamics}"
+        F_C, F_S = h["F_C [N]"].to_numpy(), h["F_S [N]"].to_numpy()
+        tests = {"slip": s["slip"], "stroke stop": bool(s["stroke_events"]) or s["stroke_exhausted"],
+                 "slack": s["slack"] or h["T_min [N]"].min() < 0, "torque limit": s["torque_limited"],
+                 "rope safety": v["n_rope"] * max(F_C.max(), F_S.max()) > F_min,
+                 "take-up": h["take_up [m]"].max() > design["stroke"],
+                 "taut": min(F_C.min(), F_S.min()) < v["F_S_min"]}
+        failures += [f"{name} in the {tag}" for name, bad in tests.items() if bad]
+    return failures

@@ -4,18 +4,26 @@ from __future__ import annotations
 
 import pytest
 
+from _dynamic_scene import simulated_failures, write_scene
+
 from optimisation.dynamic.manoeuvres import manoeuvres
 from optimisation.dynamic.problem import DynamicSizingProblem
+from optimisation.dynamic.ramp import shortest_ramp
 from optimisation.dynamic.verify import verify
 from optimisation.ipopt import solve_continuous
 from optimisation.problem import SizingProblem, load_sizing
+from ropemodel.cli import main
 from ropemodel.errors import InputError
-from _dynamic_scene import write_scene
 
 
 @pytest.fixture(scope="module")
-def scene(tmp_path_factory):
-    return load_sizing(write_scene(tmp_path_factory.mktemp("dyn")), emit=False)
+def scene_file(tmp_path_factory):
+    return write_scene(tmp_path_factory.mktemp("dyn"))
+
+
+@pytest.fixture(scope="module")
+def scene(scene_file):
+    return load_sizing(scene_file, emit=False)
 
 
 def test_natural_places_of_the_manoeuvres(scene):
@@ -49,3 +57,35 @@ def test_static_optimum_slips_or_overloads_in_a_start(scene):
     up_start = verdicts[0]
     assert up_start.manoeuvre == "upward start" and not up_start.ok
     assert any(f.startswith(("slip", "safety")) for f in up_start.failures)
+
+
+# ---------------------------------------------------------------------------------------- the shortest ramp
+def test_shortest_ramp_holds_and_a_slightly_shorter_one_fails(scene):
+    """The shortest t_ramp for a given design, checked by the simulator on both sides: at the answer every
+    check holds through the four manoeuvres; 1 % shorter, some check fails."""
+    design = {"d": 0.048, "F_nwl": 65e3, "stroke": 3.8}
+    answer = shortest_ramp(scene.with_values(design))
+    t = answer.t_ramp
+    assert 0.5 < t < scene.parameters["t_end"]
+    assert simulated_failures(scene, design, {"t_ramp": t}) == []
+    assert simulated_failures(scene, design, {"t_ramp": 0.99 * t}) != []
+
+
+# ---------------------------------------------------------------------------------------- the command line
+def test_cli_bad_input_exits_2(scene_file, capsys):
+    assert main(["size", str(scene_file), "--find", "t_ramp"]) == 2          # --find needs --dynamic
+    assert main(["size", str(scene_file), "--dynamic", "--find", "mu_d"]) == 2
+    assert main(["size", str(scene_file), "--dynamic", "--find", "t_ramp"]) == 2  # no design given
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and "needs --dynamic" in err and "must give d, F_nwl, stroke" in err
+
+
+def test_cli_no_design_exits_1(scene_file, capsys):
+    """n_rope so high that no catalogue rope carries even the static forces: exit 1, the check named."""
+    assert main(["size", str(scene_file), "--dynamic", "--set", "n_rope=60"]) == 1
+    out = capsys.readouterr()
+    assert "Traceback" not in out.err and "safety" in out.out
+    assert main(["size", str(scene_file), "--dynamic", "--find", "t_ramp", "--json",
+                 "--set", "d=40mm", "--set", "F_nwl=40kN", "--set", "stroke=2m"]) == 1
+    out = capsys.readouterr()
+    assert "Traceback" not in out.err and "no ramp up to t_end" in out.err

@@ -108,11 +108,12 @@ def _value_at(path, k, x_a, t_a, t, pp, value) -> float:
     return float(value(path.sm.pieces[k].out.call({"x": x, "t": t, "p": pp})))
 
 
-def _add(problem, grids, points: list[Minimum]):
+def add_points(problem, grids, points: list[Minimum], p=None):
+    """``grids`` with the times of ``points`` added (as each phase's τ at the parameters ``p``)."""
     grids = [list(map(np.asarray, g)) for g in grids]
     for m in points:
         path = problem.paths[m.path]
-        t0, t1 = path.phase_bounds(problem.pp0(path))[m.phase]
+        t0, t1 = path.phase_bounds(problem.pp0(path, p=p))[m.phase]
         g = grids[m.path]
         g[m.phase] = np.unique(np.concatenate([g[m.phase], [(m.t - t0) / (t1 - t0)]]))
     return grids
@@ -132,6 +133,6 @@ def solve_refined(problem, x0, p=None, fix_d: float | None = None, record: Refin
             record.rounds.append((float(least), len(low)))
         if not low:
             return problem, sol
-        problem = problem.refined(_add(problem, problem.grids, low))
+        problem = problem.refined(add_points(problem, problem.grids, low, p))
         sol = solve_continuous(problem, p=p, x0=sol.xs, fix_d=fix_d)
     raise SolveError(f"the time grid of the dynamic checks did not converge in {MAX_ROUNDS} refinements")
