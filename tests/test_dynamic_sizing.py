@@ -89,3 +89,13 @@ def test_cli_no_design_exits_1(scene_file, capsys):
                  "--set", "d=40mm", "--set", "F_nwl=40kN", "--set", "stroke=2m"]) == 1
     out = capsys.readouterr()
     assert "Traceback" not in out.err and "no ramp up to t_end" in out.err
+
+
+def test_sweep_refuses_structural_parameters(tmp_path, capsys):
+    """t_end fixes the manoeuvres' grids: a dynamic sizing sweep cannot vary it (exit 2, the valid names)."""
+    scene_file = write_scene(tmp_path, 'd = "48 mm"\nF_nwl = "60 kN"\nstroke = "3.8 m"')
+    out = tmp_path / "s.csv"
+    assert main(["sweep", str(scene_file), "--sizing", "--dynamic", "--vary", "t_end=10s:14s:2", "-o", str(out)]) == 2
+    assert main(["sweep", str(scene_file), "--dynamic", "--vary", "G_m=440kN:480kN:2", "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "cannot vary t_end" in err and "needs --sizing" in err and "Traceback" not in err

@@ -9,21 +9,21 @@ shortest ramp).  The integrator returns the state on the grid of τ; the checks
 differentiates through the integrator by forward sensitivities (the Jacobian) and
 forward-over-adjoint ones (the Hessian of the Lagrangian), under cvodes' own error control.
 
-Why single shooting, measured (``python -m optimisation.dynamic.compare``, Fig. 9 sizing scene with
-transients, 8 rope elements per span, 38 states per manoeuvre, 20 s, the four manoeuvres):
+Why single shooting, measured (the test scene of ``tests/_dynamic_scene.py``: Fig. 9 route and load, 4 rope
+elements per span, 22 states per manoeuvre, 12 s manoeuvres; the design fixed at d 48 mm, F_nwl 59.8 kN):
 
-* **single shooting** (this module): 3 decision variables and a few thousand path constraints;
-  each IPOPT iteration integrates the four manoeuvres with their sensitivities to cvodes' error
-  control (rtol 1e-10).  Measured: the whole NLP solves in about as many seconds as it has
-  iterations (~1 s per iteration with the exact Hessian), and its states agree with the hybrid
-  simulator's to 1e-8 of the force scale.
-* **direct collocation** (Radau, 3 points per interval): the same NLP with every state on every
-  interval as a variable — about 150 000 variables and equality constraints for 0.05 s intervals.
-  With fixed design variables it reproduces the integrator's forces only to ~1e-3 relative at 0.05 s
-  intervals (the rope's highest modes near 40 rad/s are barely resolved; no error control), and one
-  IPOPT solve of the larger NLP took longer than the whole shooting solve.  Multiple shooting would
-  add the node states (≈ 38·intervals variables) for no gain: the smooth mode is stable (damped)
-  over a manoeuvre, which is where multiple shooting earns its keep.
+* **single shooting** (this module): 3 decision variables and 7 819 path constraints over the four
+  manoeuvres.  All four integrated with the Jacobian of every constraint (forward sensitivities): 0.18 s,
+  i.e. one IPOPT iteration; the whole continuous solve with grid refinement took 9-14 s, and the
+  integration agrees with the hybrid simulator's to 0.2 N (:mod:`optimisation.dynamic.verify`).
+* **direct collocation** (Radau, 3 points per interval, one manoeuvre only, design fixed — just solving
+  the transient): 10 582 variables and equations at 0.1 s intervals, 1.1 s; 21 142 at 0.05 s, 2.6 s; its
+  peak F_C off the integrator's by 8e-5 relative (25 N: five times the NLP's back-off of 4.7 N, so the
+  transcription error would decide the design, with no error control); at 0.02 s (52 822 variables)
+  IPOPT's restoration failed from a constant initial guess.  Four manoeuvres with free design variables
+  would be four times larger again.  Multiple shooting would add the node states (22 per node) for
+  no gain: the smooth mode is stable (damped) over a manoeuvre, which is where multiple shooting earns
+  its keep.
 
 So the transient's accuracy is the integrator's error control, not a discretisation the NLP picks,
 and the design is checked between grid points by adding each check's exact local minima to the grid
