@@ -102,3 +102,21 @@ def test_sweep_of_the_dynamic_optimum(tmp_path, capsys):
     for _, row in frame.iterrows():
         design = {"d": row["d [mm]"] / 1e3, "F_nwl": row["F_nwl [kN]"] * 1e3, "stroke": row["stroke [mm]"] / 1e3}
         assert simulated_failures(scene.with_values({"G_m": row["G_m [kN]"] * 1e3}), design) == []
+
+
+def test_report_section_shows_the_dynamic_design_and_the_manoeuvres(tmp_path, design):
+    """A scene with ``[numerics] sizing = "dynamic"``: the report's "dynamic sizing" section prints the
+    dynamic and static optima and each simulated manoeuvre's peak F_C, as the sizing computed them."""
+    from ropemodel.report import build, load
+
+    path = write_scene(tmp_path)
+    path.write_text(path.read_text().replace("[numerics]", '[numerics]\nsizing = "dynamic"'))
+    report = build(load(path))
+    assert report.incomplete == [], report.incomplete
+    assert "dynamic_sizing" in report.shown
+    html = report.html
+    section = html[html.index("Dynamic sizing"):]
+    assert f"{design.continuous['d'] * 1e3:.4g}" in section and f"{design.static['d'] * 1e3:.4g}" in section
+    for m in design.manoeuvres:
+        assert m["manoeuvre"] in section and f"{m['peaks']['F_C_max'] * 1e-3:.4g}" in section
+    assert "upward start, t = " in section

@@ -21,7 +21,7 @@ from optimisation.design import Design, rounded_up, solve_best
 from optimisation.dynamic.diagnose import diagnose_dynamic
 from optimisation.dynamic.problem import DynamicSizingProblem
 from optimisation.dynamic.refine import Refinement, solve_refined
-from optimisation.dynamic.start import factored_start
+from optimisation.dynamic.start import factored_start, fallback_starts
 from optimisation.dynamic.verify import verify
 from optimisation.infeasibility import diagnose
 from optimisation.problem import VARIABLES, SizingProblem
@@ -61,7 +61,7 @@ def _checked(problem, xs, what: str) -> list:
     bad = [f"{v.manoeuvre}: " + "; ".join(v.failures) for v in verdicts if not v.ok]
     if bad:
         raise SolveError(f"the {what} design fails in the hybrid simulator (" + " | ".join(bad) + "); the NLP's "
-                         f"checks did not hold between its grid points: tighten [numerics] or report it")
+                         "checks did not hold between its grid points; report it")
     return verdicts
 
 
@@ -122,7 +122,8 @@ def size_dynamic(scene, with_sensitivities: bool = False, progress=None) -> Dyna
     say("dynamic optimum (the four manoeuvres inside the NLP)")
     t0 = time.perf_counter()
     record = Refinement()
-    problem, sol = solve_refined(problem, factored_start(problem, ssol.xs), record=record)
+    problem, sol = solve_refined(problem, factored_start(problem, ssol.xs), record=record,
+                                 others=fallback_starts(problem, ssol.xs))
     design.refinement = record.to_dict()
     if not sol.feasible:
         say("no dynamic design: which checks conflict")

@@ -119,10 +119,24 @@ def add_points(problem, grids, points: list[Minimum], p=None):
     return grids
 
 
-def solve_refined(problem, x0, p=None, fix_d: float | None = None, record: Refinement | None = None):
+def _first_feasible(problem, starts, p, fix_d):
+    """IPOPT from each scaled start in turn until one ends feasible (the last attempt otherwise)."""
+    for x0 in starts:
+        sol = solve_continuous(problem, p=p, x0=x0, fix_d=fix_d)
+        if sol.feasible:
+            break
+    return sol
+
+
+def solve_refined(problem, x0, p=None, fix_d: float | None = None, record: Refinement | None = None, others=()):
     """IPOPT on ``problem`` from scaled ``x0``, then on grids refined by the checks' exact local minima
-    until every minimum keeps half the back-off.  Returns (problem on the final grid, solution)."""
-    sol = solve_continuous(problem, p=p, x0=x0, fix_d=fix_d)
+    until every minimum keeps half the back-off.  Returns (problem on the final grid, solution).
+
+    ``others``: further starts, tried in turn when a solve ends without a design (IPOPT can stop at an
+    "acceptable" point that is not feasible: measured on a 2000 m route at 8 deg with a 5 s ramp, where the
+    re-solve on the refined grid from the previous optimum stopped so, and the same NLP from the static
+    design sized with the transient's factor solved to the same optimum in 17 iterations)."""
+    sol = _first_feasible(problem, [x0, *others], p, fix_d)
     for _ in range(MAX_ROUNDS):
         if not sol.feasible:
             return problem, sol
@@ -134,5 +148,5 @@ def solve_refined(problem, x0, p=None, fix_d: float | None = None, record: Refin
         if not low:
             return problem, sol
         problem = problem.refined(add_points(problem, problem.grids, low, p))
-        sol = solve_continuous(problem, p=p, x0=sol.xs, fix_d=fix_d)
+        sol = _first_feasible(problem, [sol.xs, x0, *others], p, fix_d)
     raise SolveError(f"the time grid of the dynamic checks did not converge in {MAX_ROUNDS} refinements")

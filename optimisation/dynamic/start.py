@@ -70,3 +70,17 @@ def factored_start(problem, static_xs, p=None) -> np.ndarray:
     take_up = max(m["take_up_max"] for m in transient_factors(problem, x, p))
     x[2] = max(x[2], take_up / problem.x_scale[2]) * 1.01
     return x
+
+
+def flat_factor(problem, static_xs, p=None) -> float:
+    """The factor the transient shows at the static design: the largest F_C,max/F_C,static of its four
+    manoeuvres (≥ 1), what ``ropemodel simulate`` reports as the dynamic factor."""
+    return max(1.0, max(m["k_C"] for m in transient_factors(problem, static_xs, p)))
+
+
+def fallback_starts(problem, static_xs, p=None) -> list[np.ndarray]:
+    """Further starts of the dynamic NLP: the static design sized with the flat factor its transient shows
+    (rope safety and traction both), when that static problem has a design."""
+    k = flat_factor(problem, static_xs, p)
+    sol = factored_design(SizingProblem(problem.scene), k, k, x0=static_xs, p=p)
+    return [sol.xs] if sol.feasible else []

@@ -4,7 +4,8 @@ Chooses the rope diameter d, the pretension F_nwl and the tensioner stroke (see 
 ``optimisation`` package): least rope mass per metre, then least pretension, then least
 stroke, with every design check met in both directions.  Exit 0 with a design, 1 when
 none exists (the report names the conflicting checks and by how much), 2 on bad input.
-``--dynamic``: through the start-up and braking of both directions (:mod:`ropemodel.cli._size_dynamic`).
+``--dynamic`` (or ``[numerics] sizing = "dynamic"`` in the scene): through the start-up and braking of both
+directions (:mod:`ropemodel.cli._size_dynamic`).
 """
 
 from __future__ import annotations
@@ -75,7 +76,7 @@ def main(args) -> int:
 
     scene = prepare(scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False))
     warn(scene.warnings)
-    if args.dynamic:
+    if args.dynamic or scene.numerics.get("sizing") == "dynamic":
         from ropemodel.cli import _size_dynamic
 
         return _size_dynamic.main(scene, args, _num)

@@ -9,7 +9,8 @@ from __future__ import annotations
 import importlib
 
 #: section modules in page order ("trip" and "dynamic_sizing" go after "transient" when they exist)
-MODULES = ("scene", "inputs", "equations", "results", "sizing", "transient", "sensitivity", "references")
+MODULES = ("scene", "inputs", "equations", "results", "sizing", "transient", "dynamic_sizing", "sensitivity",
+           "references")
 
 
 def load_all() -> None:
