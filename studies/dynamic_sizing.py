@@ -34,8 +34,8 @@ import pandas as pd  # noqa: E402
 import ropemodel as rm  # noqa: E402
 from optimisation.design import solve_best  # noqa: E402
 from optimisation.dynamic.problem import DynamicSizingProblem  # noqa: E402
-from optimisation.dynamic.refine import solve_refined  # noqa: E402
-from optimisation.dynamic.start import factored_design, factored_start, fallback_starts, flat_factor  # noqa: E402
+from optimisation.dynamic.design import continuous_optimum  # noqa: E402
+from optimisation.dynamic.start import factored_design, flat_factor  # noqa: E402
 from optimisation.dynamic.verify import verify  # noqa: E402
 from optimisation.problem import VARIABLES, SizingProblem, prepare  # noqa: E402
 from ropemodel.studykit import cli, output_dir, save_figure  # noqa: E402
@@ -82,8 +82,8 @@ def case(sc) -> list[dict]:
         designs[name], seconds[name] = (sol.xs if sol.feasible else None), t_static + time.perf_counter() - t0
     t0 = time.perf_counter()
     s0 = solve_best(static)
-    problem, sol = solve_refined(problem, factored_start(problem, s0.xs), others=fallback_starts(problem, s0.xs))
-    designs["dynamic"], seconds["dynamic"] = (sol.xs if sol.feasible else None), time.perf_counter() - t0
+    problem, sol, diagnosis = continuous_optimum(problem, s0.xs)
+    designs["dynamic"], seconds["dynamic"] = (sol.xs if diagnosis is None else None), time.perf_counter() - t0
     dyn = problem.to_si(designs["dynamic"]) if designs["dynamic"] is not None else None
     rows = []
     for name in METHODS:

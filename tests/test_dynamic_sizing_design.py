@@ -115,8 +115,21 @@ def test_report_section_shows_the_dynamic_design_and_the_manoeuvres(tmp_path, de
     assert report.incomplete == [], report.incomplete
     assert "dynamic_sizing" in report.shown
     html = report.html
-    section = html[html.index("Dynamic sizing"):]
-    assert f"{design.continuous['d'] * 1e3:.4g}" in section and f"{design.static['d'] * 1e3:.4g}" in section
+    section = html[html.index('<section id="dynamic_sizing">'):]
+    section = section[:section.index("</section>")]
+    d = design.scene.built.quantities["d"]
+    assert d.show(design.continuous["d"]) in section and d.show(design.static["d"]) in section
     for m in design.manoeuvres:
         assert m["manoeuvre"] in section and f"{m['peaks']['F_C_max'] * 1e-3:.4g}" in section
     assert "upward start, t = " in section
+
+
+def test_no_dynamic_design_is_named_in_the_users_terms(tmp_path, capsys):
+    """A 0.5 s ramp: the static sizing has a design, no design survives the start (exit 1); the answer
+    names the conflicting checks with their manoeuvre and what would help, and nothing is simulated as a
+    design."""
+    path = write_scene(tmp_path)
+    assert main(["size", str(path), "--dynamic", "--set", "t_ramp=0.5s"]) == 1
+    out = capsys.readouterr()
+    assert "Traceback" not in out.err
+    assert "conflict" in out.out and " @ " in out.out and "t_ramp >=" in out.out

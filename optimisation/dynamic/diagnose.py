@@ -60,8 +60,9 @@ def _catalogue_bounds(problem):
     return lbx, ubx
 
 
-def diagnose_dynamic(problem, x0) -> Diagnosis:
-    """Why ``problem`` (a :class:`~optimisation.dynamic.problem.DynamicSizingProblem`) has no design."""
+def diagnose_dynamic(problem, x0) -> tuple[Diagnosis, np.ndarray]:
+    """Why ``problem`` (a :class:`~optimisation.dynamic.problem.DynamicSizingProblem`) has no design; and the
+    (scaled) design of least maximum violation (a design, when the diagnosis finds one feasible)."""
     p = problem.p0
     lbx, ubx = _catalogue_bounds(problem)
     x0 = np.clip(np.asarray(x0, float), lbx, np.where(np.isfinite(ubx), ubx, x0))
@@ -76,13 +77,13 @@ def diagnose_dynamic(problem, x0) -> Diagnosis:
     zz = np.asarray(r["x"]).ravel()
     t_star = float(zz[3])
     if t_star <= TOL:
-        return Diagnosis(True, t_star)
+        return Diagnosis(True, t_star), zz[:3]
     lam = np.abs(np.asarray(r["lam_g"]).ravel())
     conflicting = [c for c, value in zip(problem.constraints, lam) if value > 1e-6]
     gz = np.asarray(gfun(zz[:3], p)).ravel()
     margins = {c: float(v * s) for c, v, s in zip(problem.constraints, gz, problem.g_scale) if c in conflicting}
     needs = remedies(problem, conflicting, lbx, ubx, zz[:3])
-    return Diagnosis(False, t_star, conflicting, {}, {}, margins, " through the manoeuvres", needs)
+    return Diagnosis(False, t_star, conflicting, {}, {}, margins, " through the manoeuvres", needs), zz[:3]
 
 
 def remedies(problem, conflicting, lbx, ubx, x0) -> list[str]:
