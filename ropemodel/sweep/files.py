@@ -45,17 +45,20 @@ def cause(exc: OSError) -> str:
     return getattr(exc, "strerror", None) or str(exc)
 
 
-def check_format(path: Path) -> None:
-    if path.suffix.lower() not in SUFFIXES:
-        raise InputError(f"output {path}: the file name must end in {', '.join(SUFFIXES)}")
+def check_format(path: Path, suffixes=SUFFIXES) -> None:
+    if path.suffix.lower() not in suffixes:
+        raise InputError(f"output {path}: the file name must end in {', '.join(suffixes)}")
 
 
-def check_output(path) -> Path:
-    """``path`` as a Path, or :class:`InputError` if an output cannot be written there."""
+def check_output(path, suffixes=SUFFIXES) -> Path:
+    """``path`` as a Path, or :class:`InputError` if an output cannot be written there (``suffixes``:
+    the formats the writer knows, tables by default)."""
     p = Path(path)
+    if not str(path).strip():
+        raise InputError(f"output file name is empty; name a file ending in {', '.join(suffixes)}")
     if p.is_dir():
-        raise InputError(f"output {p} is a directory; name a file in it ending in {', '.join(SUFFIXES)}")
-    check_format(p)
+        raise InputError(f"output {p} is a directory; name a file in it ending in {', '.join(suffixes)}")
+    check_format(p, suffixes)
     parent = p.parent
     if not parent.is_dir():
         above = next((a for a in parent.parents if a.exists()), None) if not parent.exists() else parent
@@ -232,12 +235,13 @@ def available_memory() -> int | None:
     return avail
 
 
-def check_size(n: int, columns: int, *, out=None, collect: bool = True) -> None:
+def check_size(n: int, columns: int, *, out=None, collect: bool = True,
+               what: str = "collect=True keeps every result in memory") -> None:
     """:class:`InputError` if ``collect`` results (8 bytes a value) cannot fit in memory."""
     mem = available_memory() if collect else None
     if mem is not None and n * columns * 8 > mem:
         where = "" if out is None else f"; its file {out} is written either way, collect=False returns only its path"
-        raise InputError(f"collect=True keeps every result in memory: {n:,} points x {columns} columns need "
+        raise InputError(f"{what}: {n:,} points x {columns} columns need "
                          f"{_size(n * columns * 8)}, {_size(mem)} of memory is available{where}")
 
 
