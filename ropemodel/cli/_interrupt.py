@@ -11,11 +11,14 @@ raises a RuntimeError, bonmin carries on — and the command went on to print a 
   reaches the command line's handler — an interrupt consumed inside a solver comes back as
   soon as Python code runs;
 * results go nowhere once interrupted: a write to stdout raises KeyboardInterrupt;
+* no solver log either: what is written to stderr after the interrupt is held, and at the end
+  only its lines that are not CasADi's log are written (CasADi's IPOPT interface prints
+  ``WARNING("KeyboardInterruptException")`` on every interrupt, with no option to silence it);
 * :attr:`Interrupts.seen` tells the command line that any failure that follows (a RuntimeError
   out of an interrupted integrator) is the interrupt's doing.
 
 Only in the main thread of the process (signal handlers cannot be set elsewhere); otherwise a
-no-op.  Handlers, alarm and stdout are restored on exit.
+no-op.  Handlers, alarm, stdout and stderr are restored on exit.
 """
 
 from __future__ import annotations
@@ -26,6 +29,8 @@ import threading
 
 #: seconds between repeated KeyboardInterrupts after a Ctrl-C that was consumed
 REPEAT = 0.2
+#: how CasADi's log lines begin
+CASADI_LOG = "CasADi - "
 
 
 class _Guarded:
@@ -43,6 +48,28 @@ class _Guarded:
         return getattr(self._stream, name)
 
 
+class _Held:
+    """stderr that, once the command was interrupted, holds what is written (see :meth:`release`)."""
+
+    def __init__(self, stream, interrupts: "Interrupts"):
+        self._stream, self._interrupts, self._held = stream, interrupts, []
+
+    def write(self, text):
+        if self._interrupts.seen:
+            self._held.append(text)
+            return len(text)
+        return self._stream.write(text)
+
+    def release(self) -> None:
+        """Write what was held, less CasADi's log lines."""
+        lines = "".join(self._held).splitlines(keepends=True)
+        self._stream.write("".join(line for line in lines if not line.startswith(CASADI_LOG)))
+        self._held = []
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
 class Interrupts:
     """``with Interrupts() as guard: ...``; afterwards ``guard.seen`` says whether Ctrl-C came."""
 
@@ -54,8 +81,8 @@ class Interrupts:
         self._active = threading.current_thread() is threading.main_thread()
         if self._active:
             self._old = (signal.signal(signal.SIGINT, self._sigint), signal.signal(signal.SIGALRM, self._alarm),
-                         sys.stdout)
-            sys.stdout = _Guarded(sys.stdout, self)
+                         sys.stdout, sys.stderr)
+            sys.stdout, sys.stderr = _Guarded(sys.stdout, self), _Held(sys.stderr, self)
         return self
 
     def _sigint(self, signum, frame):
@@ -76,9 +103,13 @@ class Interrupts:
     def __exit__(self, *exc):
         if self._active:
             self.stop()
-            sigint, sigalrm, stdout = self._old
+            sigint, sigalrm, stdout, stderr = self._old
             signal.signal(signal.SIGALRM, sigalrm)
             signal.signal(signal.SIGINT, sigint)
-            if sys.stdout is not stdout and isinstance(sys.stdout, _Guarded):
+            held = sys.stderr
+            if isinstance(sys.stdout, _Guarded):
                 sys.stdout = stdout
+            if isinstance(held, _Held):
+                sys.stderr = stderr
+                held.release()
         return False
