@@ -25,7 +25,7 @@ import casadi as ca
 import numpy as np
 import pandas as pd
 
-from ropemodel.numerics.capstan_rotation import ARGS, RTOL, STEPS, rotation_function, unwrap_load
+from ropemodel.numerics.capstan_rotation import ARGS, RTOL, STEPS, rotation, rotation_function, unwrap_load
 from ropemodel.errors import InputError, Problems, SolveError
 from ropemodel.units import factor
 
@@ -224,7 +224,11 @@ def _check_unwrap(scene, F: np.ndarray, meas: np.ndarray, variant: str) -> None:
     fit's start), or a measured rotation of at least the initial wrap α0."""
     p, o = scene.parameters, scene.numerics
     args = (p["mu"], p["EA"], p["R"], p["L"], p["alpha_0"], p["F_p"])
-    limit = unwrap_load(*args, variant, o.get("steps", STEPS), o.get("sharpness", 30.0), o.get("rtol", RTOL))
+    settings = (variant, o.get("steps", STEPS), o.get("sharpness", 30.0), o.get("rtol", RTOL))
+    largest = rotation(float(F.max()), *args, *settings) if F.size else 0.0
+    if math.isfinite(largest) and largest / p["R"] < p["alpha_0"] and not np.any(meas >= p["alpha_0"]):
+        return   # the rotation grows with the load: the largest load does not unwrap, so none does
+    limit = unwrap_load(*args, *settings)
     beyond = np.flatnonzero((F >= limit) | (meas >= p["alpha_0"]))
     if beyond.size:
         i = int(beyond[0])
