@@ -121,6 +121,16 @@ class HaulageForces(Submodel):
                                 + (extra_C if rigid else "")))
         return eqs
 
+    invalid_needs = _FORCES
+
+    def invalid_needs_for(self, outputs):
+        """The forces of the directions of ``outputs`` when each belongs to one (``F_C_up``, ``dF_up``:
+        a slack rope lowering does not spoil hauling up), else all four."""
+        directions = {o.rsplit("_", 1)[-1] for o in outputs}
+        if not directions <= set(_TRAVEL):
+            return _FORCES
+        return tuple(f for f in _FORCES if f.rsplit("_", 1)[-1] in directions)
+
     def invalid_mask(self, values):
         """A rope force <= 0: the rope would have to push, so it is slack (the model no longer holds)."""
         out = {}
