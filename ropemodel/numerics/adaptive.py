@@ -63,10 +63,11 @@ ULPS = 8 * 2.0**-52
 STATE = ("t", "x", "h", "err", "steps")
 
 
-def stages(f, t, x, h, p):
-    """The seven stage derivatives k_i = f(t + c_i h, x + h Σ a_ij k_j, p) of one Dormand–Prince step."""
-    k = []
-    for i in range(7):
+def stages(f, t, x, h, p, k1=None):
+    """The seven stage derivatives k_i = f(t + c_i h, x + h Σ a_ij k_j, p) of one Dormand–Prince step
+    (``k1`` = f(t, x, p) if already known)."""
+    k = [] if k1 is None else [k1]
+    for i in range(len(k), 7):
         xi = x + h * sum((a * kj for a, kj in zip(A[i], k) if a != 0.0), ca.SX(0))
         k.append(f(t + C[i] * h, xi, p))
     return k

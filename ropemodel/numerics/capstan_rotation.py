@@ -27,8 +27,9 @@ u from 0 to U = ln(1 + F_T/F_p), by an adaptive Dormand–Prince 5(4) method
   saturated, where ∂(dδ/du)/∂δ ≤ (dδ/du)·d ln(1 − e^{−μα1})/dδ (the slack side and the
   slipping parts do not expand errors), so a step grows them by at most
   (1 − e^{−μα1'})/(1 − e^{−μα1}) — at most 2 in all, since δ/R < α0.  With the
-  increments adding up to δ, E ≤ 2·SAFETY·SHARE·rtol·δ = rtol·δ.  The ``smooth`` law
-  uses e^{h·max(0, ∂f/∂δ)} at each step's start instead.
+  increments adding up to δ, E ≤ 2·SAFETY·SHARE·rtol·δ = rtol·δ.  The ``smooth`` law, whose
+  logistic weights can expand errors more, carries E by |∂x5/∂δ| of each step (the linearised
+  step) and is checked against rtol at the end.
 * **Steps inside the right side's radius of convergence.**  The embedded estimate is
   only trustworthy for steps well inside the distance to the nearest singularity of
   the right side; in regime 1 1/K is rational in F with poles at the roots of
@@ -66,6 +67,7 @@ STEPS = 16    # the first trial step is 1/STEPS of the range in u
 SAFETY = 2.0  # factor on the summed local estimates (measured margin: studies/capstan_accuracy.py)
 SHARE = 1.0 / (2.0 * SAFETY)  # local tolerance / rtol: SAFETY·SHARE·(growth ≤ 2) ≤ 1
 KAPPA = 0.25  # largest step / distance to the nearest pole of the right side (regimes 1, 2)
+KAPPA_SMOOTH = 0.1  # the same for the smooth law's logistic weights (their poles move with dδ/du)
 GROW, BETA = 2.0, 0.08  # largest step growth; PI-controller exponent (Hairer's DOPRI5 uses 0.04 for h⁵)
 NEWTON = 3    # Newton iterations on the interpolant, from the secant guess
 INNER = 16    # attempts per inner loop of until_done
@@ -113,16 +115,23 @@ def _locate(j, u, h, d0, d1, k, g0, g1, q):
     return theta
 
 
-def _pole_limit(law, u, delta, flags, q):
-    """KAPPA × the distance in u to the nearest pole of the right side (regimes 1 and 2), else inf."""
+def _pole_limit(law, sharpness, u, delta, f0, flags, q):
+    """KAPPA × the distance in u to the nearest pole of the right side, else inf: in regime 1 the roots
+    of 2Rx/μ + L(1 − x²), in regime 2 one x < 0; for the smooth law also the logistic weights' poles
+    s·z = ±iπ (f0: dδ/du at the start)."""
     mu, EA, R, L, a0, F_p, tol = q[:7]
     ft, fs, fu = flags
     rho = mu * L / (2.0 * R)
     s = ca.sqrt(1.0 + 4.0 * rho * rho)
     near0 = ca.if_else(rho * rho > tol, u - ca.log1p(-2.0 * rho / (1.0 + s)), ca.inf)
-    regime1 = KAPPA * ca.fmin(near0, ca.log1p((1.0 + s) / (2.0 * ca.fmax(rho, 1e-200))) - u)
+    # the upper pole, x = (1 + s)/(2ρ) > 1: beyond u = 14 for ρ < 1e-6 (regime 1 ends at u = ln 2)
+    regime1 = KAPPA * ca.fmin(near0, ca.log1p((1.0 + s) / (2.0 * ca.fmax(rho, 1e-6))) - u)
     if not law.crisp:
-        return ca.if_else(fu == 0, regime1, ca.inf)
+        (zt, zs), ((tu, td), (su, sd)) = _switch(u, delta, q)
+        dist = ca.inf
+        for z, dz in ((zt, tu + td * f0), (zs, su + sd * f0), (ca.expm1(u) - 1.0, ca.exp(u))):
+            dist = ca.fmin(dist, ca.sqrt(z * z + (math.pi / sharpness) ** 2) / ca.fmax(ca.fabs(dz), 1e-300))
+        return ca.fmin(KAPPA_SMOOTH * dist, ca.if_else(fu == 0, regime1, ca.inf))
     k_ss = li.slack_side_stiffness_saturated(mu, EA, R, L, ca.fmax(a0 - delta / R, ALPHA_FLOOR),
                                              law.name == "continuous")
     x_pole = -(L * k_ss + EA) / ((2.0 * R / mu + L) * k_ss + EA)
@@ -139,11 +148,11 @@ def _controller(he, ratio, ok, z):
     return ca.if_else(ratio <= 1e30, he * ca.fmin(grow, ca.fmax(0.2, fac)), 0.2 * he)
 
 
-def _growth(law, k0, delta, x5, he, q):
+def _growth(law, delta, x5, q):
     """Factor by which the step carries earlier errors forward (module doc)."""
     mu, R, a0 = q[0], q[2], q[4]
     if not law.crisp:
-        return ca.exp(he * ca.fmax(ca.jacobian(k0, delta), 0.0))
+        return ca.fabs(ca.jacobian(x5, delta))
     return ca.expm1(-mu * (a0 + x5 / R)) / ca.expm1(-mu * (a0 + delta / R))
 
 
@@ -159,60 +168,76 @@ def _corrected_switch(law, sharpness, u1, x5, fm, pend, flags, q):
     return x5 + ca.if_else(steep, (fp - fm) * g / ca.if_else(steep, slope, 1.0), 0.0), new
 
 
-@lru_cache(maxsize=8)
-def _body(variant: str, sharpness: float) -> ca.Function:
-    """One attempted step: (z, p) → z' (state :data:`STATE`, parameters :data:`PARAMS`)."""
-    law = LAWS[variant]
-    z, p = ca.SX.sym("z", len(STATE)), ca.SX.sym("p", len(PARAMS))
-    u, d, h, err, ft, fs, fu, pend, hsave = (z[i] for i in range(9))
-    q = [p[i] for i in range(len(PARAMS))]
+def _trial(law, sharpness, z, q):
+    """One trial step from z in the frozen regime: its length he, whether it ends at U (last) or at
+    F = F_p (clip), the stages k, the 5th-order result x5, the local estimate le and le/allowed."""
+    u, d, h, fu = z[0], z[1], z[2], z[6]
+    flags = (z[4], z[5], fu)
     tol, fixed, U = q[6], q[7], q[8]
-    flags = (ft, fs, fu)
-    h = ca.if_else(fixed, h, ca.fmin(h, _pole_limit(law, u, d, flags, q)))
+    rate = lambda t, x, _: _rate(law, sharpness, t, x, flags, q)  # noqa: E731
+    f0 = rate(u, d, None)
+    h = ca.if_else(fixed, h, ca.fmin(h, _pole_limit(law, sharpness, u, d, f0, flags, q)))
     to_ln2 = ca.if_else(ca.logic_and(fu == 0, u < LN2), LN2 - u, ca.inf)
     last = ca.logic_and(h >= U - u, U - u <= to_ln2)
     clip = ca.logic_and(ca.logic_not(last), h >= to_ln2)
     he = ca.if_else(last, U - u, ca.if_else(clip, to_ln2, h))
-    k = stages(lambda t, x, _: _rate(law, sharpness, t, x, flags, q), u, d, he, None)
+    k = stages(rate, u, d, he, None, f0)
     x5 = d + combine(B, k, he)
     le = ca.fabs(combine(E, k, he))
     if law.crisp:  # a quadrature in u where δ does not enter 1/K: guard le against cancelling
-        quadrature = ca.logic_and(ft == 0, ca.logic_or(fs == 0, fu == 1))
+        quadrature = ca.logic_and(flags[0] == 0, ca.logic_or(flags[1] == 0, fu == 1))
         le = ca.if_else(quadrature, ca.fmax(le, ca.fabs(combine(tuple(a - b for a, b in zip(Q6, B)), k, he))), le)
-    allowed = tol * ca.fabs(x5 - d) + ULPS * (ca.fabs(d) + ca.fabs(x5))
-    ratio = le / allowed
-    ok = ca.logic_or(le <= allowed, fixed)
-    h_next = ca.if_else(fixed, h, _controller(he, ratio, ok, z))
-    # switches crossed by an accepted step that does not already end at one
+    ratio = le / ca.fmax(tol * ca.fabs(x5 - d) + ULPS * (ca.fabs(d) + ca.fabs(x5)), 1e-300)
+    return h, he, last, clip, k, x5, le, ratio
+
+
+def _crossing(law, z, q, he, k, x5, ok):
+    """The fraction θ of an accepted step (not itself ending at a switch) where the tight or slack side
+    first switches (2 if neither does), and which (1 tight, 2 slack)."""
+    if not law.crisp:
+        return ca.SX(2.0), ca.SX(0.0)
+    u, d, ft, fs, fu, pend = z[0], z[1], z[4], z[5], z[6], z[7]
     (g0t, g0s), _ = _switch(u, d, q)
     (g1t, g1s), _ = _switch(u + he, x5, q)
     free = ca.logic_and(ok, pend == 0)
     cross_t = ca.logic_and(free, ft != (g1t >= 0))
     cross_s = ca.logic_and(ca.logic_and(free, fu == 0), fs != (g1s >= 0))
-    if not law.crisp:
-        cross_t = cross_s = ca.SX(0)
     th_t = ca.if_else(cross_t, _locate(0, u, he, d, x5, k, g0t, g1t, q), 2.0)
     th_s = ca.if_else(cross_s, _locate(1, u, he, d, x5, k, g0s, g1s, q), 2.0)
-    first = ca.fmin(th_t, th_s)
+    return ca.fmin(th_t, th_s), ca.if_else(th_t <= th_s, 1.0, 2.0)
+
+
+@lru_cache(maxsize=8)
+def _body(variant: str, sharpness: float) -> ca.Function:
+    """One attempted step: (z, p) → z' (state :data:`STATE`, parameters :data:`PARAMS`)."""
+    law = LAWS[variant]
+    z, p = ca.SX.sym("z", len(STATE)), ca.SX.sym("p", len(PARAMS))
+    u, d, _, err, ft, fs, fu, pend, hsave, rprev = (z[i] for i in range(10))
+    q = [p[i] for i in range(len(PARAMS))]
+    h, he, last, clip, k, x5, le, ratio = _trial(law, sharpness, z, q)
+    ok = ca.logic_or(ratio <= 1.0, q[7])
+    h_next = ca.if_else(q[7], h, _controller(he, ratio, ok, z))
+    first, which = _crossing(law, z, q, he, k, x5, ok)
     crossing = first < 2.0
     advance = ca.logic_and(ok, ca.logic_not(crossing))
-    u_end = ca.if_else(last, U, ca.if_else(clip, LN2, u + he))
-    x_sw, new = _corrected_switch(law, sharpness, u + he, x5, k[6], pend, flags, q) if law.crisp else (x5, flags)
-    x_end = ca.if_else(pend > 0, x_sw, x5)
-    grown = _growth(law, k[0], d, x5, he, q)
-    h_adv = ca.if_else(pend > 0, ca.fmax(hsave, h_next), ca.if_else(last, h, ca.if_else(clip, ca.fmax(h_next, h),
-                                                                                         h_next)))
+    u_end = ca.if_else(last, q[8], ca.if_else(clip, LN2, u + he))
+    x_sw, new = _corrected_switch(law, sharpness, u + he, x5, k[6], pend, (ft, fs, fu), q) if law.crisp \
+        else (x5, (ft, fs, fu))
+    grown = _growth(law, d, x5, q)
+    if law.crisp:
+        grown = ca.if_else(ft, grown, 1.0)
+    h_adv = ca.if_else(pend > 0, ca.fmax(hsave, h_next),
+                       ca.if_else(last, h, ca.if_else(clip, ca.fmax(h_next, h), h_next)))
     z_new = ca.vertcat(
         ca.if_else(advance, u_end, u),
-        ca.if_else(advance, x_end, d),
+        ca.if_else(advance, ca.if_else(pend > 0, x_sw, x5), d),
         ca.if_else(crossing, first * he, ca.if_else(advance, h_adv, h_next)),
-        ca.if_else(advance, ca.if_else(ft, grown, 1.0) * err + SAFETY * le + ULPS * ca.fabs(x5), err)
-        if law.crisp else ca.if_else(advance, grown * err + SAFETY * le + ULPS * ca.fabs(x5), err),
+        ca.if_else(advance, grown * err + SAFETY * le + ULPS * ca.fabs(x5), err),
         ca.if_else(advance, new[0], ft), ca.if_else(advance, new[1], fs),
         ca.if_else(ca.logic_and(advance, u_end >= LN2), 1.0, fu),
-        ca.if_else(crossing, ca.if_else(th_t <= th_s, 1.0, 2.0), 0.0),
+        ca.if_else(crossing, which, 0.0),
         ca.if_else(crossing, h_next, hsave),
-        ca.if_else(ok, ca.fmax(ratio, 1e-4), z[9]),
+        ca.if_else(ok, ca.fmax(ratio, 1e-4), rprev),
         ca.logic_not(ok), z[11] + 1.0)
     return ca.Function(f"capstan_attempt_{variant}", [z, p], [z_new], ["z", "p"], ["z_next"])
 
