@@ -23,7 +23,7 @@ EA 10³–10⁷ N, R 0.01–1 m, L 0–10 m, F_p 1–10⁴ N), keeping those who
 from __future__ import annotations
 
 import math
-import time
+import timeit
 
 import matplotlib
 
@@ -119,13 +119,9 @@ def reference(d):
     return np.nan
 
 
-def _timed(fun, repeats=1):
-    best, out = np.inf, None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fun()
-        best = min(best, time.perf_counter() - t0)
-    return out, best
+def seconds(fun, repeats=1):
+    """The least wall time [s] of ``repeats`` calls of ``fun`` (this run; only ratios are reported)."""
+    return min(timeit.repeat(fun, number=1, repeat=repeats))
 
 
 def cases(n):
@@ -149,8 +145,8 @@ def rel(a, r):
 
 def ours(c, ref, rtol, repeats):
     """A row for ropemodel at ``rtol``: true and estimated errors, time per point, attempted steps."""
-    rotation_batch(**c, rtol=rtol)  # build and compile (cached), not timed
-    (d, est), t = _timed(lambda: rotation_batch(**c, rtol=rtol, with_error=True), repeats)
+    d, est = rotation_batch(**c, rtol=rtol, with_error=True)  # also builds and compiles (cached): not timed
+    t = seconds(lambda: rotation_batch(**c, rtol=rtol, with_error=True), repeats)
     err = rel(d, ref)
     attempts = evaluate_columns(attempts_function("li", rtol=rtol), {a: c[a] for a in ARGS}, {}, block=64)["attempts"]
     return {"method": DEFAULT if rtol == RTOL else f"ropemodel li, rtol {rtol:g}", "rtol": rtol,
@@ -165,7 +161,9 @@ def measure(n, n_scipy, rtols, our_rtols=(), repeats=3):
     sub = [v[:n_scipy] for v in c.values()]
     for method in METHODS:
         for rtol in rtols:
-            ys, t = _timed(lambda: np.array([peer([a[i] for a in sub], method, rtol) for i in range(n_scipy)]))
+            out = []
+            t = seconds(lambda: out.append([peer([a[i] for a in sub], method, rtol) for i in range(n_scipy)]))
+            ys = np.array(out[-1])
             err = rel(ys, ref[:n_scipy])
             rows.append({"method": f"scipy {method}", "rtol": rtol,
                          "max rel. error": float(np.nanmax(err)) if np.isfinite(err).any() else np.nan,
