@@ -35,7 +35,8 @@ regime meaning
 rotation's first trial step is 1/steps of the load range in ln(1 + F/F_p), default 16; the steps then
 adapt), ``sharpness`` (smooth law, default 30).  Output ``delta_error`` is the estimated relative
 error of δ (summed local error estimates of the adaptive, event-located Dormand–Prince 5(4),
-:func:`ropemodel.numerics.capstan_rotation.rotation_function`; at most rtol); a point that cannot
+:func:`ropemodel.numerics.capstan_rotation.rotation_function`, rounded up to one significant digit;
+at most rtol); a point that cannot
 meet rtol is a :class:`~ropemodel.errors.SolveError`.  Documented range, tested on 10⁴ random points
 per law against an independent integration (true error ≤ delta_error ≤ rtol): μ ≤ 1, α0 ≤ 40 rad,
 0 ≤ F_T ≤ 2F_p, EA 10³–10⁷ N, R 0.01–1 m, L 0–10 m, F_p 1–10⁴ N, except loads that unwrap the slack
@@ -106,7 +107,7 @@ OUTPUTS = (
     Q("K", "N/m", "equivalent stiffness of the drive", "N/mm", "eq. (23), (26)"),
     Q("regime", "1", "slip regime (1-6, see ropemodel.effects.capstan)", None, "eq. (26)"),
     Quantity("delta_error", "1", "estimated relative error of delta (summed local estimates of the adaptive "
-             "Dormand-Prince 5(4); at most [numerics] rtol)",
+             "Dormand-Prince 5(4), rounded up to one digit; at most [numerics] rtol)",
              equation="ropemodel.numerics.capstan_rotation: 2 x (sum of local estimates)/delta"),
 )
 
