@@ -19,7 +19,11 @@ def _is_casadi(*args) -> bool:
 
 def _unary(np_fun, ca_fun):
     def f(x):
-        return ca_fun(x) if _is_casadi(x) else np_fun(x)
+        if _is_casadi(x):
+            return ca_fun(x)
+        if isinstance(x, (int, float)):   # a Python number stays a Python float
+            return float(np_fun(x))
+        return np_fun(x)
 
     f.__name__ = np_fun.__name__
     f.__doc__ = f"{np_fun.__name__} of a float, numpy array or CasADi expression."

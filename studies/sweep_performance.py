@@ -3,7 +3,7 @@
 1. **CLI vs numpy.**  ``ropemodel sweep`` of the Fig. 9 scene over a grid of
    inclination × load (every output, Parquet) against a plain numpy script that
    computes the same 29 outputs from the equations written out by hand
-   (MODELS.md §1) and writes the same columns to Parquet with the same row
+   (docs/physics.md §1) and writes the same columns to Parquet with the same row
    groups.  Both run as fresh processes (interpreter start and imports
    included); the best of ``repeat`` runs of each.  The two files are compared
    (largest relative difference), so the peer is also a correctness check.

@@ -11,7 +11,7 @@ from ropemodel.sweep import parse_axis
 
 
 def f_c_up_closed_form(alpha, G_m, s):
-    """MODELS.md §1 (Krauze et al. 2025, eq. 13, upward, case 1), written out by hand in numpy."""
+    """docs/physics.md §1 (Krauze et al. 2025, eq. 13, upward, case 1), written out by hand in numpy."""
     p = s.parameters
     return (0.5 * p["F_nwl"] + (G_m + p["q_l"] * p["L_u"]) * np.sin(alpha)
             + p["mu_pm"] * G_m * np.cos(alpha) + p["mu_pl"] * p["q_l"] * p["L_u"] * np.cos(alpha))

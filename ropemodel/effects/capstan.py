@@ -36,11 +36,10 @@ rotation's first trial step is 1/steps of the load range in ln(1 + F/F_p), defau
 adapt), ``sharpness`` (smooth law, default 30).  Output ``delta_error`` is the estimated relative
 error of δ (summed local error estimates of the adaptive, event-located Dormand–Prince 5(4),
 :func:`ropemodel.numerics.capstan_rotation.rotation_function`, rounded up to one significant digit;
-at most rtol); a point that cannot
-meet rtol is a :class:`~ropemodel.errors.SolveError`.  Documented range, tested on 10⁴ random points
-per law against an independent integration (true error ≤ delta_error ≤ rtol): μ ≤ 1, α0 ≤ 40 rad,
-0 ≤ F_T ≤ 2F_p, EA 10³–10⁷ N, R 0.01–1 m, L 0–10 m, F_p 1–10⁴ N, except loads that unwrap the slack
-side.
+at most rtol); a point that cannot meet rtol is a :class:`~ropemodel.errors.SolveError`.  Documented
+range, tested on 10⁴ random points per law against an independent integration (true error ≤
+delta_error ≤ rtol): μ ≤ 1, α0 ≤ 40 rad, 0 ≤ F_T ≤ 2F_p, EA 10³–10⁷ N, R 0.01–1 m, L 0–10 m,
+F_p 1–10⁴ N, except loads that unwrap the slack side.
 """
 
 from __future__ import annotations
@@ -117,6 +116,11 @@ class _Stiffness(Submodel):
 
     citations = ("li_capstan",)
     quantities = PARAMS + (F_T_PARAM,) + OUTPUTS
+    #: K_ti and K_sl as a person reads them (reports), eq. (24)-(26) in the tight + slack reading
+    tight_formula = ("K_ti = μEA(F_p + F_T) / (2R F_T + μL(F_p + F_T)) while θ_s1 < α_1, "
+                     "else μEA / (2R(1 − e^(−μα_1)) + μL)")
+    slack_formula = ("K_sl = μEA(F_p − F_T) / (2R F_T + μL(F_p − F_T)) while θ_s2 < α_2, else μEA / (2R(1 − e^(−μα_2)) "
+                     "+ μL); 0 for F_T ≥ F_p")
 
     def _settings(self):
         o = self.options
@@ -129,11 +133,13 @@ class _Stiffness(Submodel):
         """delta and delta_error as two call equations of one rotation Function (inlined: the core merges them)."""
         fun = self._rotation()
         src = ("eq. (11): delta = integral of dF/K(F, alpha(delta))", "error estimate of the rotation (summed local estimates)")
+        formulas = ("δ = ∫₀^F_T dF / K(F, α_1(δ), α_2(δ))",
+                    "δ_error = 2 Σ |x5 − x4| / δ over the adaptive Dormand–Prince 5(4) steps, rounded up to one digit")
         eqs = []
-        for k, (out, text) in enumerate(zip(("delta", "delta_error"), src)):
+        for k, (out, text, formula) in enumerate(zip(("delta", "delta_error"), src, formulas)):
             part = ca.Function(f"capstan_{out}", fun.mx_in(), [fun.call(fun.mx_in())[k]], fun.name_in(), [out],
                                {"always_inline": True})
-            eqs.append(Equation.from_call(out, part, ARGS, text))
+            eqs.append(Equation.from_call(out, part, ARGS, text, formula))
         return eqs
 
     def equations(self, v):
@@ -143,15 +149,19 @@ class _Stiffness(Submodel):
         w1, w2 = li.wrap_angles(a0, v["delta"], R)
         k_ti, k_sl = law.parts(F, F_p, mu, EA, R, L, a1, a2, self.options.get("sharpness", 30.0))
         return self._rotation_equations() + [
-            Equation("delta_alpha", v["delta_alpha"] - v["delta"] / R, "eq. (13), (19): rotation delta/R"),
-            Equation("alpha_1", a1 - w1, "eq. (13)"),
-            Equation("alpha_2", a2 - w2, "eq. (19)"),
-            Equation("theta_s1", v["theta_s1"] - li.tight_slip_angle_limited(F, F_p, mu, a1), "eq. (6), (13)"),
-            Equation("theta_s2", v["theta_s2"] - li.slack_slip_angle_limited(F, F_p, mu, a2), "eq. (16), (19)"),
-            Equation("K_ti", v["K_ti"] - k_ti, "eq. (24), (26)"),
-            Equation("K_sl", v["K_sl"] - k_sl, "eq. (25), (26)"),
-            Equation("K", v["K"] - (v["K_ti"] + v["K_sl"]), "eq. (23)"),
-            Equation("regime", v["regime"] - regime_number(F, F_p, mu, a1, a2), "eq. (26), tight + slack reading"),
+            Equation("delta_alpha", v["delta_alpha"] - v["delta"] / R, "eq. (13), (19): rotation delta/R",
+                     formula="Δα = δ / R"),
+            Equation("alpha_1", a1 - w1, "eq. (13)", formula="α_1 = α_0 + δ / R"),
+            Equation("alpha_2", a2 - w2, "eq. (19)", formula="α_2 = α_0 − δ / R"),
+            Equation("theta_s1", v["theta_s1"] - li.tight_slip_angle_limited(F, F_p, mu, a1), "eq. (6), (13)",
+                     formula="θ_s1 = min(ln((F_p + F_T) / F_p) / μ, α_1)"),
+            Equation("theta_s2", v["theta_s2"] - li.slack_slip_angle_limited(F, F_p, mu, a2), "eq. (16), (19)",
+                     formula="θ_s2 = min(ln(F_p / (F_p − F_T)) / μ, α_2); α_2 once F_T ≥ F_p (1 − e^(−μα_2))"),
+            Equation("K_ti", v["K_ti"] - k_ti, "eq. (24), (26)", formula=self.tight_formula),
+            Equation("K_sl", v["K_sl"] - k_sl, "eq. (25), (26)", formula=self.slack_formula),
+            Equation("K", v["K"] - (v["K_ti"] + v["K_sl"]), "eq. (23)", formula="K = K_ti + K_sl"),
+            Equation("regime", v["regime"] - regime_number(F, F_p, mu, a1, a2), "eq. (26), tight + slack reading",
+                     formula="regime = 1 … 6 from the signs of θ_s1 − α_1, θ_s2 − α_2 and F_T − F_p"),
         ]
 
     def validate(self, values):
@@ -202,6 +212,8 @@ class ContinuousStiffness(_Stiffness):
     """
 
     description = LAWS["continuous"].doc
+    slack_formula = ("K_sl = μEA(F_p − F_T) / (2R F_T + μL(F_p − F_T)) while θ_s2 < α_2, else μEA / (2R(e^(μα_2) − 1) "
+                     "+ μL); 0 for F_T ≥ F_p")
 
 
 @register(MODEL, "stiffness", "smooth")
@@ -217,6 +229,9 @@ class SmoothStiffness(_Stiffness):
     """
 
     description = LAWS["smooth"].doc
+    tight_formula = "K_ti = (1 − σ(s z_t)) K_ti,slipping + σ(s z_t) K_ti,saturated, z_t = ln(1 + F_T/F_p) − μα_1"
+    slack_formula = ("K_sl = (1 − σ(s z_u)) ((1 − σ(s z_s)) K_sl,slipping + σ(s z_s) K_sl,saturated), "
+                     "z_s = F_T/F_p − (1 − e^(−μα_2)), z_u = F_T/F_p − 1, σ(x) = 1/(1 + e^(−x))")
 
 
 @register(MODEL, "load", "force")
@@ -228,7 +243,7 @@ class ForceLoad(Submodel):
     quantities = (F_T_PARAM, T_PARAM, PARAMS[2])
 
     def equations(self, v):
-        return [Equation("T", v["T"] - 2.0 * v["R"] * v["F_T"], "section 3: T = 2 R F_T")]
+        return [Equation("T", v["T"] - 2.0 * v["R"] * v["F_T"], "section 3: T = 2 R F_T", formula="T = 2 R F_T")]
 
 
 @register(MODEL, "load", "torque")
@@ -240,4 +255,4 @@ class TorqueLoad(Submodel):
     quantities = (F_T_PARAM, T_PARAM, PARAMS[2])
 
     def equations(self, v):
-        return [Equation("F_T", v["T"] - 2.0 * v["R"] * v["F_T"], "section 3: F_T = T/(2R)")]
+        return [Equation("F_T", v["T"] - 2.0 * v["R"] * v["F_T"], "section 3: F_T = T/(2R)", formula="F_T = T / (2R)")]

@@ -53,7 +53,7 @@ class RopeCatalogue(Submodel):
 
     F_min = K·d²·R_r, m_l = W·d², q_l = g·W·d², A_m = C·d², q_lw = L_u/(E·C·d²)
     (see :mod:`ropemodel.papers.en12385`).  Not in Krauze et al. (2025), who give q_l and q_lw;
-    "needed by a real sizing tool" (MODELS.md §1).
+    "needed by a real sizing tool" (docs/physics.md §1).
     """
 
     description = "q_l, q_lw, F_min, A_m, m_l from d and the construction (EN 12385-4)"

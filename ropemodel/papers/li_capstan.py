@@ -14,7 +14,7 @@ K_2 (eq. 18) divide by F_T; the drive's stiffness never needs them: the
 ``*_side_stiffness_*`` functions are the series sums of eq. (24)-(25) written in
 combined form, finite at F_T = 0.
 
-Reading of eq. (26) (see MODELS.md §3): K is the sum of a tight part and a slack
+Reading of eq. (26) (see docs/physics.md §5): K is the sum of a tight part and a slack
 part, each switching on its own condition.  This completes the two cases the
 four printed rows leave out (tight side saturated while the slack side is not;
 F_T ≥ F_p while the tight side is not yet saturated).

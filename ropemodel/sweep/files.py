@@ -45,17 +45,19 @@ def cause(exc: OSError) -> str:
     return getattr(exc, "strerror", None) or str(exc)
 
 
-def check_format(path: Path) -> None:
-    if path.suffix.lower() not in SUFFIXES:
-        raise InputError(f"output {path}: the file name must end in {', '.join(SUFFIXES)}")
+def check_format(path: Path, suffixes=SUFFIXES) -> None:
+    if path.suffix.lower() not in suffixes:
+        raise InputError(f"output {path}: the file name must end in {', '.join(suffixes)}")
 
 
-def check_output(path) -> Path:
-    """``path`` as a Path, or :class:`InputError` if an output cannot be written there."""
+def check_output(path, suffixes=SUFFIXES) -> Path:
+    """``path`` as a Path, or :class:`InputError` if an output cannot be written there.
+
+    suffixes: the file name endings accepted (default: a sweep's tables, :data:`SUFFIXES`)."""
     p = Path(path)
     if p.is_dir():
-        raise InputError(f"output {p} is a directory; name a file in it ending in {', '.join(SUFFIXES)}")
-    check_format(p)
+        raise InputError(f"output {p} is a directory; name a file in it ending in {', '.join(suffixes)}")
+    check_format(p, suffixes)
     parent = p.parent
     if not parent.is_dir():
         above = next((a for a in parent.parents if a.exists()), None) if not parent.exists() else parent
