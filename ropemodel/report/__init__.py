@@ -30,24 +30,25 @@ incomplete (``ropemodel report`` then exits 1).
 
 The sections today, in page order (:data:`ropemodel.report.sections.MODULES`): scene, inputs,
 equations, results, checks (when the model has margins), sizing (a winch with a catalogue rope),
-transient (``dynamics`` not ``"none"``), sensitivity, references.
+transient (``dynamics`` not ``"none"``), trip (``dynamics = "trip"`` or a route of segments, with
+v_pj and t_ramp), sensitivity, references.
 
-Adding a section, e.g. the trip of a route of segments: a module ``ropemodel/report/sections/trip.py``::
+Adding a section, e.g. the energy cost of a trip on a route of segments: a module
+``ropemodel/report/sections/energy.py``::
 
-    from ropemodel.report import figures, page
+    from ropemodel.report import page
     from ropemodel.report.registry import section
 
+    PRICE = 0.15   # per kWh: an assumed tariff
 
-    @section("trip", "Trip", when=lambda ctx: ctx.scene.effects.get("route") == "segments")
-    def trip(ctx):
-        from ropemodel.trip import trip as run_trip
 
-        run = run_trip(ctx.point)
-        uri = figures.panels(run.history, "t [s]", ("m", "m/s", "N", "W"), title="trip")
-        return (page.fragment('<figure><img src="{{ u }}" alt="trip"></figure>', u=uri)
-                + page.table(["quantity", "value"], [[k, f"{v:.6g}"] for k, v in run.summary.items()]))
+    @section("energy", "Energy cost", when=lambda ctx: ctx.scene.effects.get("route") == "segments")
+    def energy(ctx):
+        kwh = {d: run.summary["E_trip"] / 3.6e6 for d, run in ctx.trips.items()}
+        return page.table(["trip", "energy [kWh]", "cost at 0.15 per kWh"],
+                          [[d, f"{e:.3f}", f"{PRICE * e:.2f}"] for d, e in kwh.items()])
 
-and its name in :data:`ropemodel.report.sections.MODULES` where it belongs (after ``"transient"``).
+and its name in :data:`ropemodel.report.sections.MODULES` where it belongs (after ``"trip"``).
 That is the one place: the page, its table of contents, the error handling and the tests of every
 built-in scene (``tests/test_report*.py``: no network reference, not blank in Chromium) pick it up.
 """

@@ -102,6 +102,14 @@ class Context:
 
         return simulate(self.point)
 
+    @once
+    def trips(self) -> dict:
+        """The whole trip up and down (``ropemodel.trip``) at :attr:`point`: direction → Trip."""
+        from ropemodel.trip import prepare, trip
+
+        scene = prepare(self.point)
+        return {d: trip(scene, d) for d in ("up", "down")}
+
     @property
     def quantities(self) -> dict:
         return self.scene.built.quantities

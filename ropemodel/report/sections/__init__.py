@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import importlib
 
-#: section modules in page order ("trip" and "dynamic_sizing" go after "transient" when they exist)
-MODULES = ("scene", "inputs", "equations", "results", "sizing", "transient", "sensitivity", "references")
+#: section modules in page order
+MODULES = ("scene", "inputs", "equations", "results", "sizing", "transient", "trip", "sensitivity", "references")
 
 
 def load_all() -> None:
