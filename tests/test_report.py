@@ -10,7 +10,6 @@ the sign of each margin for pass/fail.
 from __future__ import annotations
 
 import base64
-import sys
 import functools
 import re
 from html.parser import HTMLParser
