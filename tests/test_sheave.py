@@ -14,7 +14,6 @@ import ropemodel as rm
 from ropemodel.cli import main as cli_main
 from ropemodel.errors import InputError
 from ropemodel.sheave import distribution
-from ropemodel.papers import hajduk1992 as hj
 
 FIG5 = str(resources.files("ropemodel.data").joinpath("sheave_hajduk_fig5.toml"))
 THIRION = str(resources.files("ropemodel.data").joinpath("sheave_thirion.toml"))
