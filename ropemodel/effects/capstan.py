@@ -53,12 +53,11 @@ from ropemodel.numerics.capstan_rotation import ARGS, RTOL, STEPS, check_wrap, r
 from ropemodel.effects.base import Equation, Submodel, define_effect, define_numerics, positive_number, register
 from ropemodel.errors import InputError, SolveError
 from ropemodel.papers import li_capstan as li
-from ropemodel.quantity import Quantity
+from ropemodel.quantity import Quantity, positive
 
 MODEL = "capstan"
 SRC = "Li et al."
 
-_pos = dict(low=0.0, low_open=True, positive=True)
 
 define_effect(MODEL, "stiffness", "li", "equivalent stiffness and rotation under load, eq. (6)-(26)")
 define_effect(MODEL, "load", "force", "the load as tension change F_T or as torque T = 2 R F_T")
@@ -77,12 +76,12 @@ define_numerics(MODEL, "sharpness", 30.0, "sharpness s of the smooth law's logis
                 positive_number(0.0, 1e6))
 
 PARAMS = (
-    Quantity("mu", "1", "friction coefficient between cable and wheel", guess=0.25, warn_high=1.0, **_pos),
-    Quantity("EA", "N", "axial stiffness of the cable", "kN", guess=5e4, **_pos),
-    Quantity("R", "m", "wheel radius", "mm", guess=0.075, **_pos),
+    positive("mu", "1", "friction coefficient between cable and wheel", guess=0.25, warn_high=1.0),
+    positive("EA", "N", "axial stiffness of the cable", "kN", guess=5e4),
+    positive("R", "m", "wheel radius", "mm", guess=0.075),
     Quantity("L", "m", "free length of the cable between the wheels", "mm", low=0.0, guess=0.36),
-    Quantity("alpha_0", "rad", "initial wrap angle on each side", "deg", guess=1.117, **_pos),
-    Quantity("F_p", "N", "preload", "N", guess=60.0, **_pos),
+    positive("alpha_0", "rad", "initial wrap angle on each side", "deg", guess=1.117),
+    positive("F_p", "N", "preload", "N", guess=60.0),
 )
 F_T_PARAM = Quantity("F_T", "N", "load: tension change in the free span, T/(2R)", "N", low=0.0, guess=10.0,
                      equation=f"{SRC}, section 3: F_T = T/(2R)")

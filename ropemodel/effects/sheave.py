@@ -52,39 +52,36 @@ from ropemodel.errors import InputError, SolveError
 from ropemodel.numerics.hajduk_integrators import DEFAULT, INTEGRATORS, log_ratio_function, segment_function
 from ropemodel.papers import friction as fr
 from ropemodel.papers import hajduk1992 as hj
-from ropemodel.quantity import Quantity
+from ropemodel.quantity import Quantity, non_negative, positive
 
 MODEL = "sheave"
 SRC = "Hajduk 1992"
 
-_pos = dict(low=0.0, low_open=True, positive=True)
-_nonneg = dict(low=0.0)
 
-S_0 = Quantity("S_0", "N", "tension of the rope entering the arc (slack side)", "kN", guess=1e4, **_pos)
-MU = Quantity("mu", "1", "friction coefficient of the rope on the lining (low-pressure limit with "
-              "friction = thirion)", warn_high=1.0, guess=0.2, **_pos)
-ALPHA = Quantity("alpha", "rad", "wrap angle (arc of contact)", "deg", warn_high=10 * math.pi, guess=math.pi,
-                 **_pos)
-OMEGA = Quantity("omega", "rad/s", "angular speed of the sheave (0: the slow-sheave limit)", guess=1.0, **_nonneg)
+S_0 = positive("S_0", "N", "tension of the rope entering the arc (slack side)", "kN", guess=1e4)
+MU = positive("mu", "1", "friction coefficient of the rope on the lining (low-pressure limit with "
+              "friction = thirion)", warn_high=1.0, guess=0.2)
+ALPHA = positive("alpha", "rad", "wrap angle (arc of contact)", "deg", warn_high=10 * math.pi, guess=math.pi)
+OMEGA = non_negative("omega", "rad/s", "angular speed of the sheave (0: the slow-sheave limit)", guess=1.0)
 # guesses: starting points of Newton when an inverse question makes these unknowns of an implicit block
 S_OUT = Quantity("S", "N", "tension of the rope leaving the arc", "kN", equation=f"{SRC}, eq. (19)",
                  low=0.0, low_open=True, positive=True, guess=2e4)
-S_RATIO = Quantity("S_ratio", "1", "tension ratio S/S_0 over the arc", equation="S/S_0", guess=2.0, **_pos)
+S_RATIO = positive("S_ratio", "1", "tension ratio S/S_0 over the arc", equation="S/S_0", guess=2.0)
 S_ERROR = Quantity("S_error", "1", "estimated relative error of S (method ode: the integrator's estimate, at most "
                    "rtol; closed: the next Newton step plus rounding)",
                    equation=f"{SRC}, eq. (19) (closed) or eq. (5)-(6) integrated (ode)", low=0.0, guess=1e-9)
-C_MU = Quantity("c_mu", "1/N", "pressure sensitivity of friction, mu(S) = mu/(1 + c_mu S) (0: constant)",
-                equation="1/(p_c R a)", guess=3e-5, **_nonneg)
-R_SHEAVE = Quantity("R", "m", "sheave radius to the rope centre", "mm", guess=1.0, **_pos)
-A_WIDTH = Quantity("a", "m", "width of the lining in contact with the rope", "mm", guess=0.03, **_pos)
+C_MU = non_negative("c_mu", "1/N", "pressure sensitivity of friction, mu(S) = mu/(1 + c_mu S) (0: constant)",
+                equation="1/(p_c R a)", guess=3e-5)
+R_SHEAVE = positive("R", "m", "sheave radius to the rope centre", "mm", guess=1.0)
+A_WIDTH = positive("a", "m", "width of the lining in contact with the rope", "mm", guess=0.03)
 
 
 def _compliance(name, what):
-    return Quantity(name, "1/N", f"{what} compliance of the lining", guess=1e-5, **_nonneg)
+    return non_negative(name, "1/N", f"{what} compliance of the lining", guess=1e-5)
 
 
 def _retardation(name, what):
-    return Quantity(name, "s", f"{what} retardation time of the lining (eta/modulus)", guess=0.01, **_nonneg)
+    return non_negative(name, "s", f"{what} retardation time of the lining (eta/modulus)", guess=0.01)
 
 
 define_effect(MODEL, "lining", "voigt", "the sheave's lining: Voigt bodies (visco-elastic) or rigid")
@@ -270,11 +267,11 @@ class PhysicalVoigtLining(AnisotropicVoigtLining):
     description = "Voigt lining from thickness, moduli, viscosities and the contact geometry"
     quantities = (
         *AnisotropicVoigtLining.quantities[:4], R_SHEAVE, A_WIDTH,
-        Quantity("h", "m", "thickness of the lining", "mm", guess=0.02, **_pos),
-        Quantity("E", "Pa", "Young's modulus of the lining", "MPa", guess=5e7, **_pos),
-        Quantity("G", "Pa", "shear modulus of the lining", "MPa", guess=2e7, **_pos),
-        Quantity("eta_R", "Pa*s", "viscosity of the lining in compression", "MPa*s", guess=1e5, **_nonneg),
-        Quantity("eta_T", "Pa*s", "viscosity of the lining in shear", "MPa*s", guess=1e5, **_nonneg),
+        positive("h", "m", "thickness of the lining", "mm", guess=0.02),
+        positive("E", "Pa", "Young's modulus of the lining", "MPa", guess=5e7),
+        positive("G", "Pa", "shear modulus of the lining", "MPa", guess=2e7),
+        non_negative("eta_R", "Pa*s", "viscosity of the lining in compression", "MPa*s", guess=1e5),
+        non_negative("eta_T", "Pa*s", "viscosity of the lining in shear", "MPa*s", guess=1e5),
         *AnisotropicVoigtLining.quantities[4:8],   # computed here (eq. (1), (6)): the same quantities
         S_OUT, S_RATIO, S_ERROR,
     )
@@ -328,8 +325,7 @@ class ThirionFriction(Submodel):
     description = "friction falling with contact pressure (Thirion's law)"
     citations = ("thirion1946",)
     quantities = (C_MU, R_SHEAVE, A_WIDTH,
-                  Quantity("p_c", "Pa", "pressure at which friction halves (Thirion's law)", "MPa", guess=1e6,
-                           **_pos))
+                  positive("p_c", "Pa", "pressure at which friction halves (Thirion's law)", "MPa", guess=1e6))
 
     def equations(self, v):
         # multiplied out: linear in c_mu and in p_c, R, a, so either direction is explicit

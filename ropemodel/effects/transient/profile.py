@@ -22,14 +22,13 @@ from ropemodel.effects.base import Submodel, define_effect, register
 from ropemodel.effects.transient.base import MODEL, TransientSubmodel, gathered_parameters
 from ropemodel.errors import InputError
 from ropemodel.papers import route as rt
-from ropemodel.quantity import Quantity
+from ropemodel.quantity import positive
 
 define_effect(MODEL, "dynamics", "none",
               "time-domain transient: none, start (drive ramps up), stop (ramps down) or a whole trip")
 
-_pos = dict(low=0.0, low_open=True, positive=True)
-T_RAMP = Quantity("t_ramp", "s", "duration of the drive's speed ramp", "s", guess=5.0, **_pos)
-T_END = Quantity("t_end", "s", "end of the simulated transient", "s", guess=60.0, **_pos)
+T_RAMP = positive("t_ramp", "s", "duration of the drive's speed ramp", "s", guess=5.0)
+T_END = positive("t_end", "s", "end of the simulated transient", "s", guess=60.0)
 
 
 @dataclass(frozen=True)
