@@ -145,7 +145,8 @@ def remedies(problem: SizingProblem, conflicting, p, lbx, ubx, x0) -> list[str]:
     q = problem.scene.built.quantities
     gfun = ca.Function("g", [problem.xs, problem.p], [problem.g])
     out = []
-    bases = list(dict.fromkeys(c.rsplit("_", 1)[0] if c.endswith(("_up", "_down")) else c for c in conflicting))
+    checks = [c.split(" @ ")[0] for c in conflicting]
+    bases = list(dict.fromkeys(c.rsplit("_", 1)[0] if c.endswith(("_up", "_down")) else c for c in checks))
     for base in bases:
         for name, sense in REMEDIES.get(base, ()):
             if name not in problem.params:

@@ -43,6 +43,7 @@ in N are divided by F_ref, margins in m are taken in m, ratio margins as they ar
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from functools import cached_property
 
 import casadi as ca
@@ -83,6 +84,60 @@ def _nlp_form(name: str, out: dict, args: dict):
     return out[name]
 
 
+@dataclass(frozen=True)
+class State:
+    """Where the checks are made: a label, the inputs it sets (``x_m``, ``a_h``), the directions of
+    travel whose checks apply there (a ramp belongs to one direction's trip)."""
+
+    label: str
+    values: dict
+    directions: tuple[str, ...] = ("up", "down")
+
+
+def states(scene) -> list[State]:
+    """The states every check must hold in.
+
+    One state for the paper's straight route in steady motion.  On a route of segments the load on
+    each segment (its middle: the forces are the same anywhere on it), in steady motion; with a trip's
+    ramps (``dynamics = "trip"``, ``t_ramp``) also the start and the stop of each direction's trip with
+    the ramp's acceleration, where they happen (an upward trip starts at the return sheave's end).
+    """
+    v = scene.parameters
+    lengths = [v[f"L_{i}"] for i in range(1, 10_000) if f"L_{i}" in v]
+    steady = {"a_h": 0.0} if "a_h" in v else {}
+    if not lengths:
+        out, far, near = [State("", dict(steady))], {}, {}
+    else:
+        ends = np.cumsum(lengths)
+        mids = [end - L / 2 for end, L in zip(ends, lengths)]
+        out = [State(f"segment {j}", {"x_m": x, **steady}) for j, x in enumerate(mids, start=1)]
+        far, near = {"x_m": mids[-1]}, {"x_m": mids[0]}
+    if scene.effects.get("dynamics") == "trip" and "a_h" in v:
+        a = v["v_pj"] / v["t_ramp"]        # the same in a triangular profile (a route shorter than v_pj t_ramp)
+        out += [State("start of an upward trip", {**far, "a_h": a}, ("up",)),
+                State("stop of an upward trip", {**near, "a_h": -a}, ("up",)),
+                State("start of a downward trip", {**near, "a_h": a}, ("down",)),
+                State("stop of a downward trip", {**far, "a_h": -a}, ("down",))]
+    return out
+
+
+def _label(check: str, state: State) -> str:
+    return f"{check} @ {state.label}" if state.label else check
+
+
+def _base(constraint: str) -> str:
+    """The check's output name of a constraint (``slip_margin_up @ segment 2`` → ``slip_margin_up``)."""
+    return constraint.split(" @ ")[0]
+
+
+def _applies(check: str, state: State, all_states) -> bool:
+    """A direction's check applies in the states of that direction; one without a direction (the drum)
+    once."""
+    if check.endswith(("_up", "_down")):
+        return check.rsplit("_", 1)[1] in state.directions
+    return state is all_states[0]
+
+
 def load_sizing(path, emit: bool = True) -> "Scene":
     """Load a scene file for sizing (:func:`prepare`): no starting design needed; warnings of the scene
     as sizing reads it (``emit=False``: kept in ``scene.warnings`` for the caller to print)."""
@@ -109,6 +164,8 @@ def prepare(scene) -> "Scene":
     effects = {"checks": "design"}
     if scene.effects.get("power") == "none" and ("v_pj" in scene.unused or "v_pj" in scene.parameters):
         effects["power"] = "drive"
+    if "t_ramp" in scene.unused or scene.effects.get("dynamics") == "trip":   # size through a trip's ramps
+        effects.update(dynamics="trip", inertia="rigid", power="drive")
     optional = SIZED + (D_OPTIONAL if scene.effects.get("lining", "none") in D_OPTIONAL_LININGS else ())
     if all(scene.effects.get(k) == v for k, v in effects.items()) and not (set(scene.absent) - set(optional)):
         return scene
@@ -139,13 +196,16 @@ class SizingProblem:
         fun = self.problem.function
         self.params = [k for k in self.problem.knowns if k not in VARIABLES and k not in self.problem.given]
         self.p0 = np.array([scene.parameters[k] for k in self.params], dtype=float)
-        self.constraints = margin_names(self.problem.unknowns)
+        #: where the checks are made: the load on every segment of a route, and a trip's ramps (:func:`states`)
+        self.states = states(scene)
+        margins = margin_names(self.problem.unknowns)
+        self.constraints = [_label(c, st) for st in self.states for c in margins if _applies(c, st, self.states)]
         q = scene.built.quantities
         g_m = scene.parameters.get("G_m", 1e5)
         self.F_ref = max(0.1 * abs(g_m), 1e3)
         self.x_scale = np.array([0.01, self.F_ref, 1.0])
         unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
-        self.units = {c: ("N" if c.startswith(RATIO_FORMS) else q[c].unit) for c in self.constraints}
+        self.units = {c: ("N" if c.startswith(RATIO_FORMS) else q[_base(c)].unit) for c in self.constraints}
         self.g_scale = np.array([unit_scale[self.units[c]] for c in self.constraints])
 
         xs = ca.MX.sym("x", 3)
@@ -154,9 +214,16 @@ class SizingProblem:
         args = {k: p[i] for i, k in enumerate(self.params)}
         args.update({k: x_si[i] for i, k in enumerate(VARIABLES)})
         args.update({k: 0.0 for k in self.problem.given})   # drum_margin = 0 when D is a result
-        out = fun.call(args)
+        at = [fun.call({**args, **st.values}) for st in self.states]
+        out = at[0]
         self.xs, self.p = xs, p
-        self.g = ca.vertcat(*[_nlp_form(c, out, args) / s for c, s in zip(self.constraints, self.g_scale)])
+        g, self._margin_exprs = [], []
+        for st, o in zip(self.states, at):
+            for c in margins:
+                if _applies(c, st, self.states):
+                    g.append(_nlp_form(c, o, args))
+                    self._margin_exprs.append(o[c])
+        self.g = ca.vertcat(*g) / ca.DM(self.g_scale)
         # reference mass per metre: the scene's rope at d = 10 mm (fixed number: the weights are constants)
         m_at = ca.Function("m", [xs, p], [out["m_l"]])
         self.m_ref = float(m_at(ca.DM([1.0, 1.0, 1.0]), self.p0))
@@ -211,10 +278,15 @@ class SizingProblem:
         """Scaled constraints g(x, p)."""
         return ca.Function("g", [self.xs, self.p], [self.g], ["x", "p"], ["g"])
 
+    @cached_property
+    def margin_function(self) -> ca.Function:
+        """Every constraint's margin (the check's own definition and unit, SI) as a Function (x, p)."""
+        return ca.Function("margins", [self.xs, self.p], [ca.vertcat(*self._margin_exprs)])
+
     def margins(self, xs, p=None) -> dict[str, float]:
-        """Every margin (the checks' own definition and unit, SI) at scaled ``xs``."""
-        values = self.evaluate(xs, p)
-        return {c: values[c] for c in self.constraints}
+        """Every margin (the checks' own definition and unit, SI) at scaled ``xs``, for every state."""
+        values = np.asarray(self.margin_function(xs, self.p0 if p is None else p)).ravel()
+        return dict(zip(self.constraints, map(float, values)))
 
     def evaluate(self, xs, p=None) -> dict[str, float]:
         """Every scene output (SI) at scaled ``xs``."""

@@ -2,32 +2,41 @@
 
 Each point is one continuous sizing optimisation of the :mod:`optimisation`
 package's NLP (:class:`optimisation.problem.SizingProblem`: the scene's own
-equations, built once; each point's values are the NLP's parameters), solved
-with IPOPT at the package's options.
+equations, built once; each point's values are the NLP's parameters).  Points
+are taken in order (on a grid the last axis varies fastest), so each point's
+predecessor is its neighbour.
 
-``warm=True`` starts each optimisation from the optimum of the previous point
-(its neighbour on the grid: the last axis varies fastest) *with its
-multipliers* and IPOPT's warm-start settings (``warm_start_init_point``, small
-barrier parameter and bound pushes): an interior-point method given only a
-primal start moves back to the central path and gains little; given the
-multipliers it typically needs a third of the iterations
-(``studies/sizing_map.py`` measures it).  ``warm=False`` starts every point
-from the scene's design.  Either way a point whose start fails is solved again
+``method="active-set"`` (the default, with ``warm=True``): neighbouring optima
+share their active checks.  :class:`optimisation.fastmap.ActiveSetMap` solves
+batches of points by Newton on a solved neighbour's active set and keeps a point
+only where it is a KKT point of its own NLP (inactive checks hold, multipliers of
+the right sign); IPOPT, warm-started, solves the points no known active set
+explains, and points without a design are certified by the least-violation
+problem.  The answers are IPOPT's (the same feasibility, the optimum to IPOPT's
+tolerance; exact at a vertex), at a fraction of the cost
+(``studies/sizing_map_speed.py``).
+
+``method="ipopt"``: IPOPT at every point.  ``warm=True`` starts it from the
+optimum of the previous point *with its multipliers* and IPOPT's warm-start
+settings (``warm_start_init_point``, small barrier parameter and bound pushes):
+an interior-point method given only a primal start moves back to the central
+path and gains little; given the multipliers it needs fewer iterations
+(``studies/sizing_map.py`` measures it).  ``warm=False`` (either method) starts
+every point from the scene's design.  A point whose start fails is solved again
 by the package's multi-start :func:`optimisation.design.solve_best`, so the
-start changes cost, not the answer (both are IPOPT optima at tolerance 1e-10).
-Points with no feasible design are kept with ``feasible`` False and missing d,
-F_nwl, stroke.
+start changes cost, not the answer (IPOPT optima at tolerance 1e-10).  Points
+with no feasible design are kept with ``feasible`` False and missing d, F_nwl,
+stroke.
 """
 
 from __future__ import annotations
-
-import math
 
 import numpy as np
 import pandas as pd
 from tqdm.auto import tqdm
 
 from optimisation.design import solve_best
+from optimisation.fastmap import ActiveSetMap
 from optimisation.ipopt import solve_continuous
 from optimisation.problem import VARIABLES, SizingProblem
 from ropemodel.errors import InputError
@@ -36,14 +45,44 @@ from ropemodel.sweep.validate import check_ranges, check_rules
 from ropemodel.units import label
 
 DESIGN_UNITS = {"d": "mm", "F_nwl": "kN", "stroke": "mm"}
+#: points per chunk (a table of points is read in chunks; the active-set path keeps its state across them)
+CHUNK = 4096
+METHODS = ("active-set", "ipopt")
 
 
-def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, progress: bool | None = None) -> pd.DataFrame:
+def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, method: str = "active-set",
+                 progress: bool | None = None) -> pd.DataFrame:
     """Continuous sizing optimum at every point; columns: the varied inputs, ``d [mm]``, ``F_nwl [kN]``,
-    ``stroke [mm]``, ``feasible``, ``iterations`` (IPOPT, all attempts) and ``seconds`` (solver time)."""
+    ``stroke [mm]``, ``feasible``, ``iterations`` (IPOPT, all attempts; 0 where the point was solved on a
+    neighbour's active set) and ``seconds`` (solver time; a batch solved together shares its time).
+
+    ``method="active-set"`` (default, with ``warm``): :class:`optimisation.fastmap.ActiveSetMap`;
+    ``"ipopt"``: IPOPT at every point.  ``warm=False``: IPOPT at every point from the scene's design.
+    """
+    if method not in METHODS:
+        raise InputError(f"method {method!r}: valid methods: {', '.join(METHODS)}")
     problem = SizingProblem(scene)
     q = scene.built.quantities
-    inputs = {k: q[k] for k in problem.params}
+    pts = _points(scene, problem, vary, points)
+    parts = []
+    bar = tqdm(total=pts.n, unit="opt", desc="sizing", disable=(not progress) if progress is not None else None)
+    fast = ActiveSetMap(problem, pts.names) if warm and method == "active-set" else None
+    prev = None
+    for start in range(0, pts.n, CHUNK):
+        chunk = pts.chunk(start, min(pts.n, start + CHUNK))
+        if fast is not None:
+            res = fast.run(np.column_stack([chunk[k] for k in pts.names]), done=bar.update)
+            x, feasible, iterations, seconds = res.x, res.feasible, res.iterations, res.seconds
+        else:
+            x, feasible, iterations, seconds, prev = _ipopt_points(problem, pts.names, chunk, warm, prev, bar)
+        parts.append(_frame(problem, q, chunk, x, feasible, iterations, seconds))
+    bar.close()
+    return pd.concat(parts, ignore_index=True)
+
+
+def _points(scene, problem, vary, points):
+    """The checked points of a sizing sweep (a grid from ``vary`` or a table)."""
+    inputs = {k: scene.built.quantities[k] for k in problem.params}
     if isinstance(vary, pd.DataFrame):
         points, vary = vary, None
     if (vary is None) == (points is None):
@@ -54,31 +93,38 @@ def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, progress: 
     pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=scene.built.outputs)
     check_ranges(pts, inputs)
     check_rules(scene.built, pts, dict(scene.parameters))
-    rows = []
-    prev = None
-    bar = tqdm(total=pts.n, unit="opt", desc="sizing", disable=(not progress) if progress is not None else None)
-    for start in range(0, pts.n, 4096):
-        chunk = pts.chunk(start, min(pts.n, start + 4096))
-        for i in range(len(chunk[pts.names[0]])):
-            values = {k: float(chunk[k][i]) for k in pts.names}
-            p = problem.p_of(values)
-            sol = solve_continuous(problem, p, polish=False, start=prev if warm else None)
-            iters, secs = sol.iterations, sol.seconds
-            if not sol.feasible:  # the package's multi-start (from the scene's design first)
-                sol = solve_best(problem, p)
-                iters, secs = iters + sol.iterations, secs + sol.seconds
-            ok = sol.feasible
-            if ok:
-                prev = sol.start
-            design = problem.to_si(sol.xs) if ok else dict.fromkeys(VARIABLES, math.nan)
-            row = {label(k, q[k].display_unit): float(q[k].to_display(v)) for k, v in values.items()}
-            for k in VARIABLES:
-                row[label(k, DESIGN_UNITS[k])] = design[k] * (1e3 if DESIGN_UNITS[k] == "mm" else 1e-3)
-            row.update(feasible=ok, iterations=iters, seconds=secs)
-            rows.append(row)
-            bar.update(1)
-    bar.close()
-    return pd.DataFrame(rows)
+    return pts
+
+
+def _ipopt_points(problem, names, chunk, warm, prev, bar):
+    """IPOPT at every point of ``chunk`` (warm: from the previous optimum and its multipliers)."""
+    n = len(chunk[names[0]])
+    x, feasible = np.full((n, 3), np.nan), np.zeros(n, bool)
+    iterations, seconds = np.zeros(n, int), np.zeros(n)
+    for i in range(n):
+        p = problem.p_of({k: float(chunk[k][i]) for k in names})
+        sol = solve_continuous(problem, p, polish=False, start=prev if warm else None)
+        iterations[i], seconds[i] = sol.iterations, sol.seconds
+        if not sol.feasible:  # the package's multi-start (from the scene's design first)
+            sol = solve_best(problem, p)
+            iterations[i] += sol.iterations
+            seconds[i] += sol.seconds
+        if sol.feasible:
+            prev = sol.start
+            x[i], feasible[i] = sol.xs, True
+        bar.update(1)
+    return x, feasible, iterations, seconds, prev
+
+
+def _frame(problem, q, chunk, x, feasible, iterations, seconds) -> pd.DataFrame:
+    """The sweep's columns for one chunk (scaled designs ``x``; NaN where there is none)."""
+    cols = {label(k, q[k].display_unit): np.asarray(q[k].to_display(np.asarray(v, dtype=float)), dtype=float)
+            for k, v in chunk.items()}
+    si = np.where(feasible[:, None], x, np.nan) * problem.x_scale
+    for i, k in enumerate(VARIABLES):
+        cols[label(k, DESIGN_UNITS[k])] = si[:, i] * (1e3 if DESIGN_UNITS[k] == "mm" else 1e-3)
+    cols.update(feasible=feasible.astype(bool), iterations=iterations.astype(int), seconds=seconds.astype(float))
+    return pd.DataFrame(cols)
 
 
 def sizing_function(scene, warm: bool = True):

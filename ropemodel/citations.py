@@ -5,7 +5,7 @@ from __future__ import annotations
 CITATIONS: dict[str, str] = {
     "krauze2025": (
         "K. Krauze, K. Mucha, T. Wydro, R. Klempka (2025). Model and analysis of rope winch "
-        "operation in underground rail transport. Archives of Mining Sciences. CC-BY 4.0."
+        "operation in underground rail transport. Archives of Mining Sciences. doi:10.24425/ams.2025.156290. CC-BY 4.0."
     ),
     "hajduk1992": (
         "J. Hajduk (1992). Theoretical distribution of the tension in the rope encircling the "

@@ -270,6 +270,19 @@ def _fmt_limit(x: float) -> str:
     return "inf" if x == math.inf else "-inf" if x == -math.inf else f"{x:g}"
 
 
+def worst_position(scene: Scene, output: str = "F_C_up") -> float:
+    """The load's place x_m [m] on a route of segments where ``output`` is largest.
+
+    The forces are constant along a segment (the load's weight and resistance act on its segment),
+    so the middle of each segment is evaluated; ties go to the segment nearer the drive.
+    """
+    lengths = [scene.parameters[f"L_{i}"] for i in range(1, 10_000) if f"L_{i}" in scene.parameters]
+    ends = np.cumsum(lengths)
+    mids = ends - np.asarray(lengths) / 2
+    values = Problem(scene).evaluate({"x_m": mids})[output]
+    return float(mids[int(np.argmax(values))])
+
+
 def run(scene: Scene, values: dict | None = None) -> Result:
     """Forward solve: every output of the scene from its parameters.
 
@@ -340,4 +353,4 @@ def solve(scene: Scene, given: dict, find, bare: str = "si") -> Result:
     return Problem(scene, given, find, bare=bare).solve()
 
 
-__all__ = ["Problem", "reach", "run", "solve"]
+__all__ = ["Problem", "reach", "run", "solve", "worst_position"]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from ropemodel.errors import InputError
 from ropemodel.units import factor, to_si
@@ -24,7 +25,8 @@ class Quantity:
     warn_low, warn_high: the range *usual for the field* (SI); outside it a valid value gets a warning
         that states this range and ``usual_source``, where the range comes from.
     usual_source: where the usual range comes from (documented in the README's scene section).
-    unlimited: ``math.inf`` is a valid value, meaning "no limit" (e.g. a tensioner's stroke not given).
+    unlimited: ``math.inf`` is a valid value, meaning "no limit" (e.g. a tensioner's stroke not given),
+        shown as ``unlimited_text``.
     equation: where the quantity is defined (``"Krauze et al. 2025, eq. (13)"``).
     positive: strictly positive unknown; nonlinear blocks solve for it in log space.
     guess: starting value for Newton when the quantity is an unknown of a nonlinear block.
@@ -44,6 +46,7 @@ class Quantity:
     warn_high: float = math.inf
     usual_source: str = ""
     unlimited: bool = False
+    unlimited_text: str = "unlimited"
     equation: str = ""
     positive: bool = False
     guess: float = 1.0
@@ -64,7 +67,10 @@ class Quantity:
         return value * factor(self.unit, self.display_unit)
 
     def to_si(self, value, bare: str = "refuse") -> float:
-        """``value`` (string with unit, pint Quantity or number) in SI; see :func:`ropemodel.units.to_si`."""
+        """``value`` (string with unit, pint Quantity or number) in SI; see :func:`ropemodel.units.to_si`.
+        The float ``math.inf`` is accepted for an ``unlimited`` quantity (its "not given")."""
+        if self.unlimited and isinstance(value, float) and value == math.inf:
+            return value
         return to_si(self.name, value, self.unit, self.display_unit, bare)
 
     @property
@@ -75,7 +81,7 @@ class Quantity:
     def show(self, value: float) -> str:
         """``value`` (SI) as text in the display unit: ``"467 kN"``, ``"unlimited"``."""
         if self.unlimited and value == math.inf:
-            return "unlimited"
+            return self.unlimited_text
         return f"{_fmt(self.to_display(value))}{self.unit_text}"
 
     def range_text(self) -> str:
@@ -132,3 +138,14 @@ def _fmt(x: float) -> str:
     if math.isinf(x):
         return "inf" if x > 0 else "-inf"
     return f"{x:.6g}"
+
+
+def positive(name: str, unit: str, description: str, display: str | None = None, **kw: Any) -> Quantity:
+    """A strictly positive quantity: valid range (0, ∞); as an unknown of a nonlinear block it is
+    solved for in log space.  Other fields as :class:`Quantity`."""
+    return Quantity(name, unit, description, display, low=0.0, low_open=True, positive=True, **kw)
+
+
+def non_negative(name: str, unit: str, description: str, display: str | None = None, **kw: Any) -> Quantity:
+    """A quantity with valid range [0, ∞).  Other fields as :class:`Quantity`."""
+    return Quantity(name, unit, description, display, low=0.0, **kw)

@@ -132,7 +132,7 @@ def _unit(q) -> str:
 
 
 def _cell(q, value) -> str:
-    return "unlimited" if value == math.inf else f"{q.to_display(value):.6g}"
+    return q.unlimited_text if value == math.inf else f"{q.to_display(value):.6g}"
 
 
 def _row(name, q, value, source="") -> str:

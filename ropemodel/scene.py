@@ -265,7 +265,7 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
     params, checks, unused, origin = _parameters(model, given, bare, found, notes)
     _route_parameters(model, route_values, bare, params, origin, found)
     if values:
-        _set_values(model, values, values_bare, values_origin, params, origin, found, notes)
+        _set_values(model, values, values_bare, values_origin, params, origin, unused, found, notes)
     defaults, absent = _missing(model, params, origin, tuple(optional), found)
     for problem in model.problems(params):
         found.add(problem)
@@ -317,11 +317,15 @@ def _route(data: dict, effects: dict, given: dict, found: Problems):
             if key not in seg:
                 found.add(f"[[route]] segment {i} has no {key} (e.g. {key} = "
                           f"{chr(34)}{'400 m' if key == 'length' else '10 deg'}{chr(34)})")
+                values[ROUTE_KEYS[key].format(i=i)] = (None, None)   # said: not "missing" again
     return tuple("mu_winding" in seg for seg in segments), values
 
 
 def _route_parameters(model: Model, values: dict, bare: str, params: dict, origin: dict, found: Problems) -> None:
     for name, (label, value) in values.items():
+        if label is None:
+            origin[name] = "route (missing)"
+            continue
         q = model.quantities[name]
         try:
             params[name] = to_si(label, value, q.unit, q.display_unit, bare)
@@ -401,7 +405,7 @@ def _parameters(model: Model, given: dict, bare: str, found: Problems, notes: li
 
 
 def _set_values(model: Model, values: dict, bare: str, origin_label: str, params: dict, origin: dict,
-                found: Problems, notes: list) -> None:
+                unused: dict, found: Problems, notes: list) -> None:
     """Parameters set on top of the file (``--set``): they replace the file's values."""
     for key, value in values.items():
         problem = _settable(model, key, origin_label)
@@ -416,7 +420,8 @@ def _set_values(model: Model, values: dict, bare: str, origin_label: str, params
             origin[key] = f"{origin_label} (refused)"
             continue
         if key not in model.parameters:
-            notes.append(f"{key} is not used: it belongs to {' or '.join(model.owners(key)) or 'no effect'}")
+            unused[key] = " or ".join(model.owners(key)) or "no effect of this model"
+            notes.append(f"{key} is not used: it belongs to {unused[key]}")
             continue
         params[key], origin[key] = si, origin_label
         note = q.unusual(si)

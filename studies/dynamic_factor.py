@@ -37,12 +37,12 @@ import pandas as pd  # noqa: E402
 
 import ropemodel as rm  # noqa: E402
 from ropemodel.dynamics import simulate  # noqa: E402
-from ropemodel.dynamics.chain import G_N  # noqa: E402
 from ropemodel.studykit import cli, output_dir, save_figure
 
 NAME = "dynamic_factor"
 FIGURES = Path(__file__).resolve().parent / "figures"
 DATA = resources.files("ropemodel.data")
+G_N = 9.80665  # standard gravity [m/s²]
 CASES = {"start-up, upward": "winch_start.toml", "braking, downward": "winch_start_brake.toml"}
 
 

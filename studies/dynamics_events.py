@@ -32,11 +32,11 @@ from scipy.optimize import brentq  # noqa: E402
 
 import ropemodel as rm  # noqa: E402
 from ropemodel.dynamics import simulate  # noqa: E402
-from ropemodel.dynamics.chain import G_N  # noqa: E402
 from ropemodel.studykit import cli, output_dir, save_figure
 
 NAME = "dynamics_events"
 DATA = resources.files("ropemodel.data")
+G_N = 9.80665  # standard gravity [m/s²]
 RTOL = 1e-12
 
 

@@ -1,7 +1,7 @@
 """Hajduk (1992) Fig. 5: tension ratio S/S_0 along the arc of a Voigt-lined sheave, with Euler–Eytelwein.
 
 The paper's parameter ranges: μ = 0.2 and 0.3, λω = (0.01 … 2)π, Q = 1e-5 and 1e-2 1/N,
-here with S_0 = 10 kN (q = Q S_0 = 0.1 and 100, the MODELS.md reference table).  Curves by
+here with S_0 = 10 kN (q = Q S_0 = 0.1 and 100, the reference table of docs/physics.md §3).  Curves by
 the closed form (sheave scenes, method "closed"); the default ODE path (method "ode") is
 drawn as markers for every curve and its largest deviation is written to the CSV.  The
 reference-table points are checked and marked.
@@ -31,7 +31,7 @@ S_0 = 1e4
 MUS = (0.2, 0.3)
 QS = (1e-5, 1e-2)
 K_OVER_PI = (0.01, 0.1, 0.5, 2.0)
-# MODELS.md §2: (mu, q, k/pi) -> s(pi/2), s(pi), s(2pi)
+# docs/physics.md §3: (mu, q, k/pi) -> s(pi/2), s(pi), s(2pi)
 TABLE = {(0.2, 0.1, 0.01): (1.212743, 1.597677, 2.685966), (0.2, 0.1, 2.0): (1.329433, 1.749747, 2.921169),
          (0.2, 100.0, 0.01): (0.036301, 0.038781, 0.043839), (0.3, 0.1, 0.5): (1.460686, 2.133928, 4.312762),
          (0.3, 100.0, 2.0): (0.117940, 0.086236, 0.071543)}
@@ -68,7 +68,7 @@ def table_check() -> pd.DataFrame:
         for a, r in zip((math.pi / 2, math.pi, 2 * math.pi), ref):
             got = rm.run(sc.with_values({"alpha": a}))["S_ratio"]
             rows.append({"mu [-]": mu, "q [-]": q, "lambda*omega/pi [-]": kp, "alpha [deg]": math.degrees(a),
-                         "MODELS.md [-]": r, "closed form [-]": got, "6 digits agree": round(got, 6) == r})
+                         "reference [-]": r, "closed form [-]": got, "6 digits agree": round(got, 6) == r})
     return pd.DataFrame(rows)
 
 
@@ -85,7 +85,7 @@ def plot(df: pd.DataFrame, check: pd.DataFrame, path: Path) -> None:
             g = d[d["lambda*omega/pi [-]"] == d["lambda*omega/pi [-]"].iloc[0]]
             ax.plot(g["alpha [deg]"], g["e^(mu alpha) [-]"], "k--", label=r"Euler–Eytelwein $e^{\mu\alpha}$")
             t = check[(check["mu [-]"] == mu) & (check["q [-]"] == Q * S_0)]
-            ax.plot(t["alpha [deg]"], t["MODELS.md [-]"], "rx", ms=8, label="reference table")
+            ax.plot(t["alpha [deg]"], t["reference [-]"], "rx", ms=8, label="reference table")
             ax.set_yscale("log")
             ax.set_title(f"μ = {mu}, Q = {Q:g} 1/N (q = {Q * S_0:g})")
             ax.grid(True, which="both", alpha=0.3)

@@ -48,10 +48,11 @@ BASES = {
     "curve": ("capstan_li_experiment", ["--to", "100N", "-n", "5"], {}),
     "identify": ("capstan_li_experiment", ["{d}/data.csv"], {"data.csv": CAPSTAN_DATA}),
     "simulate": ("winch_start", [], {}),
-    "sweep": ("krauze2025_fig9", ["--vary", "alpha_u=0deg:20deg:3", "-o", "{d}/out.csv"], {}),
+    "sweep": ("krauze2025_fig9", ["--vary", "alpha_u=5deg:20deg:3", "-o", "{d}/out.csv"], {}),
     "sensitivity": ("krauze2025_fig9", ["--outputs", "F_C_up"], {}),
-    # "report": ..., "trip": ...  (commands being added by others: add their bases here and they
-    # get every scene mutation below; their own options go in OPTION_CASES)
+    "trip": ("trip_fig9", [], {}),
+    "report": ("krauze2025_fig9", ["-o", "{d}/report.html"], {}),
+    # a new command: its base here gets every scene case; its own options in _fuzz_cli.option_cases
 }
 #: scenes run also through 'run', so that every model's tables and numerics are fuzzed
 EXTRA_RUN_SCENES = ("sheave_thirion", "capstan_li_experiment")
@@ -134,6 +135,8 @@ def bad_values(q) -> list[tuple[str, str, frozenset]]:
     else:
         vals.append(("unit on a pure number", '"3 kN"', INPUT))
     vals += [(f"outside the valid range ({v})", v, INPUT) for v in _outside(q)]
+    if getattr(q, "unlimited", False):   # inf says "unlimited" there (e.g. the tensioner's stroke)
+        vals = [v for v in vals if v[0] != "inf"]
     return vals
 
 
@@ -257,7 +260,9 @@ def scene_value_cases(rng: random.Random) -> list[Case]:
             key = rng.choice(dimensional if label in ("bare number", "bare text number", "wrong dimension")
                              else keys)
             options = {lb: (r, c) for lb, r, c in bad_values(q[key])}
-            raw, codes = options.get(label, kinds[label])
+            if label not in options:   # e.g. inf, which an unlimited quantity takes
+                continue
+            raw, codes = options[label]
             new = set_value(text, "parameters", key, raw)
             argv, files = _scene_argv(command, name, new)
             cases.append(Case(command, "scene", f"{name}: {key} = {label} (drawn)", argv, files, codes))

@@ -18,7 +18,7 @@ def option_cases() -> list[Case]:
     cases = [Case("(none)", "option", what, argv) for what, argv in (
         ("no command", []), ("unknown command", ["rn"]), ("unknown global option", ["--bogus", "run"]),
         ("only -q", ["-q"]), ("a scene but no command", ["example"]))]
-    for command in ("run", "solve", "size", "curve", "identify", "simulate", "sweep", "sensitivity"):
+    for command in ("run", "solve", "size", "curve", "identify", "simulate", "sweep", "sensitivity", "trip", "report"):
         cases += [_opt(command, what, extra) for what, extra in (
             ("unknown option", ["--bogus"]), ("--set without =", ["--set", "G_m"]),
             ("--set with no name", ["--set", "=3"]), ("--set with no value", ["--set", "G_m="]),
@@ -27,6 +27,12 @@ def option_cases() -> list[Case]:
             ("--set inf", ["--set", "mu=inf"]), ("--set a unit that is no unit", ["--set", "mu=0.2 furlong"]),
         )]
     cases += _run_solve_size() + _curve() + _identify_options() + _sweep_options() + _sensitivity_options()
+    cases += [_opt("trip", what, extra, scene=scene) for what, extra, scene in (
+        ("--direction unknown", ["--direction", "sideways"], None), ("a capstan scene", [], "capstan_li_experiment"),
+        ("a sheave scene", [], "sheave_thirion"))]
+    cases += [_opt("report", what, argv=argv) for what, argv in (
+        ("nothing to write", []), ("-o and --pdf the same file", ["-o", "{d}/r.pdf", "--pdf", "{d}/r.pdf"]),
+        ("--discrete unknown", ["-o", "{d}/r.html", "--discrete", "best"]))]
     cases.append(_opt("simulate", "a scene without dynamics", scene="example"))
     cases.append(_opt("simulate", "--set t_end bare", ["--set", "t_end=2"]))
     cases.append(_opt("simulate", "--set t_end negative", ["--set", "t_end=-2s"]))
@@ -99,7 +105,7 @@ def _identify_options() -> list[Case]:
 
 def _sweep_options() -> list[Case]:
     out = ["-o", "{d}/out.csv"]
-    vary = ["--vary", "alpha_u=0deg:20deg:3"]
+    vary = ["--vary", "alpha_u=5deg:20deg:3"]
     rows = (("--vary without =", ["--vary", "alpha_u"] + out), ("--vary bare angles", ["--vary", "alpha_u=0:45:10"] + out),
             ("--vary N = 0", ["--vary", "alpha_u=0deg:45deg:0"] + out), ("--vary N < 0", ["--vary", "alpha_u=0deg:45deg:-1"] + out),
             ("--vary N fraction", ["--vary", "alpha_u=0deg:45deg:2.5"] + out),
@@ -236,10 +242,17 @@ def output_cases() -> list[Case]:
     for what, path, files, codes in paths:
         cases.append(_opt("curve", f"-o {what}", ["-o", path], files=files, codes=codes, kind="output"))
         cases.append(_opt("simulate", f"-o {what}", ["-o", path], files=files, codes=codes, kind="output"))
-        cases.append(_opt("sweep", f"-o {what}", argv=["--vary", "alpha_u=0deg:20deg:3", "-o", path], files=files,
+        cases.append(_opt("sweep", f"-o {what}", argv=["--vary", "alpha_u=5deg:20deg:3", "-o", path], files=files,
                           codes=codes, kind="output"))
         cases.append(_opt("sweep", f"--sizing -o {what}", argv=["--vary", "G_m=400kN,467kN", "--sizing", "-o", path],
                           files=files, codes=codes, scene="winch_sizing_fig9", kind="output"))
+        cases.append(_opt("trip", f"-o {what}", ["-o", path], files=files, codes=codes, kind="output"))
+        html = path.replace(".csv", ".html") if path.endswith(".csv") else path
+        cases.append(_opt("report", f"-o {what}", argv=["-o", html], codes=codes, kind="output",
+                          files={k.replace(".csv", ".html"): v for k, v in files.items()}))
+        pdf = path.replace(".csv", ".pdf") if path.endswith(".csv") else path
+        cases.append(_opt("report", f"--pdf {what}", argv=["--pdf", pdf], codes=codes, kind="output",
+                          files={k.replace(".csv", ".pdf"): v for k, v in files.items()}))
         png = path.replace(".csv", ".png") if path.endswith(".csv") else path
         cases.append(_opt("sensitivity", f"--plot {what}", ["--plot", png], codes=codes, kind="output",
                           files={k.replace(".csv", ".png"): v for k, v in files.items()}))

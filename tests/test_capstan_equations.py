@@ -1,4 +1,4 @@
-"""Li et al. capstan stiffness, eq. (6)-(27), against MODELS.md §3, limits and hand derivations."""
+"""Li et al. capstan stiffness, eq. (6)-(27), against docs/physics.md §5, limits and hand derivations."""
 
 import math
 
@@ -48,7 +48,7 @@ def test_tight_side_is_continuous_at_its_switch():
 
 
 def test_slack_side_published_jump_reproduced():
-    # MODELS.md §3: F_p = 60 N, alpha_2 = 64 deg: the slack term jumps 90 369 -> 98 777 N/m at F_T = 14.62 N
+    # docs/physics.md §5: F_p = 60 N, alpha_2 = 64 deg: the slack term jumps 90 369 -> 98 777 N/m at F_T = 14.62 N
     F_sw = li.slack_switch_load(F_P, MU, A0)
     assert F_sw == pytest.approx(14.62, abs=0.005)
     assert li.slack_slip_angle(F_sw, F_P, MU) == pytest.approx(A0, rel=1e-13)

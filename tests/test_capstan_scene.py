@@ -97,7 +97,7 @@ def test_published_jump_in_the_scene(scene):
     assert below == pytest.approx(li.slack_side_stiffness_slipping(F2, p["F_p"], p["mu"], p["EA"], p["R"], p["L"]),
                                   rel=1e-9)
     assert above == pytest.approx(li.slack_side_stiffness_saturated(p["mu"], p["EA"], p["R"], p["L"], a2), rel=1e-9)
-    # the rotation before the switch is 0.04 deg, so the MODELS.md values (at alpha_2 = alpha_0) hold to 0.1 %
+    # the rotation before the switch is 0.04 deg, so the docs/physics.md §5 values (at alpha_2 = alpha_0) hold to 0.1 %
     assert below == pytest.approx(90369, rel=1e-3) and above == pytest.approx(98777, rel=1e-3)
 
 

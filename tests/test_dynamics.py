@@ -18,18 +18,19 @@ from scipy.optimize import brentq, curve_fit, least_squares
 
 import ropemodel as rm
 from ropemodel.dynamics import simulate
-from ropemodel.dynamics.chain import G_N
 
 DATA = resources.files("ropemodel.data")
+G_N = 9.80665            # standard gravity [m/s²]
 
 
 def scene(name="winch_start.toml", effects=None, params=None, numerics=None):
-    """A built-in dynamic scene with overrides."""
+    """A built-in dynamic scene with overrides (a parameter set to None is left out)."""
     import tomllib
 
     d = tomllib.loads(DATA.joinpath(name).read_text())
     d["effects"].update(effects or {})
     d["parameters"].update(params or {})
+    d["parameters"] = {k: val for k, val in d["parameters"].items() if val is not None}
     d.setdefault("numerics", {}).update(numerics or {})
     return rm.from_dict(d, bare="si")
 
@@ -38,15 +39,16 @@ def scene(name="winch_start.toml", effects=None, params=None, numerics=None):
 
 @pytest.mark.parametrize("travel", ["up", "down"])
 def test_start_settles_on_static_forces(travel):
-    """Ends at constant speed: F_C, F_S within 0.5 % of Krauze eq. (12)-(13), default damping."""
-    sc = scene(effects={"travel": travel}, params={"t_end": "100 s"})
+    """Ends at constant speed: F_C, F_S on Krauze eq. (12)-(13) to 1e-9 by t = 200 s, default damping
+    (measured 4e-14 up, 3e-13 down; the load mode decays with ζ ≈ 0.05: 3e-5 after 100 s)."""
+    sc = scene(effects={"travel": travel}, params={"t_end": "200 s"})
     assert sc.parameters["rope_damping"] == 0.05                      # the default
     sim = simulate(sc)
     static = rm.run(rm.load_scene())                                  # the paper's Fig. 9 scene
     s = sim.summary
     assert not s["slip"] and not s["slack"]
-    assert s["F_C_end"] == pytest.approx(static[f"F_C_{travel}"], rel=5e-3)
-    assert s["F_S_end"] == pytest.approx(static[f"F_S_{travel}"], rel=5e-3)
+    assert s["F_C_end"] == pytest.approx(static[f"F_C_{travel}"], rel=1e-9)
+    assert s["F_S_end"] == pytest.approx(static[f"F_S_{travel}"], rel=1e-9)
     assert s["dynamic_factor"] == pytest.approx(s["F_C_max"] / static[f"F_C_{travel}"], rel=1e-12)
 
 
@@ -55,7 +57,7 @@ def test_start_settles_on_static_forces(travel):
 @pytest.mark.parametrize("travel,sign", [("up", 1), ("down", -1)])
 def test_rigid_ramp_gives_static_plus_mass_times_acceleration(travel, sign):
     """F_C = F_C,static + (G_m + q_l L_u)/g · a and F_S = F_S,static − q_l L_u/g · a (moving masses:
-    load and winding rope on the C side, unwinding rope on the S side), to 1e-6."""
+    load and winding rope on the C side, unwinding rope on the S side), to 1e-12 (measured 2e-16)."""
     sc = scene(effects={"travel": travel, "rope_elasticity": "rigid"}, params={"t_end": "8 s"})
     sim = simulate(sc)
     v = sc.parameters
@@ -66,10 +68,10 @@ def test_rigid_ramp_gives_static_plus_mass_times_acceleration(travel, sign):
     assert len(ramp) > 100
     F_C = st[f"F_C_{travel}"] + (v["G_m"] + v["q_l"] * v["L_u"]) / G_N * a
     F_S = st[f"F_S_{travel}"] - v["q_l"] * v["L_u"] / G_N * a
-    np.testing.assert_allclose(ramp["F_C [N]"], F_C, rtol=1e-6)
-    np.testing.assert_allclose(ramp["F_S [N]"], F_S, rtol=1e-6)
+    np.testing.assert_allclose(ramp["F_C [N]"], F_C, rtol=1e-12)
+    np.testing.assert_allclose(ramp["F_S [N]"], F_S, rtol=1e-12)
     after = h[h["t [s]"] > v["t_ramp"] + 1e-9]
-    np.testing.assert_allclose(after["F_C [N]"], st[f"F_C_{travel}"], rtol=1e-6)
+    np.testing.assert_allclose(after["F_C [N]"], st[f"F_C_{travel}"], rtol=1e-12)
     assert sim.summary["moving_masses"]["load"] == pytest.approx(v["G_m"] / G_N)
 
 
@@ -120,9 +122,9 @@ def test_rigid_slip_onset_and_distance_match_newton():
     assert s["slip"]
     t0, t1, dist = _rigid_slip_truth(sc.parameters, math.exp(sc.parameters["mu_d"] * sc.parameters["alpha_d"]))
     (ev,) = s["slip_events"]
-    assert ev["t_start"] == pytest.approx(t0, rel=1e-8)
-    assert ev["t_end"] == pytest.approx(t1, rel=1e-7)
-    assert ev["distance"] == pytest.approx(dist, rel=1e-7)
+    assert ev["t_start"] == pytest.approx(t0, rel=1e-9)          # measured 4e-11
+    assert ev["t_end"] == pytest.approx(t1, rel=1e-8)            # 2e-10
+    assert ev["distance"] == pytest.approx(dist, rel=1e-8)       # 2.5e-9
     assert "SLIP on the drum from t = " in sim.report()
 
 
@@ -172,7 +174,7 @@ def test_voigt_lining_slip_onset_matches_an_independent_solve():
         return ratio(F_S, acc * t) * F_S - F_C
 
     t_slip = brentq(margin, 1e-9, v["t_ramp"], xtol=1e-14)
-    assert s["slip_events"][0]["t_start"] == pytest.approx(t_slip, rel=1e-8)
+    assert s["slip_events"][0]["t_start"] == pytest.approx(t_slip, rel=1e-9)        # measured 5e-11
     assert s["traction_ratio"] < math.exp(v["mu_d"] * v["alpha_d"])    # the lining costs traction
 
 
@@ -199,34 +201,38 @@ def test_elastic_slip_is_reported_with_time_and_distance():
 
 # --- natural frequencies ------------------------------------------------------------------------
 
-def test_single_spring_natural_frequency():
-    """One mass between two springs to the (held) drum: ω_d = sqrt(2k/m − (c/m)²), from a fit."""
-    from ropemodel.dynamics.chain import Chain
-    from ropemodel.dynamics.hybrid import HybridIntegrator
-    from ropemodel.dynamics.profile import start_profile
-    from ropemodel.dynamics.system import LoopSystem, equilibrium
-
-    m, k, c = 5000.0, 2.0e5, 800.0
-    chain = Chain(np.array([10.0, m]), np.array([0.0, -1.0e4]), np.array([0.0, 0.0]), (5.0, 0.0, 0.0),
-                  (5.0, 0.0, 0.0), [(0, 1, k, c, True), (1, 0, k, c, True)], load=1, sheave=1)
-    values = {"v_eps": 0.01, "F_nwl": 2e4, "m_t": 1.0, "stroke": 1.0}
-    sys = LoopSystem(chain, values, ratio=lambda F_slack, v_drum: 1e6 + 0 * F_slack)   # never slips
-    phases, _ = start_profile(1.0, 2.0, 12.0, +1)
-    x0 = equilibrium(sys, 0.0, z_free=False, z_fixed=1.0)   # a locked take-up pretensions both springs
-    rows = []
-    HybridIntegrator(sys, phases, 1e-11, 0.005, "cvodes", 1e4, 1.0, atol_u=1e-12).run(
-        x0, ("stick", "fixed", "profile"), lambda x, t, k_, mode: mode, None,
-        lambda t, X, out, mode: rows.append(np.vstack([t, X[3]])))
-    t, v = np.hstack(rows)
-    sel = t > 2.0 + 1e-9
-    w_d = math.sqrt(2 * k / m - (c / m) ** 2)
+def _load_mode_fit(sim, t_ramp, v_pj, p0):
+    """Fit v_load(t) after the ramp to v_pj + e^{−σt}(A cos ωt + B sin ωt): (ω, σ)."""
+    h = sim.history
+    sel = h["t [s]"] > t_ramp + 1e-9
+    t, v = h.loc[sel, "t [s]"].to_numpy() - t_ramp, h.loc[sel, "v_load [m/s]"].to_numpy()
 
     def model(t, A, B, w, sigma):
-        return 1.0 + np.exp(-sigma * (t - 2)) * (A * np.cos(w * (t - 2)) + B * np.sin(w * (t - 2)))
+        return v_pj + np.exp(-sigma * t) * (A * np.cos(w * t) + B * np.sin(w * t))
 
-    p, _ = curve_fit(model, t[sel], v[sel], p0=[-0.1, 0.0, w_d * 1.01, c / m], xtol=1e-14, ftol=1e-14)
-    assert p[2] == pytest.approx(w_d, rel=1e-6)
-    assert p[3] == pytest.approx(c / m, rel=1e-5)
+    p, _ = curve_fit(model, t, v, p0=[-0.01, 0.0, *p0], xtol=1e-14, ftol=1e-14)
+    return p[2], p[3]
+
+
+def test_single_spring_natural_frequency():
+    """The load at the return sheave (x_m = L_u, the span C2 has zero length), one element per span, a
+    fixed tensioner (F_nwl = 150 kN keeps the unwinding rope taut), the rope fixed to the drum (no lining):
+    one mass m = G_m/g + q_l L_u/(2g) (the load and half the winding rope) between two
+    springs k = EA/L_u with dampers c = τk to the (moving) drum.  After the ramp the load oscillates
+    about v_pj with ω_d = sqrt(2k/m − σ²), σ = c/m (closed form), fitted to the history."""
+    sc = scene(effects={"rope_elasticity": "spring", "tensioner": "fixed", "lining": "none"},
+               params={"x_m": "1150 m", "F_nwl": "150 kN", "t_end": "25 s", "mu_d": None, "alpha_d": None},
+               numerics={"sim_rtol": 1e-11, "sim_dt": 0.005})
+    v = sc.parameters
+    sim = simulate(sc)
+    assert sim.summary["n_nodes"] == 2 and sim.summary["x_m"] == v["L_u"]
+    m = (v["G_m"] + v["q_l"] * v["L_u"] / 2) / G_N
+    k = (v["L_u"] / v["q_lw"]) / v["L_u"]
+    c = v["rope_damping"] * k
+    w_d = math.sqrt(2 * k / m - (c / m) ** 2)
+    w, sigma = _load_mode_fit(sim, v["t_ramp"], v["v_pj"], [w_d * 1.01, c / m])
+    assert w == pytest.approx(w_d, rel=1e-6)                        # measured 2e-7
+    assert sigma == pytest.approx(c / m, rel=1e-5)                  # measured 5e-6
 
 
 @pytest.mark.parametrize("contact", ["rigid", "capstan"])
@@ -277,7 +283,7 @@ def test_spring_scene_two_mode_frequencies(contact):
     assert np.max(np.abs(res)) < 1e-5 * np.max(np.abs(y))          # two modes explain the motion
     assert min(np.hypot(coef[0], coef[1]), np.hypot(coef[2], coef[3])) > 1e-4   # both are excited
     assert fit.x[0] == pytest.approx(w[0], rel=1e-7)                # the load's mode (large amplitude)
-    assert fit.x[1] == pytest.approx(w[1], rel=1e-5)                # the sheave's mode (small amplitude)
+    assert fit.x[1] == pytest.approx(w[1], rel=3e-6)                # the sheave's mode (small amplitude): 1.8e-6
 
 
 # --- energy ---------------------------------------------------------------------------------------
@@ -298,7 +304,8 @@ def test_energy_balance_to_integrator_tolerance(name):
 
 def test_rest_take_up_converges_to_the_continuum_integral():
     """Take-up at rest = loop elongation = ∫T dx / EA of the continuum (no resistance at rest): the
-    lumped value converges at first order as segments are added."""
+    lumped value converges at second order as segments are added (errors 4.7e-3, 1.2e-3, 2.9e-4 at
+    4, 8, 16 segments)."""
     errs = []
     for n in (2, 4, 8, 16):
         sc = scene(params={"t_end": "1 s", "t_ramp": "1 s"}, numerics={"segments": n})
@@ -313,9 +320,9 @@ def test_rest_take_up_converges_to_the_continuum_integral():
                  + h * C2 + w * C2 ** 2 / 2                             # sheave → load
                  + (h + w * C2 + v["G_m"] * s) * x + w * x ** 2 / 2) / EA  # load → drum
         errs.append(abs(z0 - exact) / exact)
-    assert errs[-1] < 4e-3
+    assert errs[-1] < 4e-4
     for e0, e1 in zip(errs, errs[1:]):
-        assert e1 < 0.6 * e0
+        assert e1 < 0.3 * e0
 
 
 @pytest.mark.slow
@@ -336,19 +343,45 @@ def test_peak_force_converges_with_segments_fast():
 # --- stroke ---------------------------------------------------------------------------------------
 
 def test_tensioner_out_of_stroke_is_reported():
+    """The paper's installed 1000 mm stroke runs out during the start-up; the carriage stops on its end stop
+    at once and the rope at the return sheave is left slack (the elements next to the sheave, stiff because
+    the load is 50 m from it, still stretch at the rope's speed there, and their damping turns the lost
+    take-up rate into compression): the linear rope model ends there."""
     sim = simulate(scene("winch_start_stroke.toml", params={"t_end": "20 s"}))
     s = sim.summary
     assert s["stroke_exhausted"]
+    assert [e.name for e in sim.events] == ["stroke_end", "slack"] and sim.events[0].t == sim.events[1].t
     ev = s["stroke_events"][0]
-    assert ev["event"] == "stroke_end"
+    assert ev["event"] == "stroke_end" and ev["t"] < sim.scene.parameters["t_ramp"]
+    assert sim.events[1].values["T_min [N]"] < 0 < sim.history["T_min [N]"].min()      # the jump, not before
     h = sim.history
-    at_end = h[h["tensioner"] == "at_end"]
-    assert len(at_end) > 0
-    np.testing.assert_allclose(at_end["take_up [m]"], sim.scene.parameters["stroke"], rtol=1e-12)
+    assert h["take_up [m]"].iloc[-1] == pytest.approx(sim.scene.parameters["stroke"], rel=1e-12)
     # before the event the take-up stays within the stroke
-    assert h.loc[h["t [s]"] < ev["t"], "take_up [m]"].max() <= sim.scene.parameters["stroke"] + 1e-12
+    assert h["take_up [m]"].max() <= sim.scene.parameters["stroke"] + 1e-12
     assert s["stroke_used"] == pytest.approx(sim.scene.parameters["stroke"], rel=1e-12)
-    assert "RAN OUT OF STROKE" in sim.report()
+    assert s["slack"] and s["t_slack"] == ev["t"]
+    report = sim.report()
+    assert "RAN OUT OF STROKE" in report and report.splitlines()[-1].startswith("  STOPPED at t = ")
+
+
+def test_carriage_on_its_end_stop_at_rest():
+    """A stroke shorter than the take-up F_nwl would need at rest: the carriage starts on its end stop, the
+    loop's elongation is the stroke, and the tension pulling the sheave 2h follows from the continuum,
+    stroke = ∫T ds/EA with T = h + (weights) (second order in the element length: 3.3e-2, 8.3e-3,
+    2.1e-3 at 4, 8, 16 segments)."""
+    errs = []
+    for n in (4, 8, 16):
+        sc = scene("winch_start_stroke.toml", params={"F_nwl": "80 kN", "t_end": "1 s", "t_ramp": "1 s"},
+                   numerics={"segments": n})
+        h0 = simulate(sc).history.iloc[0]
+        v = sc.parameters
+        s, L, x = math.sin(v["alpha_u"]), v["L_u"], v["x_m"]
+        w, C2 = v["q_l"] * s, L - x
+        weights = w * L ** 2 / 2 + w * C2 ** 2 / 2 + (w * C2 + v["G_m"] * s) * x + w * x ** 2 / 2
+        h = (v["stroke"] * L / v["q_lw"] - weights) / (2 * L)
+        assert h0["tensioner"] == "at_end" and h0["take_up [m]"] == v["stroke"] and 0 < 2 * h < v["F_nwl"]
+        errs.append(abs(h0["T_sheave [N]"] / (2 * h) - 1))
+    assert errs[-1] < 3e-3 and errs[2] < 0.3 * errs[1] < 0.09 * errs[0]
 
 
 def test_enough_stroke_is_not_reported():
@@ -378,7 +411,7 @@ def test_dynamic_effects_leave_the_static_model_alone():
 
 @pytest.mark.parametrize("change,match", [
     (dict(effects={"rope_elasticity": "rigid", "tensioner": "fixed"}), "statically indeterminate"),
-    (dict(params={"x_m": "1150 m"}), "x_m"),
+    (dict(params={"x_m": "1200 m"}), "x_m"),
     (dict(params={"t_end": "2 s"}), "t_end"),
     (dict(params={"rope_damping": -0.1}), "rope_damping"),
     (dict(params={"F_nwl": "0 kN", "x_m": "100 m"}), "slack"),
@@ -473,8 +506,8 @@ def test_rigid_cosine_ramp_gives_static_plus_mass_times_its_acceleration():
     sc = scene(effects={"rope_elasticity": "rigid", "ramp": "cosine"}, params={"t_end": "6 s"})
     v, st = sc.parameters, rm.run(sc)
     h = simulate(sc).history
-    ramp = h[(h["t [s]"] > 0.5) & (h["t [s]"] < v["t_ramp"])]
+    ramp = h[(h["t [s]"] > 1.0) & (h["t [s]"] < v["t_ramp"])]         # |v| > 20 v_eps: tanh = 1
     a = 0.5 * math.pi * v["v_pj"] / v["t_ramp"] * np.sin(math.pi * ramp["t [s]"] / v["t_ramp"])
     np.testing.assert_allclose(ramp["v_drum [m/s]"],
                                v["v_pj"] * 0.5 * (1 - np.cos(math.pi * ramp["t [s]"] / v["t_ramp"])), rtol=1e-12)
-    np.testing.assert_allclose(ramp["F_C [N]"], st["F_C_up"] + (v["G_m"] + v["q_l"] * v["L_u"]) / G_N * a, rtol=1e-6)
+    np.testing.assert_allclose(ramp["F_C [N]"], st["F_C_up"] + (v["G_m"] + v["q_l"] * v["L_u"]) / G_N * a, rtol=1e-12)

@@ -10,7 +10,7 @@ from scipy.special import lambertw
 from ropemodel.papers import friction as fr
 from ropemodel.papers import hajduk1992 as hj
 
-# MODELS.md §2 reference table (independently computed): mu, q, k/pi, s(pi/2), s(pi), s(2pi)
+# docs/physics.md §3 reference table (independently computed): mu, q, k/pi, s(pi/2), s(pi), s(2pi)
 TABLE = [
     (0.2, 0.1, 0.01, 1.212743, 1.597677, 2.685966),
     (0.2, 0.1, 2.0, 1.329433, 1.749747, 2.921169),

@@ -1,7 +1,7 @@
 """Krauze et al. (2025): the paper's Fig. 9 worked example, case 2 by hand, equation functions.
 
 Reference values: Krauze, Mucha, Wydro, Klempka (2025), Fig. 9, as tabulated in
-shared/MODELS.md §1 (kN for forces, mm for elongations, printed to 0.01).
+shared/docs/physics.md §1 (kN for forces, mm for elongations, printed to 0.01).
 """
 
 import json

@@ -55,6 +55,16 @@ def test_the_papers_input_list_runs_first_time(tmp_path, capsys):
     assert "warning: v_pj is not used: it belongs to power = 'drive' or lining = 'voigt'" in cap.err
 
 
+def test_an_unused_value_given_with_set_is_named_in_the_result(tmp_path, capsys):
+    import json
+
+    f = tmp_path / "fig9.toml"
+    f.write_text(FIG9_INPUT.replace('v_pj = "2.50 m/s"', ""), encoding="utf-8")
+    assert main(["run", str(f), "--set", "v_pj=3 m/s", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["unused"] == {"v_pj": "power = 'drive' or lining = 'voigt'"}
+
+
 # --- generated scenes with one to six mistakes ------------------------------------------------------
 
 GOOD = {"L_u": "1150 m", "L_ul": "500 m", "alpha_u": "16 deg", "mu_pm": 0.05, "mu_pl": 0.05, "G_m": "467 kN",

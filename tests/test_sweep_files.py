@@ -26,9 +26,9 @@ from ropemodel.cli import main as cli
 from ropemodel.sweep.files import available_memory
 
 ROOT = Path(__file__).resolve().parents[1]
-VARY = {"alpha_u": "0deg:40deg:60", "G_m": "200kN:600kN:25"}
+VARY = {"alpha_u": "4deg:40deg:60", "G_m": "200kN:600kN:25"}
 OUTPUTS = ["F_C_up", "dF_up"]
-ARGS = ["sweep", "example", "--vary", "alpha_u=0deg:40deg:60", "--vary", "G_m=200kN:600kN:25",
+ARGS = ["sweep", "example", "--vary", "alpha_u=4deg:40deg:60", "--vary", "G_m=200kN:600kN:25",
         "--outputs", "F_C_up,dF_up", "--chunk-size", "100", "--no-progress"]  # 1500 points, 15 chunks
 
 
@@ -168,10 +168,10 @@ def test_unwritable_outputs_are_refused_before_work(tmp_path, capsys, no_compute
 
 
 @pytest.mark.parametrize("vary, words", [  # the size and the limit named; nothing allocated for them
-    (["alpha_u=0deg:40deg:100000000000"], r"100000000000 points on one axis; at most 100000000"),
-    (["alpha_u=0deg:40deg:100000", "G_m=200kN:600kN:1000000"],
+    (["alpha_u=4deg:40deg:100000000000"], r"100000000000 points on one axis; at most 100000000"),
+    (["alpha_u=4deg:40deg:100000", "G_m=200kN:600kN:1000000"],
      r"the grid has 1e\+11 points \(100000 x 1000000\); at most 1e\+10 points per sweep"),
-    (["alpha_u=0deg:40deg:100000", "G_m=200kN:600kN:100000"],
+    (["alpha_u=4deg:40deg:100000", "G_m=200kN:600kN:100000"],
      r"10,000,000,000 points x 4 columns need at least 298\.0 GiB of disk for the sweep's parts beside "
      r".*big\.parquet; [\d,.]+ GiB is free there"),
 ])
@@ -189,8 +189,8 @@ def test_results_beyond_memory_are_refused_with_collect(no_compute):
     mem = available_memory()
     if mem is None:
         pytest.skip("available memory unknown here")
-    n = int(mem // (8 * 3)) + 1  # 3 columns of 8 bytes: one point more than memory holds
-    axis = {"alpha_u": f"0deg:40deg:{n // 1000 + 1}", "G_m": "200kN:600kN:1000"}
+    n = 2 * int(mem // (8 * 3))  # 3 columns of 8 bytes: twice what memory holds (it moves while tests run)
+    axis = {"alpha_u": f"4deg:40deg:{n // 1000 + 1}", "G_m": "200kN:600kN:1000"}
     with pytest.raises(rm.InputError, match=r"collect=True keeps every result in memory: [\d,]+ points x 3 columns"):
         rm.sweep(rm.load_scene(), axis, ["F_C_up"])
 
@@ -327,7 +327,7 @@ def test_sigint_to_a_sweep_process(tmp_path):
     import time
 
     out = tmp_path / "big.parquet"
-    args = ["sweep", "example", "--vary", "alpha_u=0deg:40deg:1000", "--vary", "G_m=200kN:600kN:1000",
+    args = ["sweep", "example", "--vary", "alpha_u=4deg:40deg:1000", "--vary", "G_m=200kN:600kN:1000",
             "--outputs", "F_C_up", "--backend", "casadi", "--chunk-size", "10000", "-o", str(out)]
     proc = _start(args, text=True)
     parts = tmp_path / "big.parquet.parts"

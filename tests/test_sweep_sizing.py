@@ -3,6 +3,7 @@
 from importlib import resources
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import ropemodel as rm
@@ -74,3 +75,68 @@ def test_sobol_of_the_sizing_optimum(sizing_scene):
     for out in ("d", "F_nwl"):
         assert r.loc[(out, "v_pj"), "ST"] == pytest.approx(0.0, abs=1e-9)
         assert r.loc[(out, "alpha_u"), "ST"] == pytest.approx(1.0, abs=max(2 * r.loc[(out, "alpha_u"), "ST_conf"], 0.05))
+
+
+def _scaled_diff(a, b, problem):
+    """|a - b| per design column, relative to max(|b|, the variable's scale in the NLP)."""
+    scale = {"d [mm]": problem.x_scale[0] * 1e3, "F_nwl [kN]": problem.x_scale[1] / 1e3,
+             "stroke [mm]": problem.x_scale[2] * 1e3}
+    return {c: np.abs(a[c] - b[c]) / np.maximum(np.abs(b[c]), s) for c, s in scale.items()}
+
+
+def test_active_set_map_equals_cold_ipopt_across_active_set_changes(sizing_scene):
+    """The fast path (neighbours' active sets, batched Newton, accepted by multipliers) against IPOPT from the
+    scene's design at every point: the same feasibility, the same optima.  The grid crosses three active sets
+    (slip, slack of the winding rope, pretension at its bound) and the edge of the feasible region."""
+    from optimisation.design import solve_best
+    from optimisation.problem import SizingProblem
+    from optimisation.sweep import sizing_sweep
+
+    vary = {"G_m": ["200 kN", "800 kN"], "alpha_u": "2deg:30deg:5", "L_u": "600m:3000m:5"}
+    fast = sizing_sweep(sizing_scene, vary, progress=False)
+    cold = sizing_sweep(sizing_scene, vary, warm=False, progress=False)
+    problem = SizingProblem(sizing_scene)
+    polished, active = [], set()
+    for _, row in cold.iterrows():
+        p = problem.p_of({"G_m": row["G_m [kN]"] * 1e3, "alpha_u": np.radians(row["alpha_u [deg]"]),
+                          "L_u": row["L_u [m]"]})
+        sol = solve_best(problem, p)      # cold IPOPT, active set identified and polished by Newton
+        polished.append([v * f for v, f in zip(problem.to_si(sol.xs).values(), (1e3, 1e-3, 1e3))] if sol.feasible
+                        else [np.nan] * 3)
+        if sol.feasible:
+            active.add((tuple(sol.active), tuple(sol.active_bounds)))
+    assert len(active) >= 3 and 0 < (~cold["feasible"]).sum() < len(cold)
+    assert (fast["feasible"] == cold["feasible"]).all()
+    ok = cold["feasible"].to_numpy()
+    ref = pd.DataFrame(polished, columns=["d [mm]", "F_nwl [kN]", "stroke [mm]"])
+    for col, diff in _scaled_diff(fast[ok], ref[ok], problem).items():
+        assert diff.max() <= 1e-12, col          # the same vertex, to rounding
+    for col, diff in _scaled_diff(fast[ok], cold[ok], problem).items():
+        assert diff.max() <= 1e-7, col           # IPOPT's raw answer, to its tolerance (bounds relaxed by 1e-8)
+    assert fast.loc[~ok, ["d [mm]", "F_nwl [kN]", "stroke [mm]"]].isna().all().all()
+    assert (fast["iterations"] == 0).mean() >= 0.8    # most points solved on a neighbour's active set
+
+
+def test_active_set_map_on_random_points_and_the_voigt_lining():
+    """Points in random order (no neighbour is near) and a lining whose traction is implicit (a rootfinder
+    in the NLP): still IPOPT's answers."""
+    from optimisation.sweep import sizing_sweep
+
+    scene = rm.load_scene(str(resources.files("ropemodel.data").joinpath("winch_sizing_voigt.toml")))
+    rng = np.random.default_rng(3)
+    pts = pd.DataFrame({"alpha_u": np.radians(rng.uniform(2, 30, 12)), "L_u": rng.uniform(600, 3000, 12)})
+    fast = sizing_sweep(scene, pts, progress=False)
+    cold = sizing_sweep(scene, pts, warm=False, progress=False)
+    assert (fast["feasible"] == cold["feasible"]).all() and fast["feasible"].any()
+    ok = cold["feasible"].to_numpy()
+    from optimisation.problem import SizingProblem
+
+    for col, diff in _scaled_diff(fast[ok], cold[ok], SizingProblem(scene)).items():
+        assert diff.max() <= 1e-7, col
+
+
+def test_unknown_method_is_refused(sizing_scene):
+    from optimisation.sweep import sizing_sweep
+
+    with pytest.raises(rm.InputError, match="valid methods"):
+        sizing_sweep(sizing_scene, {"alpha_u": ["16 deg"]}, method="newton")

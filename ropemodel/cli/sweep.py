@@ -1,7 +1,7 @@
 """``ropemodel sweep SCENE --vary NAME=START:STOP:N ... -o FILE.csv|FILE.parquet``.
 
 The points are the product of the ``--vary`` grids (START and STOP may carry
-units: ``alpha_u=0deg:45deg:1000``; ``NAME=v1,v2,v3`` lists values), or the
+units: ``alpha_u=5deg:45deg:1000``; ``NAME=v1,v2,v3`` lists values), or the
 rows of ``--points FILE`` (CSV or Parquet; columns are names in SI or
 ``"name [unit]"`` labels).  The output is checked and locked before any work
 (a second writer of it is refused, exit 2), written in chunks, and appears only
@@ -24,7 +24,7 @@ HELP = "evaluate a scene over grids or a table of points; write CSV or Parquet (
 def add_arguments(parser) -> None:
     add_scene_arguments(parser, optional=False)
     parser.add_argument("--vary", action="append", metavar="NAME=START:STOP:N", default=[],
-                        help="a grid axis, e.g. alpha_u=0deg:45deg:1000 or G_m=300kN,467kN; "
+                        help="a grid axis, e.g. alpha_u=5deg:45deg:1000 or G_m=300kN,467kN; "
                              "several --vary give their product")
     parser.add_argument("--points", metavar="FILE", help="CSV or Parquet table of points instead of --vary")
     parser.add_argument("--outputs", action="append", metavar="NAME[,NAME...]", default=[],
@@ -61,7 +61,7 @@ def main(args) -> int:
     from ropemodel.sweep.runner import SweepInterrupted
 
     scene = scene_from_args(args)
-    vary = named(args.vary, "--vary", "NAME=START:STOP:N, e.g. alpha_u=0deg:45deg:1000")
+    vary = named(args.vary, "--vary", "NAME=START:STOP:N, e.g. alpha_u=5deg:45deg:1000")
     points = read_points(args.points) if args.points else None
     if points is not None and vary:
         raise InputError("give either --vary grids or --points FILE, not both")

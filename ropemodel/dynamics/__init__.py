@@ -1,15 +1,18 @@
-"""Time-domain transients of a winch scene: start-up and braking (issue 6).
+"""Time-domain transients of a winch scene: start-up and braking.
 
-``simulate(scene)`` builds the lumped model of the rope loop from the effects the scene
-picks (:mod:`ropemodel.effects.winch_dynamics`), integrates it with a CasADi BDF
-integrator, locates slip/stick and stroke-limit events, and returns a
-:class:`Simulation` with the history and a summary (peak force, dynamic factor, slip,
-stroke used).  Modules: :mod:`.chain` (masses, weights, resistances, elements),
-:mod:`.profile` (drive speed), :mod:`.system` (equations of motion per mode),
-:mod:`.hybrid` (event location), :mod:`.history` (results).
+``simulate(scene)`` assembles the transient from the variants the scene picks (each a
+:class:`~ropemodel.effects.transient.base.TransientSubmodel` of :mod:`ropemodel.effects.transient`,
+found through the effect registry), integrates it with a CasADi BDF integrator, locates its state
+events (slip/stick, stroke limits, the motor's torque limit, a slack rope) and returns a
+:class:`Simulation` with the history and a summary (peak force, dynamic factor, slip, stroke used).
+``smooth_mode(scene, params)`` gives the smooth regime's ODE as CasADi Functions of symbolic
+parameters (for dynamic sizing).  Modules: :mod:`.assemble` (the scene's variants),
+:mod:`.system` (equations per mode, initial state, events), :mod:`.hybrid` and :mod:`.detect`
+(integration and event location), :mod:`.history` (results), :mod:`.smooth` (the symbolic smooth mode).
 """
 
 from ropemodel.dynamics.history import Simulation
 from ropemodel.dynamics.simulate import simulate
+from ropemodel.dynamics.smooth import SmoothMode, smooth_mode
 
-__all__ = ["Simulation", "simulate"]
+__all__ = ["Simulation", "SmoothMode", "simulate", "smooth_mode"]

@@ -1,294 +1,267 @@
-"""Equations of motion of the lumped loop, one ODE per *mode*, as CasADi expressions.
+"""The system of one transient, assembled from its variants: equations per mode, initial state, events.
 
-State ``x = [u (n), v (n), z, ż, s_d, W, D, v_drum]``: node displacements and speeds along
-the path (node 0 is the rope on the drum), the tensioner take-up z and its rate, the drum's
-surface travel s_d (so that the slip is s_d − u_0), the work W the drum has done on the
-rope, the energy D dissipated (rope damping, travel resistance, slip, stop impacts) and the
-drum's surface speed: the energy balance W = ΔKE + ΔPE + D is checked on these states.
+A *mode* (:class:`~ropemodel.effects.transient.base.Mode`) is one mode per variant.  In a mode, every
+variant publishes its quantities in assembly order, then gives the right-hand side of its own states
+and its switching functions (:class:`~ropemodel.effects.transient.base.Switch`); the system adds the
+bookkeeping of the energy balance: the drum's work on the rope W (Ẇ = F_fr·v_d) and the energy
+dissipated D (Ḋ = the sum of what the variants dissipate), so that W = ΔE + D can be checked, E the
+kinetic + potential energy the variants hold.  Every mode is an explicit ODE (no algebraic constraint
+is left: a sticking rope is prescribed kinematics, the carriage has a mass), so CasADi's BDF
+integrators (cvodes, idas) apply directly.
 
-A mode is (drum, tensioner, drive); the drive modes are in :mod:`ropemodel.dynamics.drive`.
-
-* drum ``stick``: the rope on the drum moves with it, u̇_0 = v_d(t), v̇_0 = a_d(t); the friction
-  force the drum exerts follows.  ``slip_fwd`` (the drum runs ahead of the rope) and
-  ``slip_back`` (the rope overruns the drum): the forces at the drum's tangent points obey
-  Euler–Eytelwein at the onset of slip, F_tight = ρ F_slack (ρ = e^{μ_d α_d}), which gives the
-  rope's acceleration on the drum explicitly (the wrapped rope itself is massless; the
-  half-elements at the tangent points carry the mass).
-* tensioner ``free``: (m_t/4) z̈ = F_nwl/2 − (T_a + T_b)/2, T_a, T_b the tensions of the two
-  elements on the return sheave (each lengthened by z/2); ``at_end`` / ``at_start``: resting
-  on a stop of the stroke (z = stroke or 0); ``fixed``: locked.
-
-Each mode has switching functions that stay ≥ 0 while the mode holds; the hybrid
-integrator (:mod:`ropemodel.dynamics.hybrid`) locates their zero crossings.  Every mode
-is an explicit ODE (no algebraic constraint is left: stick is prescribed kinematics, the
-carriage has a mass), so CasADi's BDF integrators (cvodes, idas) apply directly.
+This module names no variant: what a variant does is asked of it.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import casadi as ca
 import numpy as np
 
-from ropemodel.dynamics.chain import Chain
-from ropemodel.dynamics.drive import DRIVE_MODES
-from ropemodel.papers import friction
+from ropemodel.effects.transient.base import Layout, Mode, State, Switch, Variables
+from ropemodel.errors import SolveError
+
+#: a switching function below −TOL at a mode's start fires at once (the mode is not consistent)
+TOL = 1e-9
+#: most events fired at one instant before the modes are declared chattering
+MAX_SETTLE = 20
+ACCOUNTING = (State("W", doc="work of the drum on the rope [J]"), State("D", doc="energy dissipated [J]"))
 
 
-@dataclass
-class Layout:
-    """Index ranges of the state vector."""
+@dataclass(frozen=True)
+class Event:
+    """A located event: time, switching function, the mode after it, the state after it and the history
+    columns there (``values``, label → SI number)."""
 
-    n: int
-
-    @property
-    def nx(self) -> int:
-        return 2 * self.n + 6
-
-    @property
-    def v_drum(self) -> int:
-        """Index of the drum's surface speed (a state; follows the profile unless the motor is limited)."""
-        return 2 * self.n + 5
-
-    def split(self, x):
-        n = self.n
-        return x[:n], x[n:2 * n], x[2 * n], x[2 * n + 1], x[2 * n + 2], x[2 * n + 3], x[2 * n + 4], x[2 * n + 5]
+    t: float
+    name: str
+    mode: Mode
+    state: np.ndarray = field(repr=False)
+    values: dict = field(repr=False, default_factory=dict)
 
 
-class LoopSystem:
-    """Symbolic forces of a :class:`Chain` with the scene's values (SI)."""
+@dataclass(frozen=True)
+class Settled:
+    """A consistent state after events at one instant: state, mode, the events fired, whether one ended the run."""
 
-    def __init__(self, chain: Chain, values: dict, ratio):
-        """``ratio(F_slack, v_drum)``: the traction ratio ρ the drum transmits at the onset of slip,
-        as a function of the slack-side force [N] and the drum's surface speed [m/s] (a constant
-        e^{μα} for a rigid drum, Hajduk's eq. (19) for a Voigt lining); works on CasADi symbols."""
-        self.chain, self.values, self.ratio = chain, values, ratio
-        self.layout = Layout(chain.n)
-        self.x = ca.SX.sym("x", self.layout.nx)
-        self.t = ca.SX.sym("t")
-        u, v, z, zd, *_ = self.layout.split(self.x)
-        self.torque_limited = False
-        self.u, self.v, self.z, self.zd = u, v, z, zd
-        eps = values["v_eps"]
-        self.th = ca.tanh(v / eps)
-        ch = chain
-        self.T, self.e, self.edot = [], [], []
-        for a, b, k, c, on_sheave in ch.elements:
-            e = u[b] - u[a] + (z / 2 if on_sheave else 0)
-            ed = v[b] - v[a] + (zd / 2 if on_sheave else 0)
-            self.e.append(e)
-            self.edot.append(ed)
-            self.T.append(k * e + c * ed)
-        # net force on every node except the drum friction
-        F = [ca.SX(0) for _ in range(ch.n)]
-        for (a, b, *_), T in zip(ch.elements, self.T):
-            F[a] += T
-            F[b] -= T
-        for i in range(ch.n):
-            F[i] += ch.weight[i] - ch.resistance[i] * self.th[i]
-        self.F = F
-        half = values["F_nwl"] / 2
-        if ch.rigid:
-            self.T_C_in = self.T_S_out = ca.SX(half)
-        else:
-            self.T_C_in = sum((T for (a, b, *_), T in zip(ch.elements, self.T) if b == 0), ca.SX(0))
-            self.T_S_out = sum((T for (a, b, *_), T in zip(ch.elements, self.T) if a == 0), ca.SX(0))
-        self.T_sheave = sum((T for (*_, s), T in zip(ch.elements, self.T) if s), ca.SX(0))
-
-    # forces at the drum's tangent points for a drum-node acceleration a
-    def F_C(self, a):
-        mC, wC, rC = self.chain.drum_C
-        return self.T_C_in + mC * a - wC + rC * self.th[0]
-
-    def F_S(self, a):
-        mS, wS, rS = self.chain.drum_S
-        return self.T_S_out - mS * a + wS - rS * self.th[0]
-
-    def energy(self):
-        """Kinetic + potential energy [J] (gravity as the work of constant forces along p)."""
-        ch, vals = self.chain, self.values
-        ke = 0.5 * ca.dot(ca.DM(ch.mass), self.v ** 2)
-        pe = -ca.dot(ca.DM(ch.weight), self.u)
-        for (a, b, k, c, s), e in zip(ch.elements, self.e):
-            pe += 0.5 * k * e ** 2
-        if not ch.rigid:
-            ke += vals["m_t"] * self.zd ** 2 / 8
-            pe -= vals["F_nwl"] / 2 * self.z
-        return ke + pe
-
-    def damping_power(self):
-        p = ca.SX(0)
-        for (a, b, k, c, s), ed in zip(self.chain.elements, self.edot):
-            p += c * ed ** 2
-        return p + ca.dot(ca.DM(self.chain.resistance), self.th * self.v)
-
-
-def _drum_stick(sys: LoopSystem, drive):
-    a = drive.stick_acc()
-    F_C, F_S = sys.F_C(a), sys.F_S(a)
-    return a, drive.v_d, a, {"slip_fwd": sys.ratio(F_S, drive.v_d) * F_S - F_C,
-                             "slip_back": sys.ratio(F_C, drive.v_d) * F_C - F_S}
-
-
-NEWTON_STEPS = 4
-
-
-def _slip_acceleration(sys: LoopSystem, tight, slack, v_d):
-    """Drum-node acceleration a with tight(a) = ρ(slack(a))·slack(a), Euler–Eytelwein at slip.
-
-    tight and slack are linear in a; with a constant ρ one step of Newton from any start is exact,
-    with a force-dependent ρ (Voigt lining) the unrolled Newton steps converge quadratically from
-    the constant-ρ solution (ρ changes little with the half-element inertia in slack(a)).
-    """
-    a = ca.SX.sym("a")
-    t0, t1 = tight(0.0), tight(1.0) - tight(0.0)
-    s0, s1 = slack(0.0), slack(1.0) - slack(0.0)
-    rho0 = sys.ratio(s0, v_d)
-    x = (rho0 * s0 - t0) / (t1 - rho0 * s1)
-    if not ca.depends_on(sys.ratio(a, v_d), a):
-        return x                                   # constant ratio: the linear solution is exact
-    r = tight(a) - sys.ratio(slack(a), v_d) * slack(a)
-    dr = ca.jacobian(r, a)
-    for _ in range(NEWTON_STEPS):
-        x = x - ca.substitute(r, a, x) / ca.substitute(dr, a, x)
-    return x
-
-
-def _drum_slip_fwd(sys: LoopSystem, drive):
-    """The drum runs ahead of the rope: the winding side is tight, F_C = ρ(F_S)·F_S."""
-    a = _slip_acceleration(sys, sys.F_C, sys.F_S, drive.v_d)
-    return a, sys.v[0], drive.drum_acc(sys.F_C(a) - sys.F_S(a)), {"stick": drive.v_d - sys.v[0]}
-
-
-def _drum_slip_back(sys: LoopSystem, drive):
-    """The rope overruns the drum: the unwinding side is tight, F_S = ρ(F_C)·F_C."""
-    a = _slip_acceleration(sys, sys.F_S, sys.F_C, drive.v_d)
-    return a, sys.v[0], drive.drum_acc(sys.F_C(a) - sys.F_S(a)), {"stick": sys.v[0] - drive.v_d}
-
-
-#: drum mode → (system, drive) → (rope-on-drum acceleration, u̇_0, drum acceleration, switching functions)
-DRUM_MODES = {"stick": _drum_stick, "slip_fwd": _drum_slip_fwd, "slip_back": _drum_slip_back}
-
-
-def _tens_free(sys: LoopSystem):
-    vals = sys.values
-    return sys.zd, 2 * (vals["F_nwl"] - sys.T_sheave) / vals["m_t"], {
-        "stroke_end": vals["stroke"] - sys.z, "stroke_start": sys.z}
-
-
-def _tens_at_end(sys: LoopSystem):
-    return ca.SX(0), ca.SX(0), {"release": sys.values["F_nwl"] - sys.T_sheave}
-
-
-def _tens_at_start(sys: LoopSystem):
-    return ca.SX(0), ca.SX(0), {"release": sys.T_sheave - sys.values["F_nwl"]}
-
-
-def _tens_fixed(sys: LoopSystem):
-    return ca.SX(0), ca.SX(0), {}
-
-
-#: tensioner mode → system → (ż, z̈, switching functions)
-TENSIONER_MODES = {"free": _tens_free, "at_end": _tens_at_end, "at_start": _tens_at_start, "fixed": _tens_fixed}
-
-#: output columns of :meth:`ModeFunctions.out` (SI)
-OUT = ("v_drum", "v_rope_drum", "v_load", "F_C", "F_S", "T_sheave", "F_drum", "E", "T_min")
+    x: np.ndarray
+    mode: Mode
+    events: tuple = ()
+    terminal: bool = False
 
 
 @dataclass
 class ModeFunctions:
-    """The compiled pieces of one (phase, drum mode, tensioner mode)."""
+    """The compiled pieces of one mode in one phase of the drive profile."""
 
     ode: ca.SX
-    rhs: ca.Function          # (x, t) → ẋ
-    out: ca.Function          # (x, t) → OUT
-    g: ca.Function            # (x, t) → switching functions (scaled, ≥ 0 while the mode holds)
-    g_names: tuple[str, ...]
+    rhs: ca.Function            # (x, t) → ẋ
+    out: ca.Function            # (x, t) → history columns
+    out_names: tuple[str, ...]
+    g: ca.Function              # (x, t) → switching functions, each divided by its scale (≥ 0 while it holds)
+    switches: tuple[Switch, ...]
+    resets: tuple[ca.Function, ...]
+    project: ca.Function        # (x, t) → the mode's consistent state (the variants' projections)
+
+    @property
+    def g_names(self) -> tuple[str, ...]:
+        return tuple(s.name for s in self.switches)
 
 
-def mode_functions(sys: LoopSystem, phase, drum: str, tens: str, drive: str, f_scale: float,
-                   v_scale: float) -> ModeFunctions:
-    """Assemble ẋ, outputs and switching functions of one mode in one drive phase."""
-    t, x = sys.t, sys.x
-    drv = DRIVE_MODES[drive](sys, phase, t)
-    v_d = drv.v_d
-    a0, u0dot, a_drum, g_drum = DRUM_MODES[drum](sys, drv)
-    zdot, zdd, g_tens = TENSIONER_MODES[tens](sys)
-    ch = sys.chain
-    acc = [a0] + [sys.F[i] / ch.mass[i] for i in range(1, ch.n)]
-    udot = [u0dot] + [sys.v[i] for i in range(1, ch.n)]
-    F_C, F_S = sys.F_C(a0), sys.F_S(a0)
-    F_fr = F_C - F_S
-    P_diss = sys.damping_power() + F_fr * (v_d - sys.v[0])
-    ode = ca.vertcat(*udot, *acc, zdot, zdd, v_d, F_fr * v_d, P_diss, a_drum)
-    T_min = ca.mmin(ca.vertcat(F_C, F_S, *sys.T))
-    out = ca.vertcat(v_d, sys.v[0], sys.v[ch.load], F_C, F_S, sys.T_sheave, F_fr, sys.energy(), T_min)
-    scale = {"slip_fwd": f_scale, "slip_back": f_scale, "stick": v_scale,
-             "stroke_end": 1.0, "stroke_start": 1.0, "release": f_scale, "slack": f_scale,
-             "torque_pos": f_scale, "torque_neg": f_scale, "on_profile": v_scale}
-    gd = {**g_drum, **g_tens, "slack": T_min, **drv.g(F_fr, a_drum)}
-    names = tuple(gd)
-    g = ca.vertcat(*[gd[k] / scale[k] for k in names]) if names else ca.SX(0, 1)
-    return ModeFunctions(
-        ode,
-        ca.Function("rhs", [x, t], [ode], ["x", "t"], ["xdot"]),
-        ca.Function("out", [x, t], [out], ["x", "t"], ["out"]),
-        ca.Function("g", [x, t], [g], ["x", "t"], ["g"]),
-        names,
-    )
+class TransientSystem:
+    """The variants of one transient (bound to their :class:`~ropemodel.effects.transient.base.Setup`)."""
+
+    def __init__(self, setup, parts):
+        self.setup, self.parts, self.phases = setup, list(parts), setup.phases
+        self.layout = Layout([s for p in self.parts for s in p.states()] + list(ACCOUNTING))
+        self.x = ca.SX.sym("x", self.layout.nx)
+        self.t = ca.SX.sym("t")
+        self._functions: dict = {}
+
+    def smooth_mode(self) -> Mode:
+        """Each variant in its smooth mode (rope sticking, tensioner free, drive on its ramp)."""
+        return Mode.of({p.effect: p.smooth for p in self.parts})
+
+    def variables(self, phase, mode: Mode) -> Variables:
+        """The states, t, and what every variant publishes in ``mode`` during ``phase``."""
+        v = Variables(self.layout.split(self.x))
+        v.publish(t=self.t, phase=phase)
+        for p in self.parts:
+            p.publish(v, mode[p.effect])
+        return v
+
+    def assemble(self, phase, mode: Mode):
+        """(ẋ in layout order, switches, history columns) of ``mode`` in ``phase``, as SX in (x, t)."""
+        v = self.variables(phase, mode)
+        rhs = {}
+        for p in self.parts:
+            rhs.update(p.set_rhs(v, mode[p.effect]))
+        rhs["W"] = v["F_fr"] * v["v_d"]
+        rhs["D"] = sum((p.dissipation(v, mode[p.effect]) for p in self.parts), ca.SX(0))
+        switches = tuple(s for p in self.parts for s in p.add_events_from(v, mode[p.effect]))
+        outputs = {}
+        for p in self.parts:
+            outputs.update(p.outputs(v, mode[p.effect]))
+        energy = sum((p.energy(v, mode[p.effect]) for p in self.parts), ca.SX(0))
+        outputs.update({"W_drum [J]": v["W"], "E [J]": energy, "D [J]": v["D"]})
+        project = {}
+        for p in self.parts:
+            project.update(p.project(v, mode[p.effect]))
+        return self._ode(rhs), switches, outputs, project
+
+    def _ode(self, rhs: dict) -> ca.SX:
+        parts = []
+        for s in self.layout.states:
+            if s.name not in rhs:
+                raise RuntimeError(f"no variant gives the time derivative of the state {s.name!r}")
+            value = rhs[s.name]
+            parts += list(value) if isinstance(value, (list, tuple)) else [value]
+        return ca.vertcat(*[ca.SX(p) if isinstance(p, (int, float)) else p for p in parts])
+
+    def functions(self, k: int, mode: Mode) -> ModeFunctions:
+        """The compiled functions of ``mode`` in phase ``k`` (built on first use only)."""
+        key = (k, mode)
+        if key not in self._functions:
+            self._functions[key] = self._compile(self.phases[k], mode)
+        return self._functions[key]
+
+    def _compile(self, phase, mode: Mode) -> ModeFunctions:
+        x, t = self.x, self.t
+        ode, switches, outputs, project = self.assemble(phase, mode)
+        g = ca.vertcat(*[s.g / s.scale for s in switches]) if switches else ca.SX(0, 1)
+        return ModeFunctions(
+            ode,
+            ca.Function("rhs", [x, t], [ode], ["x", "t"], ["xdot"]),
+            ca.Function("out", [x, t], [ca.vertcat(*outputs.values())], ["x", "t"], ["out"]),
+            tuple(outputs),
+            ca.Function("g", [x, t], [g], ["x", "t"], ["g"]),
+            switches,
+            tuple(self._jump(f"reset_{s.name}", s.reset) for s in switches),
+            self._jump("project", project),
+        )
+
+    def _jump(self, name: str, updates: dict) -> ca.Function:
+        """(x, t) → x with the states in ``updates`` (reference → SX in (x, t)) replaced."""
+        comps = [self.x[i] for i in range(self.layout.nx)]
+        for ref, expr in updates.items():
+            comps[self.layout.index(ref)] = expr
+        return ca.Function(name, [self.x, self.t], [ca.vertcat(*comps)], ["x", "t"], ["x_plus"])
+
+    def values(self, k: int, mode: Mode, x, t: float) -> dict:
+        """History columns at one state (label → SI number)."""
+        fns = self.functions(k, mode)
+        return dict(zip(fns.out_names, np.array(fns.out(x, t)).ravel()))
+
+    # --- the start -----------------------------------------------------------------------------
+
+    def initial(self):
+        """The state and mode at t = 0: each variant picks its mode (solving equilibria if it needs to),
+        then the equilibrium of that mode at the profile's initial speed; a start no variant can
+        simulate (e.g. a slack rope) is refused."""
+        ic = Initial(self)
+        mode = Mode.of({p.effect: p.initial_mode(ic) for p in self.parts})
+        x0 = ic.solve(dict(mode.items))
+        if not self.setup.symbolic:
+            out = self.values(0, mode, x0, 0.0)
+            for p in self.parts:
+                p.check_start(out)
+        return x0, mode
+
+    # --- events --------------------------------------------------------------------------------
+
+    def settle(self, x, t: float, k: int, mode: Mode, events=()) -> Settled:
+        """Fire every switching function below −TOL (in assembly order) until the mode is consistent, then
+        project the state onto the mode (the variants' :meth:`project`).
+
+        A terminal function below −TOL ends the run here: e.g. the rope at the return sheave left slack
+        when the carriage stops on its end stop (its damping force is lost with the carriage's speed).
+        """
+        events = list(events)
+        for _ in range(MAX_SETTLE):
+            fns = self.functions(k, mode)
+            low = np.flatnonzero(np.array(fns.g(x, t)).ravel() < -TOL)
+            if not low.size:
+                return Settled(np.array(fns.project(x, t)).ravel(), mode, tuple(events), False)
+            x, mode, event = self._fire(k, mode, int(low[0]), x, t)
+            events.append(event)
+            if event.mode is None:
+                return Settled(x, mode, tuple(events), True)
+        raise SolveError(f"the modes chatter at t = {t:.6g} s (more than {MAX_SETTLE} events at one instant: "
+                         f"{', '.join(e.name for e in events[-4:])}); refine the model or check the traction")
+
+    def transition(self, k: int, mode: Mode, i: int, x, t: float) -> Settled:
+        """The located event of switching function ``i``: reset, new mode, then a consistent mode."""
+        x, mode, event = self._fire(k, mode, i, x, t)
+        if event.mode is None:
+            return Settled(x, mode, (event,), True)
+        return self.settle(x, t, k, mode, (event,))
+
+    def _fire(self, k: int, mode: Mode, i: int, x, t: float):
+        fns = self.functions(k, mode)
+        switch = fns.switches[i]
+        if switch.terminal:
+            return x, mode, Event(float(t), switch.name, None, np.array(x, float), self.values(k, mode, x, t))
+        x = np.array(fns.resets[i](x, t)).ravel()
+        mode = mode.replace(switch.effect, switch.target)
+        return x, mode, Event(float(t), switch.name, mode, x.copy(), self.values(k, mode, x, t))
 
 
-def rigid_traction(values: dict):
-    """Euler–Eytelwein ratio e^{μ_d α_d} of a rigid drum surface [-], whatever the forces."""
-    rho = float(friction.euler_eytelwein_ratio(values["mu_d"], values["alpha_d"]))
-    return lambda F_slack, v_drum: rho + 0 * F_slack
+class Initial:
+    """Initial conditions: equilibria of the assembled system (a linear solve, symbolic for symbolic
+    values), with states the variants pin (e.g. the take-up on an end stop of the stroke)."""
+
+    def __init__(self, system: TransientSystem):
+        self.system, self.pins = system, {}
+
+    def pin(self, ref, value) -> None:
+        self.pins[ref] = value
+
+    def value(self, x, name: str):
+        return x[self.system.layout.index(name)]
+
+    def solve(self, modes: dict | None = None, speed=None, extra=None):
+        """Every node at the profile's initial speed (or ``speed``), u_0 = 0, the forces in balance.
+
+        modes: effect → mode for the variants' ``steady`` contributions (others: their smooth mode);
+        extra(v): more (reference, residual) pairs.  Returns a numpy array, or SX for symbolic values.
+        """
+        sys, lay = self.system, self.system.layout
+        speed = sys.setup.speed0 if speed is None else speed
+        mode = Mode.of({**dict(sys.smooth_mode().items), **(modes or {})})
+        comps = [ca.SX(0)] * lay.nx
+        for p in sys.parts:
+            for ref, value in p.initial_values(speed).items():
+                _assign(lay, comps, ref, value)
+        for ref, value in self.pins.items():
+            _assign(lay, comps, ref, value)
+        v = sys.variables(sys.phases[0], mode)
+        pairs = [pair for p in sys.parts for pair in p.steady(v, mode[p.effect])] + list(extra(v) if extra else [])
+        if pairs:
+            xs = ca.SX.sym("xs", len(pairs))
+            for j, (ref, _) in enumerate(pairs):
+                comps[lay.index(ref)] = xs[j]
+            r = ca.substitute(ca.vertcat(*[res for _, res in pairs]), ca.vertcat(sys.x, sys.t),
+                              ca.vertcat(*comps, 0.0))
+            sol = _linear_solve(ca.jacobian(r, xs), ca.substitute(r, xs, ca.DM.zeros(len(pairs))),
+                                sys.setup.symbolic)
+            for j, (ref, _) in enumerate(pairs):
+                comps[lay.index(ref)] = sol[j]
+        x0 = ca.vertcat(*comps)
+        return x0 if sys.setup.symbolic else np.array(ca.evalf(x0)).ravel()
 
 
-def voigt_traction(values: dict):
-    """Traction ratio of a drum with an isotropic Voigt lining, Hajduk (1992) eq. (19) [-].
-
-    ln s + q s (1 − e^{−α_d/k}) = μ_d α_d with q = Q·F_slack (the slack side enters the arc)
-    and k = λω, ω = 2|v_drum|/D the drum's angular speed (ω → 0 is the limit of a slow drum,
-    handled by :func:`ropemodel.papers.hajduk1992.tension_ratio`).
-    """
-    from ropemodel.papers import hajduk1992 as hj
-
-    mu, alpha, Q, lam, D = (values[k] for k in ("mu_d", "alpha_d", "Q", "lambda", "D"))
-
-    def rho(F_slack, v_drum):
-        omega = 2.0 * ca.fabs(v_drum) / D if isinstance(v_drum, (ca.SX, ca.MX)) else 2.0 * abs(v_drum) / D
-        return hj.tension_ratio(mu, alpha, Q * F_slack, lam * omega)
-
-    return rho
+def _assign(layout: Layout, comps: list, ref, value) -> None:
+    if isinstance(ref, str) and layout.size(ref) > 1:
+        for i, item in enumerate(value):
+            comps[layout.index((ref, i))] = item
+    else:
+        comps[layout.index(ref)] = value
 
 
-def equilibrium(sys: LoopSystem, v0: float, z_free: bool, z_fixed: float = 0.0) -> np.ndarray:
-    """Steady state: every node at speed v0 with u_0 = 0, forces in balance (a linear solve).
-
-    ``z_free``: the constant-force tensioner balances F_nwl (z unknown), else z = ``z_fixed``.
-    """
-    lay = sys.layout
-    n = lay.n
-    x = np.zeros(lay.nx)
-    x[n:2 * n] = v0
-    x[lay.v_drum] = v0
-    if n == 1:
-        x[2 * n] = z_fixed
-        return x
-    unknown = list(range(1, n)) + ([2 * n] if z_free else [])
-    res = [sys.F[i] for i in range(1, n)]
-    if z_free:
-        res.append(sys.values["F_nwl"] - sys.T_sheave)
-    xs = ca.SX.sym("xs", len(unknown))
-    full = ca.vertcat(*[xs[unknown.index(j)] if j in unknown else (z_fixed if j == 2 * n else x[j])
-                        for j in range(lay.nx)])
-    r = ca.substitute(ca.vertcat(*res), sys.x, full)
-    J = ca.Function("J", [xs], [ca.jacobian(r, xs), r])
-    Jm, r0 = J(np.zeros(len(unknown)))
-    sol = np.linalg.solve(np.array(Jm), -np.array(r0).ravel())
-    for k, j in enumerate(unknown):
-        x[j] = sol[k]
-    if not z_free:
-        x[2 * n] = z_fixed
-    return x
+def _linear_solve(J, r0, symbolic: bool):
+    """x with J x + r0 = 0: symbolic (``ca.solve``) or in numbers (numpy)."""
+    if symbolic:
+        return ca.solve(J, -r0)
+    Jm, r = (np.array(ca.evalf(a)) for a in (J, r0))
+    return np.linalg.solve(Jm, -r.ravel())

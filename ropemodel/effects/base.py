@@ -89,6 +89,8 @@ class Submodel:
     description: ClassVar[str] = ""
     citations: ClassVar[tuple[str, ...]] = ()
     quantities: ClassVar[tuple[Quantity, ...]] = ()
+    #: the quantities :meth:`invalid_mask` reads (a sweep computes them even when not asked for)
+    invalid_needs: ClassVar[tuple[str, ...]] = ()
 
     def __init__(self, options: dict | None = None, effects: dict | None = None):
         #: the scene's ``[numerics]`` (and structural options such as the route's segments)
@@ -119,8 +121,13 @@ class Submodel:
         return []
 
     def invalid_mask(self, values: dict) -> dict[str, "object"]:
-        """Vectorised :meth:`invalid` for sweeps: reason → boolean array over the points of ``values``."""
+        """Vectorised :meth:`invalid` for sweeps: reason → boolean array over the points of ``values``
+        (only the names of :meth:`invalid_needs_for` are in ``values``)."""
         return {}
+
+    def invalid_needs_for(self, outputs) -> tuple[str, ...]:
+        """The quantities whose values decide whether ``outputs`` are valid (default: ``invalid_needs``)."""
+        return self.invalid_needs
 
     def frames(self, values: dict[str, float], scene) -> dict:
         """Extra tables (title → pandas DataFrame with units in its columns) for a solved point."""

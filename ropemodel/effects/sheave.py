@@ -1,6 +1,6 @@
 """Rope on a friction sheave (``model = "sheave"``): tension along the arc of contact.
 
-Hajduk (1992), :mod:`ropemodel.papers.hajduk1992`; MODELS.md §2.  Outputs: ``S``
+Hajduk (1992), :mod:`ropemodel.papers.hajduk1992`; docs/physics.md §3.  Outputs: ``S``
 (tension where the rope leaves the sheave, after the wrap ``alpha``) and
 ``S_ratio`` = S/S_0; the distribution S(α) along the arc is the table
 "tension along the arc" (``Result.frames``, and :func:`ropemodel.sheave.distribution`).
@@ -53,39 +53,36 @@ from ropemodel.errors import InputError, SolveError
 from ropemodel.numerics.hajduk_integrators import DEFAULT, INTEGRATORS, log_ratio_function, segment_function
 from ropemodel.papers import friction as fr
 from ropemodel.papers import hajduk1992 as hj
-from ropemodel.quantity import Quantity
+from ropemodel.quantity import Quantity, non_negative, positive
 
 MODEL = "sheave"
 SRC = "Hajduk 1992"
 
-_pos = dict(low=0.0, low_open=True, positive=True)
-_nonneg = dict(low=0.0)
 
-S_0 = Quantity("S_0", "N", "tension of the rope entering the arc (slack side)", "kN", guess=1e4, **_pos)
-MU = Quantity("mu", "1", "friction coefficient of the rope on the lining (low-pressure limit with "
-              "friction = thirion)", warn_high=1.0, guess=0.2, **_pos)
-ALPHA = Quantity("alpha", "rad", "wrap angle (arc of contact)", "deg", warn_high=10 * math.pi, guess=math.pi,
-                 **_pos)
-OMEGA = Quantity("omega", "rad/s", "angular speed of the sheave (0: the slow-sheave limit)", guess=1.0, **_nonneg)
+S_0 = positive("S_0", "N", "tension of the rope entering the arc (slack side)", "kN", guess=1e4)
+MU = positive("mu", "1", "friction coefficient of the rope on the lining (low-pressure limit with "
+              "friction = thirion)", warn_high=1.0, guess=0.2)
+ALPHA = positive("alpha", "rad", "wrap angle (arc of contact)", "deg", warn_high=10 * math.pi, guess=math.pi)
+OMEGA = non_negative("omega", "rad/s", "angular speed of the sheave (0: the slow-sheave limit)", guess=1.0)
 # guesses: starting points of Newton when an inverse question makes these unknowns of an implicit block
 S_OUT = Quantity("S", "N", "tension of the rope leaving the arc", "kN", equation=f"{SRC}, eq. (19)",
                  low=0.0, low_open=True, positive=True, guess=2e4)
-S_RATIO = Quantity("S_ratio", "1", "tension ratio S/S_0 over the arc", equation="S/S_0", guess=2.0, **_pos)
+S_RATIO = positive("S_ratio", "1", "tension ratio S/S_0 over the arc", equation="S/S_0", guess=2.0)
 S_ERROR = Quantity("S_error", "1", "estimated relative error of S (method ode: the integrator's estimate, at most "
                    "rtol; closed: the next Newton step plus rounding)",
                    equation=f"{SRC}, eq. (19) (closed) or eq. (5)-(6) integrated (ode)", low=0.0, guess=1e-9)
-C_MU = Quantity("c_mu", "1/N", "pressure sensitivity of friction, mu(S) = mu/(1 + c_mu S) (0: constant)",
-                equation="1/(p_c R a)", guess=3e-5, **_nonneg)
-R_SHEAVE = Quantity("R", "m", "sheave radius to the rope centre", "mm", guess=1.0, **_pos)
-A_WIDTH = Quantity("a", "m", "width of the lining in contact with the rope", "mm", guess=0.03, **_pos)
+C_MU = non_negative("c_mu", "1/N", "pressure sensitivity of friction, mu(S) = mu/(1 + c_mu S) (0: constant)",
+                equation="1/(p_c R a)", guess=3e-5)
+R_SHEAVE = positive("R", "m", "sheave radius to the rope centre", "mm", guess=1.0)
+A_WIDTH = positive("a", "m", "width of the lining in contact with the rope", "mm", guess=0.03)
 
 
 def _compliance(name, what):
-    return Quantity(name, "1/N", f"{what} compliance of the lining", guess=1e-5, **_nonneg)
+    return non_negative(name, "1/N", f"{what} compliance of the lining", guess=1e-5)
 
 
 def _retardation(name, what):
-    return Quantity(name, "s", f"{what} retardation time of the lining (eta/modulus)", guess=0.01, **_nonneg)
+    return non_negative(name, "s", f"{what} retardation time of the lining (eta/modulus)", guess=0.01)
 
 
 define_effect(MODEL, "lining", "voigt", "the sheave's lining: Voigt bodies (visco-elastic) or rigid")
@@ -108,6 +105,10 @@ class _Lining(Submodel):
 
     citations = ("hajduk1992",)
     args: tuple[str, ...] = ()
+    #: the equations as a person reads them (reports): the closed form, eq. (19), and the ODE, eq. (5)-(6)
+    closed_formula = "ln(S/S_0) + S [Q_R (1 − e^(−α/(λ_R ω))) + Q_T (1 − e^(−α/(λ_T ω)))] = μ α"
+    ode_formula = ("dS/dα = S (μ(S) − S C′(α)) / (1 + S C(α)), S(0) = S_0, "
+                   "C(α) = Q_R (1 − e^(−α/(λ_R ω))) + Q_T (1 − e^(−α/(λ_T ω))), μ(S) = μ / (1 + c_μ S)")
 
     def data(self, S_0, omega, *args):
         raise NotImplementedError
@@ -135,20 +136,23 @@ class _Lining(Submodel):
                            ["S", "S_error"]), names
 
     def equations(self, v):
-        eqs = [Equation("S_ratio", v["S_ratio"] * v["S_0"] - v["S"], "S_ratio = S/S_0")]
+        eqs = [Equation("S_ratio", v["S_ratio"] * v["S_0"] - v["S"], "S_ratio = S/S_0", formula="S_ratio = S / S_0")]
         if self.options.get("method", "closed") == "ode":
             fun, names = self._call()
             name = self.options.get("integrator", DEFAULT)
-            for k, (out, src) in enumerate((("S", f"{SRC}, eq. (5)-(6) integrated ({name})"),
-                                            ("S_error", f"error estimate of the {name} integration"))):
+            for k, (out, src, formula) in enumerate((
+                    ("S", f"{SRC}, eq. (5)-(6) integrated ({name})", self.ode_formula),
+                    ("S_error", f"error estimate of the {name} integration",
+                     "S_error = the integrator's estimate of the relative error of S (≤ rtol)"))):
                 # one Function per output, inlined where called: the core merges the two calls (CSE)
                 part = ca.Function(f"{fun.name()}_{out}", fun.mx_in(), [fun.call(fun.mx_in())[k]], fun.name_in(),
                                    [out], {"always_inline": True})
-                eqs.append(Equation.from_call(out, part, names, src))
+                eqs.append(Equation.from_call(out, part, names, src, formula))
         else:
             y, err = self._closed(v)
-            eqs.append(Equation("S", v["S"] - v["S_0"] * ca.exp(y), f"{SRC}, eq. (19)"))
-            eqs.append(Equation("S_error", v["S_error"] - err, f"{SRC}, eq. (19): next Newton step + rounding"))
+            eqs.append(Equation("S", v["S"] - v["S_0"] * ca.exp(y), f"{SRC}, eq. (19)", formula=self.closed_formula))
+            eqs.append(Equation("S_error", v["S_error"] - err, f"{SRC}, eq. (19): next Newton step + rounding",
+                                formula="S_error = |next Newton step of eq. (19) in ln S| + rounding"))
         return eqs
 
     def numeric_data(self, values):
@@ -196,6 +200,7 @@ class RigidLining(_Lining):
     description = "rigid lining (Euler-Eytelwein)"
     citations = ("euler_eytelwein", "hajduk1992")
     quantities = (S_0, MU, ALPHA, S_OUT, S_RATIO, S_ERROR)
+    ode_formula = "dS/dα = μ(S) S, S(0) = S_0, μ(S) = μ / (1 + c_μ S)"
 
     def data(self, S_0, omega, *args):
         return 0.0, 1.0, 0.0, 1.0
@@ -211,11 +216,11 @@ class RigidLining(_Lining):
     def equations(self, v):
         if self.options.get("method", "closed") == "ode":
             return super().equations(v)
-        return [Equation("S_ratio", v["S_ratio"] * v["S_0"] - v["S"], "S_ratio = S/S_0"),
+        return [Equation("S_ratio", v["S_ratio"] * v["S_0"] - v["S"], "S_ratio = S/S_0", formula="S_ratio = S / S_0"),
                 Equation("S", v["S"] - v["S_0"] * fr.euler_eytelwein_ratio(v["mu"], v["alpha"]),
-                         "Euler-Eytelwein, Hajduk 1992 eq. (8)"),
+                         "Euler-Eytelwein, Hajduk 1992 eq. (8)", formula="S = S_0 e^(μ α)"),
                 Equation("S_error", v["S_error"] - hj.ROUNDING * (1.0 + v["mu"] * v["alpha"]),
-                         "Euler-Eytelwein, explicit: rounding only")]
+                         "Euler-Eytelwein, explicit: rounding only", formula="S_error = ε (1 + μ α), ε the rounding")]
 
     def numeric_data(self, values):
         return 0.0, 1.0, 0.0, 1.0
@@ -232,6 +237,9 @@ class VoigtLining(_Lining):
     quantities = (S_0, MU, ALPHA, OMEGA, _compliance("Q", "total (radial + tangential)"),
                   _retardation("lambda", "the"), S_OUT, S_RATIO, S_ERROR)
     args = ("Q", "lambda")
+    closed_formula = "ln(S/S_0) + Q S (1 − e^(−α/(λ ω))) = μ α"
+    ode_formula = ("dS/dα = S (μ(S) − Q S e^(−α/(λω))/(λω)) / (1 + Q S (1 − e^(−α/(λω)))), S(0) = S_0, "
+                   "μ(S) = μ / (1 + c_μ S)")
 
     def data(self, S_0, omega, Q, lam):
         return Q, lam * omega, 0.0, 1.0
@@ -259,21 +267,25 @@ class PhysicalVoigtLining(AnisotropicVoigtLining):
     description = "Voigt lining from thickness, moduli, viscosities and the contact geometry"
     quantities = (
         *AnisotropicVoigtLining.quantities[:4], R_SHEAVE, A_WIDTH,
-        Quantity("h", "m", "thickness of the lining", "mm", guess=0.02, **_pos),
-        Quantity("E", "Pa", "Young's modulus of the lining", "MPa", guess=5e7, **_pos),
-        Quantity("G", "Pa", "shear modulus of the lining", "MPa", guess=2e7, **_pos),
-        Quantity("eta_R", "Pa*s", "viscosity of the lining in compression", "MPa*s", guess=1e5, **_nonneg),
-        Quantity("eta_T", "Pa*s", "viscosity of the lining in shear", "MPa*s", guess=1e5, **_nonneg),
+        positive("h", "m", "thickness of the lining", "mm", guess=0.02),
+        positive("E", "Pa", "Young's modulus of the lining", "MPa", guess=5e7),
+        positive("G", "Pa", "shear modulus of the lining", "MPa", guess=2e7),
+        non_negative("eta_R", "Pa*s", "viscosity of the lining in compression", "MPa*s", guess=1e5),
+        non_negative("eta_T", "Pa*s", "viscosity of the lining in shear", "MPa*s", guess=1e5),
         *AnisotropicVoigtLining.quantities[4:8],   # computed here (eq. (1), (6)): the same quantities
         S_OUT, S_RATIO, S_ERROR,
     )
 
     def equations(self, v):
         return super().equations(v) + [
-            Equation("Q_R", v["Q_R"] - hj.radial_compliance(v["h"], v["E"], v["R"], v["a"]), f"{SRC}, eq. (6)"),
-            Equation("Q_T", v["Q_T"] - hj.tangential_compliance(v["mu"], v["G"], v["R"], v["a"]), f"{SRC}, eq. (6)"),
-            Equation("lambda_R", v["lambda_R"] - hj.retardation_time(v["eta_R"], v["E"]), f"{SRC}, eq. (1)"),
-            Equation("lambda_T", v["lambda_T"] - hj.retardation_time(v["eta_T"], v["G"]), f"{SRC}, eq. (1)"),
+            Equation("Q_R", v["Q_R"] - hj.radial_compliance(v["h"], v["E"], v["R"], v["a"]), f"{SRC}, eq. (6)",
+                     formula="Q_R = h / (E R² a)"),
+            Equation("Q_T", v["Q_T"] - hj.tangential_compliance(v["mu"], v["G"], v["R"], v["a"]), f"{SRC}, eq. (6)",
+                     formula="Q_T = μ / (G R a)"),
+            Equation("lambda_R", v["lambda_R"] - hj.retardation_time(v["eta_R"], v["E"]), f"{SRC}, eq. (1)",
+                     formula="λ_R = η_R / E"),
+            Equation("lambda_T", v["lambda_T"] - hj.retardation_time(v["eta_T"], v["G"]), f"{SRC}, eq. (1)",
+                     formula="λ_T = η_T / G"),
         ]
 
     def lining_values(self, values):
@@ -291,7 +303,7 @@ class ConstantFriction(Submodel):
     quantities = (C_MU,)
 
     def equations(self, v):
-        return [Equation("c_mu", v["c_mu"], "constant friction: c_mu = 0")]
+        return [Equation("c_mu", v["c_mu"], "constant friction: c_mu = 0", formula="c_μ = 0")]
 
 
 @register(MODEL, "friction", "thirion")
@@ -313,12 +325,12 @@ class ThirionFriction(Submodel):
     description = "friction falling with contact pressure (Thirion's law)"
     citations = ("thirion1946",)
     quantities = (C_MU, R_SHEAVE, A_WIDTH,
-                  Quantity("p_c", "Pa", "pressure at which friction halves (Thirion's law)", "MPa", guess=1e6,
-                           **_pos))
+                  positive("p_c", "Pa", "pressure at which friction halves (Thirion's law)", "MPa", guess=1e6))
 
     def equations(self, v):
         # multiplied out: linear in c_mu and in p_c, R, a, so either direction is explicit
-        return [Equation("c_mu", v["c_mu"] * v["p_c"] * v["R"] * v["a"] - 1.0, "c_mu = 1/(p_c R a)")]
+        return [Equation("c_mu", v["c_mu"] * v["p_c"] * v["R"] * v["a"] - 1.0, "c_mu = 1/(p_c R a)",
+                         formula="c_μ = 1 / (p_c R a)")]
 
     def validate(self, values):
         if self.options.get("method", "closed") != "ode":

@@ -56,7 +56,6 @@ ETA = Q("eta", "1", "efficiency of the drive train", low=0.0, high=1.0, low_open
 STROKE = Q("stroke", "m", "installed stroke of the tensioner (return sheave): the rope take-up it allows", "mm",
            low=0.0, low_open=True, positive=True, unlimited=True, guess=1.0, default=math.inf,
            default_note="not given: unlimited (the take-up needed is reported)")
-X_M = Q("x_m", "m", "distance of the load from the drive along the route", "m", guess=500.0, low=0.0)
 D_DRUM = Q("D", "m", "diameter of the driving drum (at the rope centre line)", "mm", guess=3.0,
            **usual(0.2, 8.0, "drums of 30 d for ropes of 8-60 mm, with margin (Krauze et al. 2025, introduction: "
                              "D >= 30 d)"), **POSITIVE)
@@ -122,6 +121,16 @@ class HaulageForces(Submodel):
                                 + (extra_C if rigid else "")))
         return eqs
 
+    invalid_needs = _FORCES
+
+    def invalid_needs_for(self, outputs):
+        """The forces of the directions of ``outputs`` when each belongs to one (``F_C_up``, ``dF_up``:
+        a slack rope lowering does not spoil hauling up), else all four."""
+        directions = {o.rsplit("_", 1)[-1] for o in outputs}
+        if not directions <= set(_TRAVEL):
+            return _FORCES
+        return tuple(f for f in _FORCES if f.rsplit("_", 1)[-1] in directions)
+
     def invalid_mask(self, values):
         """A rope force <= 0: the rope would have to push, so it is slack (the model no longer holds)."""
         out = {}
@@ -163,7 +172,7 @@ class RigidInertia(Submodel):
     citations = ("krauze2025",)
     quantities = (
         Q("a_h", "m/s^2", "acceleration of the haulage in its direction of travel (< 0: slowing down)", "m/s^2",
-          guess=0.5),
+          guess=0.5, default=0.0, default_note="not given: steady motion (a trip sets it along its ramps)"),
         Q("I_C", "N", "inertia force of the winding side (load and winding rope), (G_m + q_l L_u)/g a_h", "kN",
           equation="rigid-body inertia (not in the paper)"),
         Q("I_S", "N", "inertia force of the unwinding rope, q_l L_u/g a_h", "kN",

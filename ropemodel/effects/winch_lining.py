@@ -17,6 +17,11 @@ Variants
            speed ω = 2 v_pj / D.  The ratio depends on F_S_d itself, so the least
            pretension for no slip is an implicit problem for the core.
 
+In a transient (:mod:`ropemodel.dynamics`) each variant gives the drum's traction ratio as a
+function ρ(F_slack, v_drum) of the slack-side force and the drum's surface speed
+(:meth:`RigidLining.transient_traction`); ``none`` gives none: without a lining the rope is fixed
+to the drum (no friction engagement, no slip).
+
 The least pretension F_nwl for no slip is the inverse question
 ``ropemodel solve SCENE --given slip_margin_up=0 --find F_nwl``.
 
@@ -28,6 +33,7 @@ from __future__ import annotations
 
 import math
 
+from ropemodel._math import fabs
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.errors import InputError
 from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, V_PJ, per_direction
@@ -77,6 +83,10 @@ class NoLining(Submodel):
 
     description = "no traction check"
 
+    def transient_traction(self, values):
+        """No friction engagement: the transient's rope is fixed to the drum (no traction ratio, no slip)."""
+        return None
+
 
 @register(MODEL, "lining", "rigid")
 class RigidLining(Submodel):
@@ -96,6 +106,12 @@ class RigidLining(Submodel):
                         "Euler-Eytelwein, Hajduk 1992 eq. (8)", formula="traction = e^(μ_d α_d)")
                for d in DIRECTIONS]
         return eqs + _margin_equations(v, lambda d: v[f"traction_{d}"])
+
+    def transient_traction(self, values):
+        """The transient's traction ratio ρ(F_slack, v_drum) = e^{μ_d α_d} [-] (Euler–Eytelwein, Hajduk 1992
+        eq. (8)), whatever the forces and speed; values SI (floats or CasADi symbols)."""
+        rho = friction.euler_eytelwein_ratio(values["mu_d"], values["alpha_d"])
+        return lambda F_slack, v_drum: rho + 0 * F_slack
 
 
 @register(MODEL, "lining", "voigt")
@@ -131,6 +147,20 @@ class VoigtDrumLining(Submodel):
                         formula="ln s + Q F_S s (1 − e^(−α_d/(λω))) = μ_d α_d, ω = 2 v_pj / D")
                for d in DIRECTIONS]
         return eqs + _margin_equations(v, lambda d: v[f"traction_{d}"])
+
+    def transient_traction(self, values):
+        """The transient's traction ratio of the Voigt-lined drum, Hajduk (1992) eq. (19) [-].
+
+        ln s + q s (1 − e^{−α_d/k}) = μ_d α_d with q = Q·F_slack (the slack side enters the arc) and
+        k = λω, ω = 2|v_drum|/D the drum's angular speed (ω → 0 is the limit of a slow drum, handled by
+        :func:`ropemodel.papers.hajduk1992.tension_ratio`); F_slack [N], v_drum [m/s], floats or symbols.
+        """
+        mu, alpha, Q, lam, D = (values[k] for k in ("mu_d", "alpha_d", "Q", "lambda", "D"))
+
+        def rho(F_slack, v_drum):
+            return hj.tension_ratio(mu, alpha, Q * F_slack, lam * 2.0 * fabs(v_drum) / D)
+
+        return rho
 
     def validate(self, values):
         for d in DIRECTIONS:

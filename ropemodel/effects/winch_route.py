@@ -18,7 +18,8 @@ from __future__ import annotations
 import math
 
 from ropemodel.effects.base import Equation, Submodel, register
-from ropemodel.effects.winch import COEFFICIENT, JUDGEMENT, MODEL, NONNEGATIVE, POSITIVE, ROPE_MU, SRC, X_M, Q, usual
+from ropemodel.effects.transient.travel import X_M
+from ropemodel.effects.winch import COEFFICIENT, JUDGEMENT, MODEL, NONNEGATIVE, POSITIVE, ROPE_MU, SRC, Q, usual
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
 
@@ -115,6 +116,9 @@ def segment_quantities(i: int, has_mu: bool) -> tuple:
 class SegmentedRoute(Submodel):
     """A route of straight segments (``[[route]]`` tables), the load at ``x_m``: :mod:`ropemodel.papers.route`.
 
+    ``x_m`` not given is the start of a trip (:data:`ropemodel.effects.transient.travel.X_M`): for the
+    static forces, the load at the return sheave's end (the last segment), where an upward trip starts.
+
     Builds L_u = Σ L_i, the load's weight and resistance on its segment (eq. (1), (5), (7)) and the
     sums over the route of the rope's weight and resistance (eq. (2), (6), (10), (11)); the forces
     follow by eq. (12)-(14).  The structure (number of segments, which give ``mu_winding``) is the
@@ -171,13 +175,23 @@ class SegmentedRoute(Submodel):
                      f"eq. (11), {src}", formula="T_ls = Σ μ_pl q_l L_i cos α_i"),
         ]
 
+    def transient_route(self, values: dict, numbers: dict):
+        """The route as the transient's rope model asks it (:class:`ropemodel.effects.transient.route.Segments`):
+        lengths as numbers (geometry), inclinations and coefficients as the values (may be symbols)."""
+        from ropemodel.effects.transient.route import Segments
+
+        n = range(1, len(self.segments) + 1)
+        return Segments(values, [float(numbers[f"L_{i}"]) for i in n], [values[f"alpha_{i}"] for i in n],
+                        [values[f"mu_w{i}"] for i in n])
+
     def rules(self, values):
         lengths = [values.get(f"L_{i}") for i in range(1, len(self.segments) + 1)]
         if any(v is None for v in lengths):
             return []
         total, out = sum(lengths), []
         for name, what in (("x_m", "the load"), ("L_ul", "point A")):
-            if name in values and not 0.0 <= values[name] <= total:
+            # x_m not given (inf) is the start of an upward trip: the load on the last segment
+            if name in values and math.isfinite(values[name]) and not 0.0 <= values[name] <= total:
                 out.append(f"{name} = {values[name]:g} m is beyond the route: {what} must be on it, 0 <= {name} <= "
                            f"L_u = {total:g} m (the sum of the segments)")
         return out

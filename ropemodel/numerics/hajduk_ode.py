@@ -1,6 +1,6 @@
 """Right side of the lining ODE in a stretched angle, as CasADi SX expressions.
 
-Dimensionless variables (Hajduk 1992; MODELS.md §2): s = S/S_0, q = Q S_0,
+Dimensionless variables (Hajduk 1992; docs/physics.md §3): s = S/S_0, q = Q S_0,
 k = λω.  The ODE (eq. (5)-(6), corrected) in y = ln s is
 
     dy/dα = (μ(s) − s [q_R e^{−α/k_R}/k_R + q_T e^{−α/k_T}/k_T]) / (1 + s C(α)),
@@ -25,7 +25,7 @@ precision, since e^{−1000} = 0).
 State choice.  ``"log"`` integrates y = ln s with the ODE above (the general
 equation).  ``"invariant"`` integrates z = ln s + s C(α), for which the
 equation of equilibrium reads exactly dz/dα = μ(s) (the ODE is an exact
-differential, MODELS.md §2), recovering s from z by the closed-form Newton;
+differential, docs/physics.md §3), recovering s from z by the closed-form Newton;
 there is no stiffness left at all, but for constant μ it is the closed form
 itself, so the accuracy studies use ``"log"``.
 """

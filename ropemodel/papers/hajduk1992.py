@@ -2,7 +2,7 @@
 
 J. Hajduk (1992), *Theoretical distribution of the tension in the rope encircling
 the driving disc with the elastic lining* (in Polish, English summary).  Equation
-numbers below are the paper's; see ``MODELS.md`` §2 for the errata.
+numbers below are the paper's; see ``docs/physics.md`` §3 for the errata.
 
 Notation (SI): S [N] rope tension, S_0 [N] entering (slack-side) tension, α [rad]
 angle of contact reached (α = ω t), μ [-] rope–lining friction coefficient,
@@ -104,7 +104,7 @@ def tension_slope(S, alpha, mu, Q_R, k_R, Q_T, k_T):
     dS/dα = S (μ − S [Q_R e^{−α/k_R}/k_R + Q_T e^{−α/k_T}/k_T]) / (1 + S C(α)).
 
     Erratum: the printed eq. (4)/(5) write λ_R in the tangential terms; the
-    tangential Voigt bodies relax with λ_T (MODELS.md §2).  The printed eq. (7)
+    tangential Voigt bodies relax with λ_T (docs/physics.md §3).  The printed eq. (7)
     is garbled; this is eq. (6) divided by ω = dα/dt.  ``mu`` may be a function
     value μ(p) (pressure-dependent friction): the equation of equilibrium holds
     for any μ, only the closed form needs μ constant.
@@ -130,7 +130,7 @@ def log_tension_slope(y, alpha, mu, q_R, k_R, q_T, k_T):
 def tension_ratio_residual(s, mu, alpha, q_R, k_R, q_T=0.0, k_T=1.0):
     """Residual of the exact implicit solution, ln s + s C(α) S_0 − μα [-].  Hajduk (1992), eq. (19).
 
-    Generalised to λ_R ≠ λ_T (MODELS.md §2): ln s + s [q_R(1 − e^{−α/k_R}) +
+    Generalised to λ_R ≠ λ_T (docs/physics.md §3): ln s + s [q_R(1 − e^{−α/k_R}) +
     q_T(1 − e^{−α/k_T})] = μα, zero at the tension ratio s = S/S_0 > 0.
     """
     return log(s) + lining_term(s, alpha, q_R, k_R, q_T, k_T) - mu * alpha
@@ -202,12 +202,23 @@ def tension_ratio(mu, alpha, q, k):
     ln s + q s (1 − e^{−α/k}) = μα, with q = Q S_0 = (Q_R + Q_T) S_0 [-] >= 0 and
     k = λω [rad] >= 0.  q = 0 gives Euler–Eytelwein, e^{μα} (eq. (8)).
     mu [-] > 0; alpha [rad] >= 0.
+
+    Examples
+    --------
+    Fig. 5's setting μ = 0.2, q = 0.1, λω = 0.01π at α = π (docs/physics.md §3 lists the
+    reference values, computed independently), and the rigid lining q = 0:
+
+    >>> import math
+    >>> round(tension_ratio(0.2, math.pi, 0.1, 0.01 * math.pi), 6)
+    1.597677
+    >>> tension_ratio(0.2, math.pi, 0.0, 1.0) == math.exp(0.2 * math.pi)
+    True
     """
     return exp(log_tension_ratio(mu, alpha, q, k))
 
 
 def tension_ratio_anisotropic(mu, alpha, q_R, k_R, q_T, k_T):
-    """Tension ratio S/S_0 with λ_R ≠ λ_T [-].  Hajduk (1992), eq. (19) generalised (MODELS.md §2).
+    """Tension ratio S/S_0 with λ_R ≠ λ_T [-].  Hajduk (1992), eq. (19) generalised (docs/physics.md §3).
 
     q_R = Q_R S_0, q_T = Q_T S_0 [-] >= 0; k_R = λ_R ω, k_T = λ_T ω [rad] >= 0.
     """

@@ -1,13 +1,14 @@
 """Winch haulage on an inclined route: Krauze, Mucha, Wydro, Klempka (2025).
 
-K. Krauze, K. Mucha, T. Wydro, R. Klempka, "Model and analysis of rope winch
-operation in underground rail transport", Archives of Mining Sciences (2025),
-CC-BY 4.0.  Equation numbers below are the paper's.
+K. Krauze, K. Mucha, T. Wydro, R. Klempka, "Model and analysis of rope winch operation in
+underground rail transport", Archives of Mining Sciences (2025), doi:10.24425/ams.2025.156290,
+CC-BY 4.0.  Equation numbers below are the paper's; ``docs/physics.md`` §1 states them with
+their errata and the paper's Fig. 9 values, which the examples reproduce.
 
-Units: forces [N], lengths [m], angles [rad], unit weight q_l [N/m], unit
-elongation q_lw [m/N], speed [m/s], power [W].  ``direction`` is ``+1`` for
-upward travel (load hauled up the incline) and ``-1`` for downward travel; it
-fixes every ± of eq. (12)-(18) as checked against the paper's Fig. 9.
+Units: forces [N], lengths [m], angles [rad], unit weight q_l [N/m], unit elongation q_lw [m/N],
+speed [m/s], power [W].  ``direction`` is ``+1`` for upward travel (load hauled up the incline)
+and ``-1`` for downward travel; it fixes every ± of eq. (12)-(18) as checked against Fig. 9.
+Every function works on floats, numpy arrays and CasADi expressions.
 """
 
 from __future__ import annotations
@@ -19,80 +20,256 @@ DOWN = -1
 
 
 def load_weight_along_incline(G_m, alpha_u):
-    """Component of the load's weight along the incline, G_ml = G_m sin α_u [N].  Eq. (1).
+    """Component of the load's weight along the incline, eq. (1): G_ml = G_m sin α_u.
 
-    G_m [N] weight of the transported load; alpha_u [rad] inclination, |α_u| < π/2.
+    Parameters
+    ----------
+    G_m : float
+        Weight of the transported load [N], > 0.
+    alpha_u : float
+        Inclination of the route [rad], |α_u| < π/2 (the paper: up to 45°).
+
+    Returns
+    -------
+    float
+        G_ml [N].
+
+    Examples
+    --------
+    Fig. 9 of the paper prints G_ml = 128.72 kN:
+
+    >>> import math
+    >>> round(load_weight_along_incline(467e3, math.radians(16)) / 1e3, 2)
+    128.72
     """
     return G_m * sin(alpha_u)
 
 
 def load_weight_normal(G_m, alpha_u):
-    """Component of the load's weight normal to the incline, G_mo = G_m cos α_u [N].  Eq. (5)."""
+    """Component of the load's weight normal to the incline, eq. (5): G_mo = G_m cos α_u.
+
+    Parameters
+    ----------
+    G_m : float
+        Weight of the load [N].
+    alpha_u : float
+        Inclination [rad].
+
+    Returns
+    -------
+    float
+        G_mo [N].
+
+    Examples
+    --------
+    >>> import math
+    >>> round(load_weight_normal(467e3, math.radians(16)) / 1e3, 2)   # Fig. 9: 448.91 kN
+    448.91
+    """
     return G_m * cos(alpha_u)
 
 
 def rope_weight_along_incline(q_l, length, alpha_u):
-    """Weight component of a rope section along the incline, q_l·length·sin α_u [N].
+    """Weight component of a rope section along the incline, q_l·length·sin α_u.
 
-    Eq. (3) with length = L_u − L_ul (G_l1), eq. (4) with length = L_ul (G_l2),
-    eq. (6) with length = L_u (G_ls, the unwinding rope).
-    q_l [N/m] rope weight per metre; length [m]; alpha_u [rad].
+    Eq. (3) with length = L_u − L_ul (G_l1), eq. (4) with length = L_ul (G_l2), eq. (6) with
+    length = L_u (G_ls, the unwinding rope).
+
+    Parameters
+    ----------
+    q_l : float
+        Rope weight per metre [N/m].
+    length : float
+        Length of the rope section [m].
+    alpha_u : float
+        Inclination [rad].
+
+    Returns
+    -------
+    float
+        Weight along the incline [N].
+
+    Examples
+    --------
+    Fig. 9: G_l1 = 14.33 kN (650 m from K_ZN to point A), G_ls = 25.36 kN (the whole 1150 m):
+
+    >>> import math
+    >>> a = math.radians(16)
+    >>> round(rope_weight_along_incline(80.0, 650.0, a) / 1e3, 2), round(rope_weight_along_incline(80.0, 1150.0, a) / 1e3, 2)
+    (14.33, 25.36)
     """
     return q_l * length * sin(alpha_u)
 
 
 def load_resistance(mu_pm, G_m, alpha_u):
-    """Travel resistance of the load, T_m = μ_pm G_m cos α_u [N].  Eq. (7).
+    """Travel resistance of the load, eq. (7): T_m = μ_pm G_m cos α_u.
 
-    mu_pm [-] coefficient of resistance of the load; G_m [N]; alpha_u [rad].
+    Parameters
+    ----------
+    mu_pm : float
+        Coefficient of resistance of the load [-].
+    G_m : float
+        Weight of the load [N].
+    alpha_u : float
+        Inclination [rad].
+
+    Returns
+    -------
+    float
+        T_m [N].
+
+    Examples
+    --------
+    >>> import math
+    >>> round(load_resistance(0.05, 467e3, math.radians(16)) / 1e3, 2)   # Fig. 9: 22.45 kN
+    22.45
     """
     return mu_pm * G_m * cos(alpha_u)
 
 
 def rope_resistance(mu, q_l, length, alpha_u):
-    """Travel resistance of a rope section, μ·q_l·length·cos α_u [N].
+    """Travel resistance of a rope section, μ·q_l·length·cos α_u.
 
-    Eq. (8) with μ_pl1 and L_u − L_ul (T_l1), eq. (9) with μ_pl2 and L_ul (T_l2),
-    eq. (11) with μ_pl and L_u (T_ls, the unwinding rope).
+    Eq. (8) with μ_pl1 and L_u − L_ul (T_l1), eq. (9) with μ_pl2 and L_ul (T_l2), eq. (11) with
+    μ_pl and L_u (T_ls, the unwinding rope).
+
+    Parameters
+    ----------
+    mu : float
+        Coefficient of resistance of the rope [-].
+    q_l : float
+        Rope weight per metre [N/m].
+    length : float
+        Length of the section [m].
+    alpha_u : float
+        Inclination [rad].
+
+    Returns
+    -------
+    float
+        Resistance [N].
+
+    Examples
+    --------
+    >>> import math
+    >>> round(rope_resistance(0.05, 80.0, 500.0, math.radians(16)) / 1e3, 2)   # Fig. 9: T_l2 = 1.92 kN
+    1.92
     """
     return mu * q_l * length * cos(alpha_u)
 
 
 def unwinding_rope_force(F_nwl, G_ls, T_ls, direction):
-    """Force in the unwinding rope, F_S = 0.5 F_nwl + G_ls ∓ T_ls [N].  Eq. (12).
+    """Force in the unwinding rope, eq. (12): F_S = 0.5 F_nwl + G_ls ∓ T_ls.
 
-    Upward travel (direction = +1): F_S = 0.5 F_nwl + G_ls − T_ls; downward
-    (direction = −1): F_S = 0.5 F_nwl + G_ls + T_ls.
-    Erratum: the paper prints μ_nl in the expanded form of eq. (12); the
-    coefficient is μ_pl of eq. (11), as implemented here.
-    F_nwl [N] initial tension from the tensioner; G_ls, T_ls [N] from eq. (6), (11).
+    Upward travel (direction = +1): F_S = 0.5 F_nwl + G_ls − T_ls; downward (direction = −1):
+    F_S = 0.5 F_nwl + G_ls + T_ls.  Erratum: the paper prints μ_nl in the expanded form of
+    eq. (12); the coefficient is μ_pl of eq. (11), as implemented here.
+
+    Parameters
+    ----------
+    F_nwl : float
+        Initial tension from the tensioner [N].
+    G_ls, T_ls : float
+        Weight along the incline and resistance of the unwinding rope [N], eq. (6), (11).
+    direction : int
+        +1 upward, −1 downward.
+
+    Returns
+    -------
+    float
+        F_S [N].
+
+    Examples
+    --------
+    Fig. 9 (G_ls = 25.3586 kN, T_ls = 4.4218 kN): F_S = 30.94 kN up and 39.78 kN down.
+
+    >>> round(unwinding_rope_force(20e3, 25358.6, 4421.8, UP) / 1e3, 2), round(unwinding_rope_force(20e3, 25358.6, 4421.8, DOWN) / 1e3, 2)
+    (30.94, 39.78)
     """
     return 0.5 * F_nwl + G_ls - direction * T_ls
 
 
 def winding_rope_force(F_nwl, G_lmC, T_m, T_l, direction):
-    """Force in the winding rope, F_C = 0.5 F_nwl + G_lmC ± (T_m + T_l) [N].  Eq. (13).
+    """Force in the winding rope, eq. (13): F_C = 0.5 F_nwl + G_lmC ± (T_m + T_l).
 
-    Upward travel (direction = +1) adds the resistances, downward subtracts them.
-    Equivalent to eq. (16) (case 1) and to the first line of eq. (18) (case 2);
-    erratum: the second line of eq. (18) has a misplaced parenthesis and is not used.
+    Upward travel (direction = +1) adds the resistances, downward subtracts them.  Equivalent
+    to eq. (16) (case 1) and to the first line of eq. (18) (case 2); erratum: the second line of
+    eq. (18) has a misplaced parenthesis and is not used.
+
+    Parameters
+    ----------
+    F_nwl : float
+        Initial tension [N].
+    G_lmC : float
+        Weight along the incline of load and winding rope [N], eq. (14).
+    T_m, T_l : float
+        Resistances of the load and of the winding rope [N], eq. (7), (10).
+    direction : int
+        +1 upward, −1 downward.
+
+    Returns
+    -------
+    float
+        F_C [N].
+
+    Examples
+    --------
+    Fig. 9 (G_lmC = 154.0813 kN, T_m = 22.4455 kN, T_l = 4.4218 kN): F_C = 190.95 kN up, 137.21 kN down.
+
+    >>> up = winding_rope_force(20e3, 154081.3, 22445.5, 4421.8, UP)
+    >>> down = winding_rope_force(20e3, 154081.3, 22445.5, 4421.8, DOWN)
+    >>> round(up / 1e3, 2), round(down / 1e3, 2)
+    (190.95, 137.21)
     """
     return 0.5 * F_nwl + G_lmC + direction * (T_m + T_l)
 
 
 def elongation(q_lw, F):
-    """Elongation of the installed rope under force F, ΔF = q_lw·F [m].  Eq. (19), (20), (22).
+    """Elongation of the installed rope under force F, ΔF = q_lw·F: eq. (19), (20), (22).
 
-    q_lw [m/N] unit elongation of the installed rope (the paper gives mm/kN); F [N].
+    Parameters
+    ----------
+    q_lw : float
+        Unit elongation of the installed rope [m/N] (the paper gives mm/kN).
+    F : float
+        Force [N].
+
+    Returns
+    -------
+    float
+        Elongation [m].
+
+    Examples
+    --------
+    >>> round(elongation(5.8e-6, 190949.0) * 1e3, 2)   # Fig. 9: ΔF_C = 1107.50 mm upward
+    1107.5
     """
     return q_lw * F
 
 
 def drive_power(F_C, F_S, v_pj, eta):
-    """Drive power N_p = (F_C − F_S)·v_pj / η [W].
+    """Drive power N_p = (F_C − F_S)·v_pj / η (not in the paper: the force balance on the drum).
 
-    Not in the paper: the power follows from the force balance on the drum, the
-    unwinding rope's tension F_S acting back on it; η [-] is the drive efficiency
-    (0 < η ≤ 1), v_pj [m/s] the haulage speed.  Negative N_p means the drive brakes.
+    The unwinding rope's tension F_S acts back on the drum; η is the drive efficiency
+    (0 < η ≤ 1).  Negative N_p means the drive brakes.
+
+    Parameters
+    ----------
+    F_C, F_S : float
+        Forces in the winding and unwinding rope [N].
+    v_pj : float
+        Haulage speed [m/s].
+    eta : float
+        Efficiency of the drive train [-].
+
+    Returns
+    -------
+    float
+        N_p [W].
+
+    Examples
+    --------
+    >>> round(drive_power(190949.0, 30937.0, 2.5, 1.0) / 1e3, 2)   # upward, at the drum rim [kW]
+    400.03
     """
     return (F_C - F_S) * v_pj / eta

@@ -128,3 +128,50 @@ def winding_side_mass(G_m, q_l, L_u, g=G_N):
 def unwinding_side_mass(q_l, L_u, g=G_N):
     """Mass of the unwinding rope, q_l L_u/g [kg]."""
     return q_l * L_u / g
+
+
+# --- kinematics of a trip with linear ramps (docs/physics.md §4) ------------------------------------
+
+
+def trip_phases(length: float, v_pj: float, t_ramp: float) -> list[tuple[float, float, float, float]]:
+    """Phases (t0, t1, v0, a) of a trip over ``length`` [m]: ramp to v_pj [m/s] in t_ramp [s], run, ramp down.
+
+    A route shorter than v_pj·t_ramp never reaches full speed: up and down at the same acceleration
+    v_pj/t_ramp (a triangle).  Floats only.
+
+    Examples
+    --------
+    >>> trip_phases(1150.0, 2.5, 5.0)      # 5 s up, 455 s at 2.5 m/s, 5 s down
+    [(0.0, 5.0, 0.0, 0.5), (5.0, 460.0, 2.5, 0.0), (460.0, 465.0, 2.5, -0.5)]
+    """
+    a = v_pj / t_ramp
+    if length <= v_pj * t_ramp:
+        t_half = (length / a) ** 0.5
+        return [(0.0, t_half, 0.0, a), (t_half, 2.0 * t_half, a * t_half, -a)]
+    cruise = (length - v_pj * t_ramp) / v_pj
+    return [(0.0, t_ramp, 0.0, a), (t_ramp, t_ramp + cruise, v_pj, 0.0),
+            (t_ramp + cruise, 2.0 * t_ramp + cruise, v_pj, -a)]
+
+
+def distance_travelled(phases, t: float) -> float:
+    """Distance [m] travelled by time t [s] along ``phases`` (:func:`trip_phases`)."""
+    s = 0.0
+    for t0, t1, v0, a in phases:
+        dt = min(max(t - t0, 0.0), t1 - t0)
+        s += v0 * dt + 0.5 * a * dt * dt
+    return s
+
+
+def time_at_distance(phases, distance: float) -> float:
+    """The time [s] at which ``distance`` [m] has been travelled (the distance only grows)."""
+    s = 0.0
+    for t0, t1, v0, a in phases:
+        step = v0 * (t1 - t0) + 0.5 * a * (t1 - t0) ** 2
+        if s + step >= distance:
+            d = distance - s
+            if a == 0.0:
+                return t0 + d / v0
+            root = max(v0 * v0 + 2.0 * a * d, 0.0) ** 0.5
+            return t0 + (root - v0) / a
+        s += step
+    return phases[-1][1]

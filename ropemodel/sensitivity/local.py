@@ -64,9 +64,14 @@ def elasticities(scene, values: dict | None = None, outputs=None, parameters=Non
 
     Columns: ``output``, ``parameter``, ``y`` and ``p`` (display units, with ``y_unit``, ``p_unit``),
     ``dy_dp`` (display units), ``elasticity`` (missing where undefined), ``defined``, ``note``.
-    ``values`` override the scene's inputs; ``given``/``find`` pose an inverse problem.
+    ``values`` override the scene's inputs; ``given``/``find`` pose an inverse problem.  By default every
+    input with a finite value is a parameter: an unlimited one (a stroke not given, x_m at the start of a
+    trip) has no elasticity.
     """
     problem = Problem(scene, given, find)
+    if parameters is None:
+        x = problem.inputs(values)
+        parameters = [k for k in problem.knowns if math.isfinite(x[k])]
     y, J, p, outputs = jacobian(problem, values, parameters, outputs)
     q = problem.model.quantities
     names = list(p)

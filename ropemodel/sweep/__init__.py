@@ -4,7 +4,7 @@
 
     import ropemodel as rm
     scene = rm.load_scene()
-    df = rm.sweep(scene, vary={"alpha_u": "0deg:45deg:1000", "G_m": [300e3, 467e3]},
+    df = rm.sweep(scene, vary={"alpha_u": "5deg:45deg:1000", "G_m": [300e3, 467e3]},
                   outputs=["F_C_up", "dF_up"])
     df.columns   # ['alpha_u [deg]', 'G_m [kN]', 'F_C_up [kN]', 'dF_up [mm]']
     rm.sweep(scene, vary={...}, out="big.parquet", collect=False)   # chunked, resumable

@@ -26,7 +26,10 @@ class ChunkJob:
     columns: (label, name, factor) of every column written: the varied inputs, then the outputs.
     checks: output name → (low, high, low_open, high_open, description) ranges a solution must meet.
     roundtrip: extra output → given output it must reproduce (the forward model at the solution).
-    errors: ``"raise"`` (SolveError naming the first bad point) or ``"mark"`` (a ``solved`` column).
+    errors: ``"raise"`` (SolveError naming the first bad point) or ``"mark"``: NaN outputs at such a
+        point, ``solved`` False and the reason in ``invalid``.
+    physics: submodels whose :meth:`~ropemodel.effects.base.Submodel.invalid_mask` says where the
+        model no longer holds (a slack rope); watch: the names they read → the output holding each.
     """
 
     job: Job
@@ -35,6 +38,8 @@ class ChunkJob:
     checks: dict[str, tuple] = field(default_factory=dict)
     errors: str = "raise"
     roundtrip: dict[str, str] = field(default_factory=dict)
+    physics: list = field(default_factory=list)
+    watch: dict[str, str] = field(default_factory=dict)
 
 
 def run_chunk(job: ChunkJob, start: int, inputs: dict[str, np.ndarray]) -> pa.Table:
@@ -62,6 +67,8 @@ def run_chunk(job: ChunkJob, start: int, inputs: dict[str, np.ndarray]) -> pa.Ta
         if bad.any():
             failures[f"{name} found outside its valid range ({desc})"] = bad
             ok &= ~bad
+    if job.physics:
+        failures.update(_outside_physics(job, inputs, outs, ok))
     if failures and job.errors == "raise":
         why, mask = next(iter(failures.items()))
         i = int(np.flatnonzero(mask)[0])
@@ -70,8 +77,31 @@ def run_chunk(job: ChunkJob, start: int, inputs: dict[str, np.ndarray]) -> pa.Ta
                          f"from {start} fail (errors='mark' keeps them with solved = False)")
     data = {}
     for label, name, f in job.columns:
-        v = inputs[name] if name in inputs else outs[name]
-        data[label] = v * f if f != 1.0 else np.ascontiguousarray(v, dtype=float)
+        if name in inputs:
+            data[label] = inputs[name] * f if f != 1.0 else np.ascontiguousarray(inputs[name], dtype=float)
+        else:  # never a wrong number: an output of a point without a valid solution is NaN
+            data[label] = np.where(ok, outs[name] * f, np.nan)
     if job.errors == "mark":
+        reason = np.full(n, None, dtype=object)
+        for why, mask in reversed(failures.items()):
+            reason[mask] = why
         data["solved"] = ok
+        data["invalid"] = pa.array(reason, type=pa.string())  # null where solved
     return pa.table(data)
+
+
+def _outside_physics(job: ChunkJob, inputs: dict, outs: dict, ok: np.ndarray) -> dict:
+    """Reason → mask of the solved points where the model no longer holds (``ok`` is updated)."""
+    n = len(ok)
+    values = {}
+    for name, key in job.watch.items():
+        v = inputs.get(key, outs.get(key, job.job.constants.get(key)))
+        values[name] = np.broadcast_to(np.asarray(v, dtype=float), (n,))
+    found = {}
+    for sm in job.physics:
+        for why, mask in sm.invalid_mask(values).items():
+            bad = ok & np.asarray(mask, dtype=bool)
+            if bad.any():
+                found[f"outside the model: {why}"] = bad
+                ok &= ~bad
+    return found

@@ -51,8 +51,9 @@ def check_format(path: Path, suffixes=SUFFIXES) -> None:
 
 
 def check_output(path, suffixes=SUFFIXES) -> Path:
-    """``path`` as a Path, or :class:`InputError` if an output cannot be written there (``suffixes``:
-    the formats the writer knows, tables by default)."""
+    """``path`` as a Path, or :class:`InputError` if an output cannot be written there.
+
+    suffixes: the file name endings accepted (default: a sweep's tables, :data:`SUFFIXES`)."""
     p = Path(path)
     if not str(path).strip():
         raise InputError(f"output file name is empty; name a file ending in {', '.join(suffixes)}")

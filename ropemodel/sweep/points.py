@@ -6,7 +6,7 @@ parameters, or given outputs of an inverse problem).  Its points come from
 * a **grid** — ``{name: axis}``; the points are the Cartesian product of the
   axes, first axis slowest (like ``itertools.product``).  An axis is a
   sequence of values (SI numbers or strings with a unit), a ``(start, stop,
-  n)`` tuple, or the text ``"START:STOP:N"`` (``"0deg:45deg:1000"``).  The
+  n)`` tuple, or the text ``"START:STOP:N"`` (``"5deg:45deg:1000"``).  The
   grid is never materialised: a chunk of points is computed from its indices,
   so a 1e7-point grid costs no memory up front;
 * a **table** — a :class:`pandas.DataFrame` whose columns are input names
@@ -33,7 +33,7 @@ from ropemodel.errors import InputError, Problems
 from ropemodel.units import factor
 
 #: columns a sweep writes besides inputs and outputs (ignored when its output is read back as points)
-SWEEP_COLUMNS = ("solved", "valid", "invalid")
+SWEEP_COLUMNS = ("solved", "invalid")
 #: the most points one grid axis and one sweep may have (a sweep of more is several sweeps)
 MAX_AXIS = 10**8
 MAX_POINTS = 10**10
@@ -203,9 +203,9 @@ def table(frame: pd.DataFrame, quantities: dict, ignore=()) -> Table:
 
     A dimensional column needs its unit in brackets (``F_T [N]``) in a file (a frame from
     :func:`read_points`); a pure number may go without (``mu`` or ``mu [-]``).  In a DataFrame
-    built in Python, a column named without a unit holds SI values (the Python API's numbers).  Columns named in ``ignore`` (the outputs of the problem, and the
-    ``solved``/``valid``/``invalid`` columns a sweep writes) are left out, so a sweep's own output
-    file is a valid points file.  Every problem of every column is listed at once.
+    built in Python, a column named without a unit holds SI values (the Python API's numbers).
+    Columns named in ``ignore`` (the outputs of the problem, and the ``solved``/``invalid``
+    columns a sweep writes) are left out, so a sweep's own output file is a valid points file.  Every problem of every column is listed at once.
     """
     cols, found = {}, Problems()
     if frame.shape[1] == 0 or len(frame) == 0:

@@ -42,6 +42,8 @@ from ropemodel.units import label
 CHUNK = 65536  # points per chunk: ~20 MB of results for 40 columns
 ERRORS = ("raise", "mark")
 MAX_THREADS = 1024  # threads per chunk evaluation (more is a typo, not a machine)
+#: the columns ``errors="mark"`` adds: whether the point has a valid solution, and why not
+MARK_COLUMNS = {"solved": pa.bool_(), "invalid": pa.string()}
 
 
 class SweepInterrupted(KeyboardInterrupt):
@@ -85,7 +87,7 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
     Parameters
     ----------
     scene: a :class:`~ropemodel.scene.Scene`; inputs not varied keep its values.
-    vary: ``{name: axis}`` — a grid, the product of the axes (``"0deg:45deg:1000"``,
+    vary: ``{name: axis}`` — a grid, the product of the axes (``"5deg:45deg:1000"``,
         ``(0, 0.7, 100)``, a list of values; numbers are SI) — or a DataFrame of points.
     outputs: names of the outputs to compute (default: every unknown of the problem).
     points: a DataFrame of points (alternative to ``vary``); columns are names (SI) or ``"name [unit]"``.
@@ -102,7 +104,9 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
     backend: ``"auto"``, ``"casadi"`` (Function.map) or ``"compiled"`` (C code through ctypes).
     si: SI units in the columns instead of display units.
     errors: ``"raise"`` — a point without a valid solution raises SolveError naming it;
-        ``"mark"`` — keep it (NaN outputs) with ``solved`` False.
+        ``"mark"`` — keep it (NaN outputs) with ``solved`` False and the reason in ``invalid``.
+        A point where the model no longer holds (a rope that would have to push: slack) has
+        no valid solution.
     progress: show a progress bar (default: when stderr is a terminal and not silenced; see
         :func:`ropemodel.progress.enabled`).
     restart: discard an unfinished sweep of ``out``, or recompute a finished one.
@@ -178,7 +182,7 @@ class _Plan:
     def labels(self) -> list[str]:
         q = self.problem.model.quantities
         cols = [label(k, q[k].unit if self.si else q[k].display_unit) for k in [*self.pts.names, *self.outputs]]
-        return cols + (["solved"] if self.errors == "mark" else [])
+        return cols + (list(MARK_COLUMNS) if self.errors == "mark" else [])
 
 
 def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out, collect) -> _Plan:
@@ -194,7 +198,7 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
     if pts.n == 0:
         raise InputError("no points to sweep")
     outputs = _outputs(problem, outputs, pts.names)
-    check_size(pts.n, len(pts.names) + len(outputs) + (errors == "mark"), out=out, collect=collect)
+    check_size(pts.n, len(pts.names) + len(outputs) + 2 * (errors == "mark"), out=out, collect=collect)
     base = problem.inputs({**given_values, **{n: float(pts.values_of(n)[0]) for n in pts.names}})
     check_ranges(pts, inputs)
     check_rules(model, pts, base)
@@ -211,7 +215,7 @@ def _found(plan: _Plan, out: Path, collect: bool):
         return None
     discard_parts(out, plan.signature)  # left if the output was finished just before they were removed
     if collect:
-        types = {c: (pa.bool_() if c == "solved" else pa.float64()) for c in plan.labels()}
+        types = {c: MARK_COLUMNS.get(c, pa.float64()) for c in plan.labels()}
         return read_output(out, types).to_pandas()
     return SweepFile(out, rows, plan.labels(), "complete")
 
@@ -292,6 +296,15 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
             roundtrip[f"roundtrip_{g}"] = g
             names.append(f"roundtrip_{g}")
             outs.append(back[g])
+    physics = [sm for sm in problem.model.submodels if sm.invalid_needs_for(outputs)]
+    watch = {}
+    for name in dict.fromkeys(n for sm in physics for n in sm.invalid_needs_for(outputs)):
+        if name in problem.knowns or name in outputs:
+            watch[name] = name
+        elif name in problem.unknowns:
+            watch[name] = f"watch_{name}"
+            names.append(watch[name])
+            outs.append(res[name])
     sel = ca.Function("sweep_point", [syms[k] for k in order], outs, order, names)
     if fun.is_a("SXFunction"):
         sel = sel.expand()
@@ -303,7 +316,8 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
     checks = {n: (q[n].low, q[n].high, q[n].low_open, q[n].high_open,
                   f"{q[n].range_text()}, {q[n].description}") for n in problem.find if n in outputs}
     constants = {k: float(base[k]) for k in order[len(varied):]}
-    return ChunkJob(Job(sel, list(varied), constants, backend, threads), outputs, columns, checks, errors, roundtrip)
+    return ChunkJob(Job(sel, list(varied), constants, backend, threads), outputs, columns, checks, errors, roundtrip,
+                    physics, watch)
 
 
 def _signature(scene, problem, pts, base, outputs, chunk_size, si, errors) -> dict:

@@ -1,0 +1,111 @@
+"""``ropemodel report SCENE [--set NAME=VALUE ...] [-o report.html] [--pdf report.pdf]``: a design report.
+
+One self-contained HTML page (no network resource: styles inline, pictures as data URIs) with the
+scene and its file's SHA-256, the inputs and where each came from, the equations with their
+numbers, the results, every design check, the sizing, the transient, what matters most and the
+references (:mod:`ropemodel.report`).  ``--pdf``: the page printed by headless Chromium.
+
+Outputs are checked before any work, locked while written, written under a temporary name and
+renamed into place.  Exit 0: written; 1: written, but a section could not be computed (named on
+stderr and in the page), or a file could not be written; 2: bad input (the scene's own list of
+problems, an output that cannot be written, Chromium missing for --pdf, the ``report`` extra missing).
+"""
+
+from __future__ import annotations
+
+import tempfile
+from contextlib import ExitStack
+from pathlib import Path
+
+from ropemodel.cli._common import assignments, warn
+from ropemodel.errors import InputError
+from ropemodel.progress import status
+
+NAME = "report"
+HELP = "write a design report of a scene: a self-contained HTML page (-o) and/or its PDF (--pdf, headless Chromium)"
+HTML = (".html", ".htm")
+PDF = (".pdf",)
+
+
+def add_arguments(parser) -> None:
+    parser.add_argument("scene", help="scene TOML file, or the name of a built-in scene ('example' for Fig. 9)")
+    parser.add_argument("--set", action="append", metavar="NAME=VALUE", default=[],
+                        help="override a parameter; a dimensional VALUE carries its unit, e.g. alpha_u=20deg")
+    parser.add_argument("-o", "--output", metavar="FILE.html", help="write the report as one HTML page")
+    parser.add_argument("--pdf", metavar="FILE.pdf", help="write the report as PDF (printed by headless Chromium)")
+    parser.add_argument("--discrete", choices=("next-size-up", "bonmin"), default=None,
+                        help="sizing scenes: how to pick the catalogue diameter (default: next-size-up)")
+
+
+def _outputs(args) -> tuple[Path | None, Path | None]:
+    from ropemodel.sweep.files import check_output
+
+    if not args.output and not args.pdf:
+        raise InputError("nothing to write: give -o FILE.html and/or --pdf FILE.pdf")
+    html = check_output(args.output, HTML) if args.output else None
+    pdf = check_output(args.pdf, PDF) if args.pdf else None
+    if html is not None and pdf is not None and html.resolve() == pdf.resolve():
+        raise InputError(f"-o and --pdf name the same file {html}")
+    return html, pdf
+
+
+def _write_html(path: Path, text: str) -> None:
+    from ropemodel.sweep.files import write_atomic
+
+    def write(tmp):
+        tmp.write_text(text, encoding="utf-8")
+
+    def check(tmp):
+        if tmp.read_text(encoding="utf-8") != text:
+            raise OSError("the file written does not read back as the page")
+
+    write_atomic(path, write, check)
+
+
+def _write_pdf(path: Path, text: str, exe: str) -> None:
+    from ropemodel.report.browser import print_pdf
+    from ropemodel.sweep.files import write_atomic
+
+    def check(tmp):
+        data = tmp.read_bytes()
+        if not data.startswith(b"%PDF-") or b"%%EOF" not in data[-1024:]:
+            raise OSError("Chromium's PDF is not a complete PDF file")
+
+    with tempfile.TemporaryDirectory(prefix="ropemodel-report-") as d:
+        page = Path(d) / "report.html"
+        page.write_text(text, encoding="utf-8")
+        write_atomic(path, lambda tmp: print_pdf(page, tmp, exe), check)
+
+
+def main(args) -> int:
+    from ropemodel.report import build, load
+    from ropemodel.report.browser import find
+    from ropemodel.report.build import requirements
+    from ropemodel.sweep.files import OutputError, OutputLock, cause
+
+    html, pdf = _outputs(args)
+    exe = find() if pdf is not None else None
+    requirements()
+    ctx = load(args.scene, assignments(args.set, "--set"), method=args.discrete)
+    warn(ctx.scene.warnings)
+    with ExitStack() as locks:
+        for path in (p for p in (html, pdf) if p is not None):
+            locks.enter_context(OutputLock(path))
+        with status(f"report of {ctx.scene.name}: computing and drawing"):
+            report = build(ctx)
+        writers = ((html, lambda p: _write_html(p, report.html)), (pdf, lambda p: _write_pdf(p, report.html, exe)))
+        for path, write in writers:
+            if path is None:
+                continue
+            try:
+                write(path)
+            except OSError as exc:
+                raise OutputError(f"cannot write {path}: {cause(exc)}; nothing was written") from None
+            except OutputError as exc:   # the browser could not print
+                raise OutputError(f"cannot write {path}: {exc}") from None
+            print(f"wrote {path}")
+    for line in report.verdicts:
+        print(line)
+    for name, why in report.incomplete:
+        warn([f"section {name!r} could not be computed (the page says why): {why.splitlines()[0]}"])
+    return 1 if report.incomplete else 0

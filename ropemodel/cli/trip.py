@@ -1,0 +1,37 @@
+"""``ropemodel trip SCENE [--direction up|down] [--json] [-o history.csv|parquet]``: a whole trip."""
+
+from __future__ import annotations
+
+from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn
+from ropemodel.errors import InputError
+
+NAME = "trip"
+HELP = "a whole trip along the route: forces, drive power, energy drawn and returned, RMS power, stroke needed"
+
+
+def add_arguments(parser) -> None:
+    add_scene_arguments(parser, optional=False)
+    parser.add_argument("--direction", choices=("up", "down"), default=None,
+                        help="the trip's direction (default: the scene's travel effect, else up)")
+    parser.add_argument("-o", "--output", metavar="FILE",
+                        help="write the trip's history (SI, units in the column names) to FILE.csv or FILE.parquet")
+
+
+def main(args) -> int:
+    from ropemodel.progress import status
+    from ropemodel.sweep.files import OutputLock, check_output, write_frame
+    from ropemodel.trip import prepare, trip
+
+    out = check_output(args.output) if args.output else None
+    scene = prepare(scene_from_args(args, announce=False))
+    warn(scene.warnings)
+    with status(f"trip of {scene.name}"):
+        result = trip(scene, args.direction)
+    if out is not None:
+        with OutputLock(out):
+            rows, columns = write_frame(result.history, out)
+        if rows == 0:
+            raise InputError(f"{out}: nothing to write")
+    print(result.to_json() if args.json else result.report())
+    return 0
+

@@ -1,0 +1,112 @@
+"""The smooth mode of a transient as CasADi Functions of symbolic scene parameters (for dynamic sizing).
+
+The *smooth mode* is the regime without events: the rope sticking on the drum, the tensioner free
+within its stroke (or locked, for a fixed take-up), the drive following its ramp.  Dynamic sizing puts
+it in an IPOPT NLP with exact derivatives, the parameters it sizes (e.g. the rope diameter ``d`` of a
+catalogue rope, the pretension ``F_nwl``, the ``stroke``, the ramp time ``t_ramp``) as symbols, and the
+events of the other modes as path constraints: no slip (``slip_fwd`` ≥ 0), the stroke not exhausted
+(``stroke − take_up`` ≥ 0), no slack rope (``T_min`` ≥ 0).
+
+::
+
+    sm = smooth_mode(scene, ["d", "F_nwl", "t_ramp"])
+    x0 = sm.x0(sm.p0)                       # the equilibrium at the start, x0(p)
+    xdot = sm.f(x0, 0.0, sm.p0)             # f(x, t, p) -> xdot, over the whole profile [0, t_end]
+    sm.out(x0, 0.0, sm.p0)                  # F_C, F_S, take_up, T_min [, slip_fwd, slip_back]
+
+The variants build the same equations as :func:`~ropemodel.dynamics.simulate` does, from symbolic
+values: the static model's outputs (q_l, q_lw of a catalogue rope, the forces the drum contact is
+linearised at, ...) through its compiled forward Function, the initial equilibrium as a symbolic
+linear solve.  The drive profile is one piecewise expression over [0, t_end] (``if_else`` at the
+phases' ends, each branch finite everywhere).  Parameters that fix the structure (route geometry,
+the load's position: each variant's ``structural`` names) must stay numbers.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import casadi as ca
+import numpy as np
+
+from ropemodel.core.compile import forward_of
+from ropemodel.dynamics.assemble import bind, chosen, transient_parts
+from ropemodel.effects.transient.base import Layout, Setup
+from ropemodel.effects.transient.profile import Profile
+from ropemodel.errors import InputError
+from ropemodel.problem import run
+
+#: history columns of the smooth mode's ``out`` (label → output name) and switching functions kept raw
+OUTPUTS = {"F_C [N]": "F_C", "F_S [N]": "F_S", "take_up [m]": "take_up", "T_min [N]": "T_min"}
+SWITCHES = ("slip_fwd", "slip_back")
+
+
+class SmoothMode(NamedTuple):
+    """CasADi Functions of the smooth mode.
+
+    f: (x, t, p) → xdot; out: (x, t, p) → F_C [N], F_S [N], take_up [m], T_min [N] (least tension of the
+    rope) and, with a friction lining, slip_fwd = ρ(F_S)·F_S − F_C and slip_back = ρ(F_C)·F_C − F_S [N]
+    (≥ 0: no slip); x0: (p) → the state at t = 0.  params: the names in p; p0: their scene values (SI);
+    layout: the named states of x; t_end [s] and phase_ends [s] (at p0: where the profile has kinks).
+    """
+
+    f: ca.Function
+    out: ca.Function
+    x0: ca.Function
+    params: tuple
+    p0: np.ndarray
+    layout: Layout
+    t_end: float
+    phase_ends: tuple
+
+
+def smooth_mode(scene, params) -> SmoothMode:
+    """The smooth mode of ``scene``'s transient with the scene parameters ``params`` as symbols."""
+    params = tuple(params)
+    submodels = chosen(scene)
+    parts = transient_parts(scene, submodels)
+    _check_params(scene, params, parts)
+    p = ca.SX.sym("p", len(params))
+    static = run(scene)
+    setup = Setup(_symbolic_values(scene, params, p), dict(static.values), dict(scene.numerics),
+                  {q.effect: q for q in parts}, submodels)
+    system = bind(setup, parts)
+    profile = next(q for q in parts if isinstance(q, Profile))
+    ode, switches, outputs, _ = system.assemble(profile.whole(), system.smooth_mode())
+    x, t = system.x, system.t
+    raw = {s.name: s.g for s in switches if s.name in SWITCHES}
+    names = [OUTPUTS[k] for k in OUTPUTS] + [n for n in SWITCHES if n in raw]
+    exprs = [outputs[k] for k in OUTPUTS] + [raw[n] for n in SWITCHES if n in raw]
+    x0, _ = system.initial()
+    p0 = np.array([scene.parameters[n] for n in params], float)
+    ends = tuple(float(ca.evalf(ca.substitute(ph.t1, p, p0))) for ph in setup.phases)
+    return SmoothMode(
+        ca.Function("f", [x, t, p], [ode], ["x", "t", "p"], ["xdot"]),
+        ca.Function("out", [x, t, p], exprs, ["x", "t", "p"], names),
+        ca.Function("x0", [p], [x0], ["p"], ["x0"]),
+        params, p0, system.layout, ends[-1], ends)
+
+
+def _check_params(scene, params, parts) -> None:
+    structural = {n for q in parts for n in q.structural}
+    bad = [f"{n} is not a parameter of scene {scene.name!r}" for n in params if n not in scene.parameters]
+    bad += [f"{n} fixes the structure of the transient (the route's geometry, where the load is): it must "
+            f"stay a number" for n in params if n in structural]
+    if len(set(params)) != len(params):
+        bad.append("a parameter is named twice")
+    if bad:
+        raise InputError(problems=bad)
+
+
+def _symbolic_values(scene, params, p) -> dict:
+    """The scene's parameters with ``params`` replaced by symbols, and the static model's outputs in terms
+    of them (through its compiled forward Function, which must be explicit: SX)."""
+    forward = forward_of(scene.built)
+    if not forward.is_a("SXFunction"):
+        raise InputError(f"scene {scene.name!r}: the static model solves an implicit block or calls an integrator, "
+                         f"so its outputs are not closed-form expressions of the parameters; the symbolic smooth "
+                         f"mode needs an explicit static model")
+    values = dict(scene.parameters)
+    values.update({n: p[i] for i, n in enumerate(params)})
+    statics = forward(**{k: values[k] for k in forward.name_in()})
+    return {**values, **statics}

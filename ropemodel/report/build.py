@@ -1,0 +1,75 @@
+"""Build the page of a report: every section that applies, in order; a section that cannot be
+computed shows why, and is listed in :attr:`Report.incomplete`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ropemodel.errors import RopeModelError, require
+from ropemodel.report import page
+from ropemodel.report.context import Context
+from ropemodel.report.registry import sections
+from ropemodel.report.sections.scene import stamp, version
+
+
+@dataclass
+class Report:
+    """A built report: the page (HTML text), the sections shown, those that could not be computed."""
+
+    html: str
+    shown: list[str] = field(default_factory=list)
+    #: (section name, why it could not be computed)
+    incomplete: list[tuple[str, str]] = field(default_factory=list)
+    #: the conclusions, one line each (checks, sizing)
+    verdicts: list[str] = field(default_factory=list)
+
+
+def requirements() -> None:
+    """:class:`~ropemodel.errors.InputError` naming the ``report`` extra if Jinja2 or matplotlib is missing."""
+    require("jinja2", "report")
+    require("matplotlib", "report")
+
+
+def build(ctx: Context) -> Report:
+    """The report of ``ctx`` (see :func:`ropemodel.report.context.load`)."""
+    requirements()
+    report, parts = Report(""), []
+    for s in sections():
+        try:
+            if not s.applies(ctx):
+                continue
+            html = page.markup(s.render(ctx))   # a section's HTML is kept as it is (it escapes what it quotes)
+        except RopeModelError as exc:
+            report.incomplete.append((s.name, str(exc)))
+            html = page.error(f"Not computed: {exc}")
+        parts.append((s.name, s.title, html))
+        report.shown.append(s.name)
+    report.html = page.page(f"Design report: {ctx.scene.name}", version(), stamp(ctx), parts)
+    report.verdicts = verdicts(ctx)
+    return report
+
+
+def verdicts(ctx: Context) -> list[str]:
+    """The report's conclusions in one line each: the checks, the sizing (what was computed)."""
+    from ropemodel.report.sections.results import margins_of
+    from ropemodel.report.sections.sizing import design_text
+
+    out = []
+    try:
+        values = ctx.result.values
+        names = margins_of(ctx.result.outputs)
+    except RopeModelError:
+        names = []
+    if names:
+        failed = [n for n in names if values[n] < 0]
+        where = "at the recommended design" if ctx.at_design else "at the scene's values"
+        out.append(f"checks {where}: " + (f"{len(failed)} of {len(names)} FAIL ({', '.join(failed)})" if failed
+                                          else f"all {len(names)} pass"))
+    if ctx.sizing:
+        try:
+            design = ctx.design
+            out.append(f"sizing: design {design_text(design)}, every check met" if design.feasible
+                       else "sizing: no design meets every check")
+        except RopeModelError:
+            pass
+    return out
