@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from _fuzz import CAPSTAN_DATA, DIR, FAIL, Case, base_case, parquet_bytes
+from _fuzz import CAPSTAN_DATA, DIR, FAIL, Case, base_case, builtin, parquet_bytes, set_value
 
 BIG = "1" * 400
 
@@ -35,6 +35,8 @@ def option_cases() -> list[Case]:
         ("--discrete unknown", ["-o", "{d}/r.html", "--discrete", "best"]))]
     cases.append(_opt("simulate", "a scene without dynamics", scene="example"))
     cases.append(_opt("simulate", "--set t_end bare", ["--set", "t_end=2"]))
+    tiny = set_value(builtin("winch_start"), "numerics", "sim_rtol", "1e-300")
+    cases.append(Case("simulate", "scene", "[numerics] sim_rtol = 1e-300", *base_case("simulate", tiny)))
     cases.append(_opt("simulate", "--set t_end negative", ["--set", "t_end=-2s"]))
     return cases
 
