@@ -12,8 +12,10 @@ raises a RuntimeError, bonmin carries on — and the command went on to print a 
   soon as Python code runs;
 * results go nowhere once interrupted: a write to stdout raises KeyboardInterrupt;
 * no solver log either: what is written to stderr after the interrupt is held, and at the end
-  only its lines that are not CasADi's log are written (CasADi's IPOPT interface prints
-  ``WARNING("KeyboardInterruptException")`` on every interrupt, with no option to silence it);
+  only the command line's own lines (``warning: ``, ``error: ``, ``interrupted``) are written.
+  The solvers report an interrupt through CasADi's logger, with no option to silence it: IPOPT's
+  interface prints ``WARNING("KeyboardInterruptException")``, CVODES's ``rhs failed:
+  KeyboardInterrupt`` and SUNDIALS's "the right-hand side routine failed";
 * :attr:`Interrupts.seen` tells the command line that any failure that follows (a RuntimeError
   out of an interrupted integrator) is the interrupt's doing.
 
@@ -29,8 +31,8 @@ import threading
 
 #: seconds between repeated KeyboardInterrupts after a Ctrl-C that was consumed
 REPEAT = 0.2
-#: how CasADi's log lines begin
-CASADI_LOG = "CasADi - "
+#: how the command line's own lines on stderr begin
+OWN_LINES = ("warning: ", "error: ", "interrupted")
 
 
 class _Guarded:
@@ -61,9 +63,9 @@ class _Held:
         return self._stream.write(text)
 
     def release(self) -> None:
-        """Write what was held, less CasADi's log lines."""
+        """Write the command line's own lines of what was held (the solvers' are left out)."""
         lines = "".join(self._held).splitlines(keepends=True)
-        self._stream.write("".join(line for line in lines if not line.startswith(CASADI_LOG)))
+        self._stream.write("".join(line for line in lines if line.startswith(OWN_LINES)))
         self._held = []
 
     def __getattr__(self, name):
