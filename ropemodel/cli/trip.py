@@ -22,7 +22,7 @@ def main(args) -> int:
     from ropemodel.sweep.files import OutputLock, check_output, write_frame
     from ropemodel.trip import prepare, trip
 
-    out = check_output(args.output) if args.output else None
+    out = check_output(args.output) if args.output is not None else None
     scene = prepare(scene_from_args(args, announce=False))
     warn(scene.warnings)
     with status(f"trip of {scene.name}"):

@@ -70,7 +70,8 @@ class HybridIntegrator:
 
     def __init__(self, system: TransientSystem, rtol: float, dt: float, integrator: str, atol: float = 1e-9):
         self.system, self.phases, self.dt, self.integrator = system, system.phases, dt, integrator
-        self.opts = {"reltol": rtol, "abstol": atol, "max_num_steps": 200000}
+        # SUNDIALS's own messages stay off the C-level stderr: a failure is reported in the user's terms
+        self.opts = {"reltol": rtol, "abstol": atol, "max_num_steps": 200000, "disable_internal_warnings": True}
         self._compiled: dict = {}
 
     def mode(self, k: int, mode) -> _Compiled:
