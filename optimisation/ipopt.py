@@ -18,7 +18,7 @@ import numpy as np
 from optimisation.problem import VARIABLES, SizingProblem
 
 IPOPT_OPTIONS = {"ipopt.tol": 1e-10, "ipopt.acceptable_tol": 1e-8, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False,
-                 "ipopt.sb": "yes", "ipopt.max_iter": 500}
+                 "calc_lam_p": False, "ipopt.sb": "yes", "ipopt.max_iter": 500}
 ACTIVE_G = 1e-7      # scaled margin below which a constraint counts as active
 ACTIVE_LAM = 1e-9    # multiplier above which it counts as binding
 #: scaled margin above which a design counts as meeting a check (IPOPT's own tolerance is 1e-10)

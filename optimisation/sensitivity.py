@@ -42,7 +42,9 @@ def _functions(problem: SizingProblem):
 def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, dict[str, float]]:
     """∂{d, F_nwl, stroke}*/∂p_j in SI units for every scene parameter p_j.
 
-    Returns ``{param: {"d": ∂d*/∂p, "F_nwl": ∂F_nwl*/∂p, "stroke": ∂stroke*/∂p}}``.
+    Returns ``{param: {"d": ∂d*/∂p, "F_nwl": ∂F_nwl*/∂p, "stroke": ∂stroke*/∂p}}``, or ``{}`` where the
+    optimum is not regular (the KKT matrix is singular, e.g. a load G_m near 0 on which nothing
+    depends): the derivatives do not exist there, and no number is made up for them.
     """
     p = problem.p0 if p is None else np.asarray(p, dtype=float)
     kkt = _functions(problem)
@@ -59,5 +61,10 @@ def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, di
     K[n:n + na, :n] = Jx[idx, :]
     K[n + na:, :n] = E
     rhs = -np.vstack([Lxp, Jp[idx, :], np.zeros((nb, len(problem.params)))])
-    dx = np.linalg.solve(K, rhs)[:n, :] * problem.x_scale[:, None]
+    try:
+        dx = np.linalg.solve(K, rhs)[:n, :] * problem.x_scale[:, None]
+    except np.linalg.LinAlgError:
+        return {}
+    if not np.all(np.isfinite(dx)):
+        return {}
     return {name: {v: float(dx[i, j]) for i, v in enumerate(VARIABLES)} for j, name in enumerate(problem.params)}

@@ -225,6 +225,8 @@ def from_toml(text: str, source: str | None = None, optional=(), emit: bool = Tr
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"invalid TOML in {source or 'scene'}: {exc}") from None
+    except RecursionError:  # tomllib parses nested arrays and tables recursively
+        raise InputError(f"invalid TOML in {source or 'scene'}: arrays or tables nested too deeply") from None
     scene = from_dict(data, source, optional=optional, emit=False, digest=hashlib.sha256(text.encode()).hexdigest(),
                       values=values, values_bare=bare, values_origin=origin)
     if emit:

@@ -257,6 +257,10 @@ def to_si(name: str, value, si_unit: str, display: str | None = None, bare: str 
             raise InputError(f"{name}: {str(typed)[:40]}{'...' if len(str(typed)) > 40 else ''} is too large "
                              f"to be a number")
         raise InputError(f"{name}: value must be finite, got {typed!r}")
+    if unit and re.match(r"[\d.+-]", unit) and not re.match(r"1\s*/", unit):
+        example = _plain(num) if target_d == _ONE else f"{_plain(num)} {shown}"
+        raise InputError(f"{name} = {text!r} has a second number where its unit should be; write one number "
+                         f"{'' if target_d == _ONE else 'and its unit '}(e.g. \"{example}\")")
     if unit:
         try:
             f, d = parse_unit(unit)

@@ -8,6 +8,8 @@ import pandas as pd
 from ropemodel.numerics.capstan_rotation import RTOL, STEPS, check_wrap
 from ropemodel.errors import InputError, SolveError
 from ropemodel.problem import Problem
+from ropemodel.sweep.files import check_size
+from ropemodel.sweep.points import MAX_AXIS
 from ropemodel.units import label, to_si
 
 #: columns of a load curve, in this order (the load first)
@@ -29,8 +31,10 @@ def load_curve(scene, F_max, n: int = 201, F_min=0.0, display: bool = False) -> 
         raise InputError(f"load curves are for capstan scenes; this scene's model is {scene.model!r}")
     F_max = to_si("F_max", F_max, "N", bare="si")   # numbers SI (Python); text carries its unit
     F_min = to_si("F_min", F_min, "N", bare="si")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
-        raise InputError(f"n = {n!r}: a load curve needs a whole number of points n >= 2")
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 2 <= n <= MAX_AXIS:
+        shown = f"{str(n)[:20]}..." if len(str(n)) > 20 else repr(n)
+        raise InputError(f"n = {shown}: a load curve needs a whole number of points 2 <= n <= {MAX_AXIS:.0e}")
+    check_size(int(n), len(CURVE_OUTPUTS) + 2, what="a load curve is kept in memory")
     if not 0.0 <= F_min < F_max:
         raise InputError(f"load range [{F_min:g}, {F_max:g}] N: need 0 <= F_min < F_max")
     F = np.linspace(F_min, F_max, int(n))

@@ -17,7 +17,6 @@ are reported in :attr:`Identification.messages`, never silently.
 from __future__ import annotations
 
 import math
-import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -26,8 +25,8 @@ import casadi as ca
 import numpy as np
 import pandas as pd
 
-from ropemodel.numerics.capstan_rotation import ARGS, RTOL, STEPS, rotation_function
-from ropemodel.errors import InputError, SolveError
+from ropemodel.numerics.capstan_rotation import ARGS, RTOL, STEPS, rotation, rotation_function, unwrap_load
+from ropemodel.errors import InputError, Problems, SolveError
 from ropemodel.units import factor
 
 FITTABLE = ("mu", "EA", "F_p", "L")
@@ -36,53 +35,74 @@ SINGULAR = 1e-8
 #: published law (a data point at a regime switch of the estimate), where the gradient jumps.
 CONVERGED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
 REL_SE_LIMIT = 0.5
-_COL = re.compile(r"^\s*(?P<name>[A-Za-z_][A-Za-z_0-9]*)\s*(\[(?P<unit>[^\]]*)\])?\s*$")
 _UNITS = {"F_T": "N", "T": "N*m", "delta_alpha": "rad"}
+_SHOWN = {"F_T": "N", "T": "N*m", "delta_alpha": "deg"}
 
 
 def read_data(data, R: float | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Loads F_T [N] and rotations Δα [rad] from a DataFrame or a CSV file.
+    """Loads F_T [N] and rotations Δα [rad] from a DataFrame or a CSV (or Parquet) file.
 
     Columns: a load ``F_T`` (or a torque ``T``, converted with F_T = T/(2R), R [m]) and a
-    rotation ``delta_alpha``, each optionally with a unit in brackets (``"F_T [N]"``,
-    ``"delta_alpha [deg]"``); without a unit, SI.
+    rotation ``delta_alpha``, each with its unit in brackets (``"F_T [N]"``, ``"T [N*m]"``,
+    ``"delta_alpha [deg]"``); other columns are ignored.  In a file the units are required (a
+    header without one is refused with the fix); in a DataFrame built in Python a column without
+    a unit holds SI values.  Every problem of the columns is listed at once; a value that is not a
+    finite number, or a negative load, is refused naming its row.
     """
+    from ropemodel.sweep.points import read_points
+
     if isinstance(data, (str, Path)):
-        try:
-            data = pd.read_csv(data)
-        except (OSError, pd.errors.ParserError, UnicodeDecodeError) as exc:
-            raise InputError(f"cannot read data file {data}: {exc}") from None
+        data = read_points(data, what="identification data file")
     if not isinstance(data, pd.DataFrame):
         raise InputError("identification data must be a pandas DataFrame or a CSV file")
-    cols = {}
-    for c in data.columns:
-        m = _COL.match(str(c))
-        if m and m["name"] in _UNITS:
-            cols[m["name"]] = (c, (m["unit"] or _UNITS[m["name"]]).strip())
-    if "delta_alpha" not in cols or not ({"F_T", "T"} & set(cols)):
-        raise InputError(f"identification data need columns F_T (or T) and delta_alpha, e.g. 'F_T [N]' and "
-                         f"'delta_alpha [deg]'; got {', '.join(map(str, data.columns))}")
-
-    def column(name):
-        col, unit = cols[name]
-        try:
-            f = factor(unit, _UNITS[name])
-        except Exception:
-            raise InputError(f"column {col!r}: cannot convert {unit!r} to {_UNITS[name]}") from None
-        v = pd.to_numeric(data[col], errors="coerce").to_numpy(dtype=float) * f
-        if not np.all(np.isfinite(v)):
-            raise InputError(f"column {col!r} has missing or non-numeric values")
-        return v
-
+    cols = _data_columns(data)
     if "F_T" in cols:
-        F = column("F_T")
+        F = _data_column(data, *cols["F_T"], "F_T")
     else:
         if R is None:
             raise InputError("torque data need the wheel radius R to convert T to F_T = T/(2R)")
-        F = column("T") / (2.0 * R)
-    if np.any(F < 0):
-        raise InputError("loads F_T must be >= 0")
-    return F, column("delta_alpha")
+        F = _data_column(data, *cols["T"], "T") / (2.0 * R)
+    negative = np.flatnonzero(F < 0)
+    if negative.size:
+        i = int(negative[0])
+        raise InputError(f"identification data row {i + 1}: load F_T = {F[i]:.6g} N; loads F_T must be >= 0")
+    return F, _data_column(data, *cols["delta_alpha"], "delta_alpha")
+
+
+def _data_columns(data: pd.DataFrame) -> dict[str, tuple[str, str | None]]:
+    """name → (column, unit or None) of the identification columns; every problem at once."""
+    from ropemodel.sweep.points import split_label
+
+    cols, found = {}, Problems(" in the identification data")
+    for c in data.columns:
+        name, unit = split_label(str(c))
+        if name not in _UNITS:
+            continue
+        if name in cols:
+            found.add(f"{name} is given twice: columns {cols[name][0]!r} and {c!r}")
+            continue
+        if unit is None and data.attrs.get("source"):
+            found.add(f"column {c!r} has no unit: label it with its unit, e.g. \"{name} [{_SHOWN[name]}]\"")
+        cols[name] = (c, unit)
+    if "delta_alpha" not in cols or not ({"F_T", "T"} & set(cols)):
+        found.add(f"identification data need columns F_T (or T) and delta_alpha, e.g. 'F_T [N]' and "
+                  f"'delta_alpha [deg]'; got {', '.join(map(str, data.columns))}")
+    if {"F_T", "T"} <= set(cols):
+        found.add("identification data give both a load F_T and a torque T: keep one")
+    found.raise_if_any()
+    if len(data) == 0:
+        raise InputError("the identification data have a header but no rows")
+    return cols
+
+
+def _data_column(data: pd.DataFrame, col, unit: str | None, name: str) -> np.ndarray:
+    from ropemodel.sweep.points import finite_column
+
+    try:
+        f = factor(unit.strip(), _UNITS[name]) if unit is not None else 1.0
+    except Exception:
+        raise InputError(f"column {col!r}: cannot convert {unit!r} to {_UNITS[name]}") from None
+    return finite_column(col, data[col], "identification data column") * f
 
 
 @dataclass
@@ -142,12 +162,17 @@ def identify(scene, data, fit=("mu", "EA"), sigma: float | None = None, variant:
             raise InputError(f"cannot fit {name!r}; fittable parameters: {', '.join(FITTABLE)}")
     if len(set(fit)) != len(fit) or not fit:
         raise InputError("fit needs one or more distinct parameters")
+    if sigma is not None and (isinstance(sigma, bool) or not isinstance(sigma, (int, float))
+                              or not math.isfinite(sigma) or sigma <= 0):
+        raise InputError(f"sigma = {sigma!r}: the noise of delta_alpha must be a finite number > 0 [rad] "
+                         f"(or None: estimated from the residuals)")
     p0 = dict(scene.parameters)
     F, meas = read_data(data, p0.get("R"))
     n, k = F.size, len(fit)
     if n <= k:
         raise InputError(f"{n} data points cannot determine {k} parameters")
     variant = variant or scene.effects["stiffness"]
+    _check_unwrap(scene, F, meas, variant)
     fun = rotation_function(variant, scene.numerics.get("steps", STEPS), scene.numerics.get("sharpness", 30.0),
                             scene.numerics.get("rtol", RTOL))
     theta0 = np.array([p0[name] for name in fit])
@@ -168,7 +193,8 @@ def identify(scene, data, fit=("mu", "EA"), sigma: float | None = None, variant:
     lam_f, lam_g, p_nlp = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", 0), ca.MX.sym("p", 0)
     hess = ca.Function("nlp_hess_l", [x, p_nlp, lam_f, lam_g], [ca.triu(lam_f * (Jr.T @ Jr))],
                        ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])
-    opts = {"ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False, "ipopt.sb": "yes", "ipopt.tol": 1e-8, "ipopt.acceptable_tol": 1e-4, "ipopt.acceptable_iter": 4,
+    opts = {"ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False, "calc_lam_p": False,
+            "ipopt.sb": "yes", "ipopt.tol": 1e-8, "ipopt.acceptable_tol": 1e-4, "ipopt.acceptable_iter": 4,
             "ipopt.max_iter": 100, "hess_lag": hess}
     opts.update({f"ipopt.{a}": b for a, b in (ipopt_options or {}).items()})
     solver = ca.nlpsol("capstan_fit", "ipopt", nlp, opts)
@@ -178,6 +204,7 @@ def identify(scene, data, fit=("mu", "EA"), sigma: float | None = None, variant:
     seconds = time.perf_counter() - t0
     stats = solver.stats()
     x_hat = np.asarray(sol["x"]).ravel()
+    _check_inside(fit, x_hat, bound, theta0)
     est = np.exp(x_hat) * theta0
     jac = ca.Function("J", [x], [pred, ca.jacobian(pred, x)])
     pred_hat, J = (np.asarray(a) for a in jac(x_hat))
@@ -189,6 +216,38 @@ def identify(scene, data, fit=("mu", "EA"), sigma: float | None = None, variant:
     rss = float(resid @ resid)
     s2 = sigma ** 2 if sigma is not None else rss / (n - k)
     return _summarise(fit, est, J, s2, resid, rss, n, stats, seconds)
+
+
+def _check_unwrap(scene, F: np.ndarray, meas: np.ndarray, variant: str) -> None:
+    """:class:`InputError` naming the first data row beyond the unwrap limit (the slack side unwrapped,
+    α2 ≤ 0, where the model does not apply): a load beyond the limit at the scene's parameters (the
+    fit's start), or a measured rotation of at least the initial wrap α0."""
+    p, o = scene.parameters, scene.numerics
+    args = (p["mu"], p["EA"], p["R"], p["L"], p["alpha_0"], p["F_p"])
+    settings = (variant, o.get("steps", STEPS), o.get("sharpness", 30.0), o.get("rtol", RTOL))
+    largest = rotation(float(F.max()), *args, *settings) if F.size else 0.0
+    if math.isfinite(largest) and largest / p["R"] < p["alpha_0"] and not np.any(meas >= p["alpha_0"]):
+        return   # the rotation grows with the load: the largest load does not unwrap, so none does
+    limit = unwrap_load(*args, *settings)
+    beyond = np.flatnonzero((F >= limit) | (meas >= p["alpha_0"]))
+    if beyond.size:
+        i = int(beyond[0])
+        raise InputError(
+            f"identification data row {i + 1}: F_T = {F[i]:.6g} N, delta_alpha = {math.degrees(meas[i]):.6g} deg is "
+            f"beyond the unwrap limit (the slack side unwraps, alpha_2 <= 0, and the model no longer applies; "
+            f"{beyond.size} of {F.size} rows): the largest valid load at the scene's values is F_T < {limit:.6g} N, "
+            f"and a rotation must stay below alpha_0 = {math.degrees(p['alpha_0']):.6g} deg")
+
+
+def _check_inside(fit, x_hat: np.ndarray, bound: np.ndarray, theta0: np.ndarray) -> None:
+    """:class:`SolveError` if an estimate ran to the edge of the search range θ0·10^{±6}: the data do
+    not determine it, and the value there is the range's, not the data's."""
+    edge = np.flatnonzero(np.abs(x_hat) >= bound * (1.0 - 1e-6))
+    if edge.size:
+        j = int(edge[0])
+        raise SolveError(f"the fit of {fit[j]} ran to the edge of its search range ({math.exp(x_hat[j]) * theta0[j]:.3g}, "
+                         f"10^{'+' if x_hat[j] > 0 else '-'}6 times the scene's value): the data do not determine it; "
+                         f"check their units and signs, or start from other values")
 
 
 def _summarise(fit, est, J, s2, resid, rss, n, stats, seconds) -> Identification:

@@ -14,7 +14,7 @@ from __future__ import annotations
 import json
 import sys
 
-from ropemodel.cli._common import add_scene_arguments, assignments, scene_from_args
+from ropemodel.cli._common import add_scene_arguments, assignments, named, scene_from_args
 from ropemodel.errors import InputError
 
 NAME = "sweep"
@@ -34,8 +34,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--find", action="append", metavar="NAME", default=[],
                         help="a parameter to solve for at every point, freed by a --given")
     parser.add_argument("-o", "--output", required=True, metavar="FILE", help="FILE.csv or FILE.parquet")
-    parser.add_argument("--chunk-size", type=int, default=65536, help="points per chunk (default 65536)")
-    parser.add_argument("--threads", type=int, default=None, help="threads (default: number of CPUs)")
+    parser.add_argument("--chunk-size", type=int, default=65536, help="points per chunk, 1 to 1e8 (default 65536)")
+    parser.add_argument("--threads", type=int, default=None, help="threads, a positive whole number (default: number of CPUs)")
     parser.add_argument("--backend", default="auto", choices=["auto", "casadi", "compiled"],
                         help="evaluation backend (default auto: compiled C if a compiler works)")
     parser.add_argument("--si", action="store_true", help="SI units in the columns (default: display units)")
@@ -61,14 +61,7 @@ def main(args) -> int:
     from ropemodel.sweep.runner import SweepInterrupted
 
     scene = scene_from_args(args)
-    vary = {}
-    for item in args.vary:
-        if "=" not in item:
-            raise InputError(f"--vary {item!r}: expected NAME=START:STOP:N, e.g. alpha_u=5deg:45deg:1000")
-        name, spec = (s.strip() for s in item.split("=", 1))
-        if name in vary:
-            raise InputError(f"--vary {name} given twice")
-        vary[name] = spec
+    vary = named(args.vary, "--vary", "NAME=START:STOP:N, e.g. alpha_u=5deg:45deg:1000")
     points = read_points(args.points) if args.points else None
     if points is not None and vary:
         raise InputError("give either --vary grids or --points FILE, not both")

@@ -276,6 +276,17 @@ def choice(*allowed):
     return check
 
 
+def whole_number(low: int, high: int):
+    """A ``check`` for :func:`define_numerics` accepting a whole number in [low, high] (not 2.5, not true)."""
+
+    def check(key, value):
+        if isinstance(value, bool) or not isinstance(value, int) or not (low <= value <= high):
+            raise InputError(f"numerics {key} = {value!r} must be a whole number in [{low}, {high}]")
+        return value
+
+    return check
+
+
 def positive_number(low: float = 0.0, high: float = float("inf")):
     """A ``check`` for :func:`define_numerics` accepting a number in (low, high]."""
 

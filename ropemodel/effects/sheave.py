@@ -42,12 +42,13 @@ limit k = λω → 0, handled exactly (see :mod:`ropemodel.papers.hajduk1992`).
 from __future__ import annotations
 
 import math
+import warnings
 
 import casadi as ca
 import numpy as np
 
 from ropemodel.effects.base import (Equation, Submodel, choice, define_effect, define_numerics,
-                                    positive_number, register)
+                                    positive_number, register, whole_number)
 from ropemodel.errors import InputError, SolveError
 from ropemodel.numerics.hajduk_integrators import DEFAULT, INTEGRATORS, log_ratio_function, segment_function
 from ropemodel.papers import friction as fr
@@ -92,8 +93,7 @@ define_numerics(MODEL, "integrator", DEFAULT, "ODE integrator (each error-contro
 define_numerics(MODEL, "rtol", 1e-7, "relative error of S the ODE must meet", positive_number(1e-12, 1e-2))
 define_numerics(MODEL, "state", "log", "ODE state: log (ln S, stretched angle) or invariant",
                 choice("log", "invariant"))
-define_numerics(MODEL, "points", 37, "angles in the distribution table",
-                lambda key, value: int(positive_number(1.0, 10000)(key, value)))
+define_numerics(MODEL, "points", 37, "angles in the distribution table", whole_number(2, 10000))
 
 
 class _Lining(Submodel):
@@ -364,5 +364,12 @@ def distribution_frame(values: dict, scene, points: int | None = None):
     s = np.exp(y)
     import pandas as pd
 
-    return pd.DataFrame({"alpha [deg]": np.degrees(alpha), "S [kN]": values["S_0"] * s / 1e3, "S/S_0 [-]": s,
-                         "e^(mu alpha) [-]": np.exp(values["mu"] * alpha)})
+    frame = {"alpha [deg]": np.degrees(alpha), "S [kN]": values["S_0"] * s / 1e3, "S/S_0 [-]": s}
+    with np.errstate(over="ignore"):
+        euler = np.exp(values["mu"] * alpha)   # the rigid-lining reference (Euler-Eytelwein)
+    if np.all(np.isfinite(euler)):
+        frame["e^(mu alpha) [-]"] = euler
+    else:   # no inf in a result: the reference column is left out, and said so
+        warnings.warn(f"the reference column e^(mu alpha) is left out: at mu alpha = "
+                      f"{values['mu'] * values['alpha']:.4g} it exceeds the largest number a float holds", UserWarning)
+    return pd.DataFrame(frame)

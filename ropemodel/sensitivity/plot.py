@@ -8,11 +8,28 @@ from ropemodel.errors import require
 from ropemodel.units import label
 
 
+def plot_formats() -> tuple[str, ...]:
+    """The file suffixes matplotlib can write (``.png``, ``.pdf``, ``.svg``, ...)."""
+    require("matplotlib", "plots")
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    return tuple(f".{k}" for k in sorted(FigureCanvasBase.get_supported_filetypes()))
+
+
+def check_plot(path):
+    """``path`` as a Path, or :class:`InputError` before any work if a chart cannot be written there
+    (a directory, a missing directory, under a file, a suffix matplotlib cannot write)."""
+    from ropemodel.sweep.files import check_output
+
+    return check_output(path, plot_formats())
+
+
 def tornado(frame, outputs=None, path=None, title: str | None = None, top: int | None = None):
     """One panel per output: bars of ∂ln y/∂ln p, largest magnitude on top; undefined ones left out.
 
     frame: :func:`ropemodel.sensitivity.elasticities` output.  Returns the matplotlib Figure
-    (saved to ``path`` when given).
+    (saved to ``path`` when given: checked by :func:`check_plot`, written atomically;
+    :class:`~ropemodel.sweep.files.OutputError` if it cannot be).
     """
     matplotlib = require("matplotlib", "plots")
     matplotlib.use("Agg", force=False)
@@ -43,6 +60,19 @@ def tornado(frame, outputs=None, path=None, title: str | None = None, top: int |
         fig.suptitle(title, fontsize=11)
     fig.tight_layout()
     if path is not None:
-        fig.savefig(path, dpi=120)
+        _save(fig, check_plot(path))
         plt.close(fig)
     return fig
+
+
+def _save(fig, path) -> None:
+    from ropemodel.sweep.files import OutputError, write_atomic
+
+    def write(tmp):
+        fig.savefig(tmp, dpi=120, format=path.suffix[1:].lower())
+
+    try:
+        write_atomic(path, write)
+    except (OSError, ValueError, RuntimeError) as exc:  # matplotlib's writers raise several kinds
+        raise OutputError(f"cannot write {path}: {getattr(exc, 'strerror', None) or exc}; nothing was written") \
+            from None

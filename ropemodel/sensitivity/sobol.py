@@ -25,6 +25,8 @@ from ropemodel.errors import InputError, require
 from ropemodel.problem import Problem
 from ropemodel.units import to_si
 
+MAX_SEED = 2**32 - 1
+
 
 def parse_range(name: str, spec, unit: str) -> tuple[float, float]:
     """``"LOW:HIGH"`` (values may carry units) or a (low, high) pair → SI floats, low < high."""
@@ -43,20 +45,44 @@ def parse_range(name: str, spec, unit: str) -> tuple[float, float]:
     return lo, hi
 
 
+def _short(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 20 else text[:20] + "..."
+
+
+def check_samples(n, dimensions: int) -> None:
+    """:class:`InputError` unless ``n`` base samples are a power of two >= 4 whose ``n (D + 2)`` points fit
+    in memory.  SALib's Sobol' sequence keeps its balance only at powers of two (it warns otherwise and
+    the indices lose their convergence rate); fewer than 4 give no usable variance or bootstrap."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 4 or n & (n - 1):
+        raise InputError(f"{_short(n)} base samples: the number must be a power of two >= 4 (4, 8, ..., 1024, "
+                         f"...): SALib's Sobol' sequence is balanced only at powers of two, and fewer than 4 "
+                         f"give no usable variance")
+    from ropemodel.sweep.files import check_size
+
+    check_size(int(n) * (dimensions + 2), dimensions + 1, what="the Sobol samples are kept in memory")
+
+
+def check_seed(seed) -> None:
+    """:class:`InputError` unless ``seed`` is a whole number in [0, 2**32 - 1]."""
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed <= MAX_SEED:
+        raise InputError(f"seed = {_short(seed)}: must be a whole number from 0 to {MAX_SEED}")
+
+
 def sobol_indices(func, ranges: dict[str, tuple[float, float]], n: int = 1024, seed: int = 0) -> pd.DataFrame:
     """Sobol indices of ``func`` (vectorised: {name: array} → {output: array}) over uniform ``ranges``.
 
     Returns a tidy frame: ``output``, ``parameter``, ``S1``, ``S1_conf``, ``ST``, ``ST_conf``,
-    ``defined``, ``note``.  ``n`` is rounded up to a power of two (the Sobol' sequence needs it).
+    ``defined``, ``note``.  ``n``: base samples, a power of two >= 4 (:func:`check_samples`);
+    ``seed``: a whole number in [0, 2**32 - 1].
     """
     analyze = require("SALib.analyze.sobol", "sobol")
     sample = require("SALib.sample.sobol", "sobol")
 
     if not ranges:
         raise InputError("no ranges for Sobol indices")
-    if n < 2:
-        raise InputError(f"n = {n}: need at least 2 base samples")
-    n = 1 << math.ceil(math.log2(n))
+    check_samples(n, len(ranges))
+    check_seed(seed)
     names = list(ranges)
     problem = {"num_vars": len(names), "names": names, "bounds": [list(ranges[k]) for k in names]}
     X = sample.sample(problem, n, calc_second_order=False, seed=seed)

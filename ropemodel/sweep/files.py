@@ -55,6 +55,8 @@ def check_output(path, suffixes=SUFFIXES) -> Path:
 
     suffixes: the file name endings accepted (default: a sweep's tables, :data:`SUFFIXES`)."""
     p = Path(path)
+    if not str(path).strip():
+        raise InputError(f"output file name is empty; name a file ending in {', '.join(suffixes)}")
     if p.is_dir():
         raise InputError(f"output {p} is a directory; name a file in it ending in {', '.join(suffixes)}")
     check_format(p, suffixes)
@@ -234,12 +236,13 @@ def available_memory() -> int | None:
     return avail
 
 
-def check_size(n: int, columns: int, *, out=None, collect: bool = True) -> None:
+def check_size(n: int, columns: int, *, out=None, collect: bool = True,
+               what: str = "collect=True keeps every result in memory") -> None:
     """:class:`InputError` if ``collect`` results (8 bytes a value) cannot fit in memory."""
     mem = available_memory() if collect else None
     if mem is not None and n * columns * 8 > mem:
         where = "" if out is None else f"; its file {out} is written either way, collect=False returns only its path"
-        raise InputError(f"collect=True keeps every result in memory: {n:,} points x {columns} columns need "
+        raise InputError(f"{what}: {n:,} points x {columns} columns need "
                          f"{_size(n * columns * 8)}, {_size(mem)} of memory is available{where}")
 
 

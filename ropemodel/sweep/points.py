@@ -227,23 +227,34 @@ def table(frame: pd.DataFrame, quantities: dict, ignore=()) -> Table:
                       f"\"{name} [{q.display_unit}]\"")
             continue
         with found.collect():
-            cols[name] = _column(col, frame[col]) * (1.0 if unit is None else _factor_to_si(col, unit, q.unit))
+            cols[name] = finite_column(col, frame[col]) * (1.0 if unit is None else _factor_to_si(col, unit, q.unit))
     found.raise_if_any()
     if not cols:
         raise InputError("the points table has no input column")
     return Table(cols)
 
 
-def _column(col, series: pd.Series) -> np.ndarray:
+def finite_column(col, series: pd.Series, what: str = "points column") -> np.ndarray:
     """A column of finite numbers (booleans and text refused, naming the first bad row)."""
     if series.dtype == bool or series.map(lambda v: isinstance(v, (bool, np.bool_))).any():
-        raise InputError(f"points column {col!r} holds true/false values, not numbers")
-    raw = pd.to_numeric(series, errors="coerce").to_numpy(dtype=float)
+        raise InputError(f"{what} {col!r} holds true/false values, not numbers")
+    try:
+        raw = pd.to_numeric(series, errors="coerce").to_numpy(dtype=float)
+    except (OverflowError, TypeError, ValueError):  # e.g. a 400-digit integer, which no float holds
+        raw = np.array([_float(v) for v in series], dtype=float)
     bad = np.flatnonzero(~np.isfinite(raw))
     if bad.size:
-        raise InputError(f"points column {col!r}: row {int(bad[0]) + 1} is not a finite number "
-                         f"({series.iloc[int(bad[0])]!r})")
+        shown = repr(series.iloc[int(bad[0])])
+        raise InputError(f"{what} {col!r}: row {int(bad[0]) + 1} is not a finite number "
+                         f"({shown[:40] + '...' if len(shown) > 40 else shown})")
     return raw
+
+
+def _float(value) -> float:
+    try:
+        return float(value)
+    except (OverflowError, TypeError, ValueError):
+        return math.nan
 
 
 def _factor_to_si(col, unit, si_unit) -> float:
@@ -253,27 +264,28 @@ def _factor_to_si(col, unit, si_unit) -> float:
         raise InputError(f"points column {col!r}: unit {unit!r} is not a unit of {si_unit} ({exc})") from None
 
 
-def read_points(path) -> pd.DataFrame:
-    """A points table from a CSV or Parquet file; any unreadable file is one clear error."""
+def read_points(path, what: str = "points file") -> pd.DataFrame:
+    """A points table (or another table a person wrote, named ``what`` in messages) from a CSV or
+    Parquet file; any unreadable file is one clear error."""
     from pathlib import Path
 
     p = Path(path)
     if p.is_dir():
-        raise InputError(f"points file {p} is a directory")
+        raise InputError(f"{what} {p} is a directory")
     if not p.exists():
-        raise InputError(f"points file not found: {p}")
+        raise InputError(f"{what} not found: {p}")
     suffix = p.suffix.lower()
     if suffix not in (".parquet", ".pq", ".csv", ".txt"):
-        raise InputError(f"points file {p}: expected .csv or .parquet")
+        raise InputError(f"{what} {p}: expected .csv or .parquet")
     try:
         frame = pd.read_parquet(p) if suffix in (".parquet", ".pq") else pd.read_csv(p, encoding="utf-8",
                                                                                       on_bad_lines="error")
         frame.attrs["source"] = str(p)   # text a person wrote: dimensional columns need their units
         return frame
     except pd.errors.EmptyDataError:
-        raise InputError(f"points file {p} is empty: it needs a header row and at least one row") from None
+        raise InputError(f"{what} {p} is empty: it needs a header row and at least one row") from None
     except UnicodeDecodeError:
-        raise InputError(f"points file {p} is not UTF-8 text (a binary file, or another encoding)") from None
+        raise InputError(f"{what} {p} is not UTF-8 text (a binary file, or another encoding)") from None
     except (pd.errors.ParserError, ValueError, OSError) as exc:
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise InputError(f"cannot read points file {p}: {first}") from None
+        raise InputError(f"cannot read {what} {p}: {first}") from None

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import casadi as ca
+import numpy as np
 import pandas as pd
 import pyarrow as pa
 
@@ -33,13 +34,14 @@ from ropemodel.progress import bar, enabled, status
 from ropemodel.problem import Problem
 from ropemodel.sweep.chunk import ChunkJob, run_chunk
 from ropemodel.sweep.files import OutputLock, check_disk, check_output, check_size
-from ropemodel.sweep.points import grid, table
+from ropemodel.sweep.points import MAX_AXIS, grid, table
 from ropemodel.sweep.store import ChunkStore, complete_rows, discard_parts, read_output
 from ropemodel.sweep.validate import check_ranges, check_rules
 from ropemodel.units import label
 
 CHUNK = 65536  # points per chunk: ~20 MB of results for 40 columns
 ERRORS = ("raise", "mark")
+MAX_THREADS = 1024  # threads per chunk evaluation (more is a typo, not a machine)
 #: the columns ``errors="mark"`` adds: whether the point has a valid solution, and why not
 MARK_COLUMNS = {"solved": pa.bool_(), "invalid": pa.string()}
 
@@ -95,10 +97,10 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
         is refused); results are written chunk by chunk and an interrupted sweep rerun with the
         same arguments resumes where it stopped; a finished one is found complete and not
         recomputed (see :mod:`ropemodel.sweep.store`).
-    chunk_size: points per chunk (bounded memory: one chunk per worker in flight).
+    chunk_size: points per chunk, 1 to 1e8 (bounded memory: one chunk per worker in flight).
     executor: a ``concurrent.futures.Executor`` or a ``dask.distributed.Client``: chunks are
         submitted to it (the compiled Function travels pickled; each worker compiles it once).
-    threads: threads per chunk evaluation (default: the number of CPUs; 1 with an executor).
+    threads: threads per chunk evaluation, 1 to 1024 (default: the number of CPUs; 1 with an executor).
     backend: ``"auto"``, ``"casadi"`` (Function.map) or ``"compiled"`` (C code through ctypes).
     si: SI units in the columns instead of display units.
     errors: ``"raise"`` — a point without a valid solution raises SolveError naming it;
@@ -117,7 +119,7 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
     OutputError: the output could not be written (disk full, I/O error); finished chunks are kept.
     SweepInterrupted: a KeyboardInterrupt; finished chunks are kept.
     """
-    _check_options(errors, chunk_size, collect, out)
+    _check_options(errors, chunk_size, collect, out, threads)
     show = enabled(progress)
     out = check_output(out) if out is not None else None
     with OutputLock(out) if out is not None else contextlib.nullcontext():
@@ -143,13 +145,21 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
                                    store is not None and store.resumable) from None
 
 
-def _check_options(errors, chunk_size, collect, out) -> None:
+def _check_options(errors, chunk_size, collect, out, threads) -> None:
     if errors not in ERRORS:
         raise InputError(f"errors={errors!r}: valid: {', '.join(ERRORS)}")
-    if chunk_size < 1:
-        raise InputError(f"chunk_size = {chunk_size}: must be at least 1")
+    _whole("chunk_size", chunk_size, MAX_AXIS)
+    if threads is not None:
+        _whole("threads", threads, MAX_THREADS)
     if not collect and out is None:
         raise InputError("collect=False needs an output file (out=...)")
+
+
+def _whole(name: str, value, high: int) -> None:
+    """:class:`InputError` unless ``value`` is a whole number in [1, high]."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 1 <= value <= high:
+        shown = f"{str(value)[:20]}..." if len(str(value)) > 20 else repr(value)
+        raise InputError(f"{name} = {shown}: must be a positive whole number, at most {high:g}")
 
 
 @dataclass
