@@ -4,6 +4,7 @@ sensitivities — or, when no design exists, which checks conflict and by how mu
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -109,26 +110,54 @@ def solve_best(problem: SizingProblem, p=None, x0=None) -> Solution:
     return sol
 
 
-def size(scene: Scene, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
-    """Size the winch of ``scene``: the lightest catalogue rope, then the least pretension, then the least stroke.
+def size(scene: Scene | str | os.PathLike, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
+    """Size the winch of ``scene``: the lightest catalogue rope, then the least pretension, then the least stroke
+    (Krauze et al. 2025: every design check of eq. (12)-(23) as a constraint; ``ropemodel size``).
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or Path
         A winch scene with a catalogue rope (``rope = "catalogue"`` or a construction such as
-        ``"6x36-IWRC"``).  It needs no starting design (d, F_nwl, stroke) and no power effect: the
-        design checks are switched on here, and the drive power is reported when ``v_pj`` is given.
-        Without a drum diameter ``D`` (rigid drum), the least drum, D_ratio_min·d, is a result.
+        ``"6x36-IWRC"``), or its TOML file or built-in name (read by
+        :func:`optimisation.problem.load_sizing`).  It needs no starting design (d, F_nwl, stroke)
+        and no power effect: the design checks are switched on here, and the drive power is
+        reported when ``v_pj`` is given.  Without a drum diameter ``D`` (rigid drum), the least
+        drum, D_ratio_min·d, is a result.
     method : {"next-size-up", "bonmin"}
         How the catalogue diameter is chosen.
     with_sensitivities : bool
-        Also compute ∂x*/∂p of the continuous optimum.
+        Also compute ∂x*/∂p of the continuous optimum (from its KKT system).
 
     Returns
     -------
     Design
-        ``feasible`` with the catalogue design and its margins, or the reason no design exists.
+        ``feasible``; ``design``: the catalogue design, SI (``d`` [m], ``F_nwl`` [N],
+        ``stroke`` [m]); ``continuous``: the continuous optimum, SI; ``active``: the checks that
+        limit it; ``margins`` of every check at the catalogue design [-]; ``to_dict()``: what
+        ``ropemodel size --json`` prints.  When no design exists: ``message`` and ``diagnosis``
+        (the conflicting checks and how much they conflict).
+
+    Raises
+    ------
+    InputError
+        The scene cannot be sized (not a winch, a rope without a catalogue, bad values).
+
+    Examples
+    --------
+    The Fig. 9 haulage: the 38 mm rope of the catalogue, limited by slip and by the stroke
+    on the way up:
+
+    >>> from optimisation import size
+    >>> design = size("winch_sizing_fig9", with_sensitivities=False)
+    >>> design.design["d"], design.design["F_nwl"], design.design["stroke"]    # m, N, m
+    (0.038, 43600.0, 4.763)
+    >>> design.active
+    ['slip_margin_up', 'stroke_margin_up', 'd (catalogue size)']
     """
+    if not isinstance(scene, Scene):
+        from optimisation.problem import load_sizing
+
+        scene = load_sizing(scene, emit=False)
     problem = SizingProblem(scene)
     design = Design(problem.scene, False, method=method, units=dict(problem.units))
     sol = solve_best(problem)

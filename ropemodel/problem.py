@@ -16,6 +16,7 @@ range a given output can reach at all.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -141,7 +142,7 @@ class Problem:
         Evaluated in chunks by :func:`ropemodel.core.evaluate.evaluate_columns` (``Function.map``, or
         the same Function compiled to C; ``parallel`` threads), so memory stays bounded and the
         Function is compiled once per process.  No range check is made here; callers validate their
-        inputs (see :mod:`ropemodel.sweep`).
+        inputs (see :mod:`ropemodel.sweeps`).
         """
         n = max((np.size(v) for v in columns.values()), default=1)
         base = self.inputs({k: v for k, v in columns.items() if not isinstance(v, np.ndarray)})
@@ -283,7 +284,7 @@ def worst_position(scene: Scene, output: str = "F_C_up") -> float:
     return float(mids[int(np.argmax(values))])
 
 
-def run(scene: Scene, values: dict | None = None) -> Result:
+def run(scene: Scene, values: Mapping | None = None) -> Result:
     """Forward solve: every output of the scene from its parameters.
 
     Parameters
@@ -315,7 +316,7 @@ def run(scene: Scene, values: dict | None = None) -> Result:
     return Problem(scene).solve(values)
 
 
-def solve(scene: Scene, given: dict, find, bare: str = "si") -> Result:
+def solve(scene: Scene, given: Mapping, find: Sequence[str] | str, bare: str = "si") -> Result:
     """Inverse solve: ``given`` outputs (name → value) in place of the ``find`` parameters.
 
     Parameters

@@ -27,11 +27,15 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ropemodel.errors import InputError
 from ropemodel.papers import route as rt
+
+if TYPE_CHECKING:
+    from ropemodel.scene import Scene
 
 #: samples of the history per phase (the summary does not depend on them)
 SAMPLES = 200
@@ -126,7 +130,7 @@ def prepare(scene):
     return scene.with_effects(TRIP_EFFECTS)
 
 
-def trip(scene, direction: str | None = None) -> Trip:
+def trip(scene: Scene, direction: str | None = None) -> Trip:
     """The trip of a winch scene along its route (see the module docstring).
 
     Parameters

@@ -1,7 +1,7 @@
 """A whole trip along a route of segments: where the rope force and the drive power peak, energy per trip.
 
 The built-in scene ``route_segments`` (three segments, 22°, 9°, 3° from the drive, the load of
-Krauze et al. 2025 Fig. 9): an upward and a downward trip (``ropemodel.trip``), the winding and
+Krauze et al. 2025 Fig. 9): an upward and a downward trip (``ropemodel.trips``), the winding and
 unwinding rope forces and the drive power against the load's position, with the paper's straight
 incline replaced by the "equivalent slope" of the same rise as a comparison (one segment, the same
 length and height): what the equivalent slope hides.
@@ -39,7 +39,7 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     import matplotlib.pyplot as plt
 
     import ropemodel as rm
-    from ropemodel.trip import trip
+    from ropemodel.trips import trip
 
     out = output_dir(__file__, out_dir)
     scene = rm.load_scene("route_segments")

@@ -200,7 +200,7 @@ print(peak_rss(), time.perf_counter() - t)
 '''
 
 BASELINE = PEAK + r'''
-import ropemodel as rm, ropemodel.sweep, pyarrow.parquet
+import ropemodel as rm, ropemodel.sweeps, pyarrow.parquet
 rm.sweep(rm.load_scene(), {"alpha_u": [0.1, 0.2]}, progress=False)
 print(peak_rss())
 '''
@@ -228,7 +228,7 @@ def _plot(scale, mem, path):
     fig, axes = plt.subplots(1, 2 if mem else 1, figsize=(10 if mem else 5.5, 4), squeeze=False)
     ax = axes[0][0]
     n = [r["points"] for r in scale]
-    ax.loglog(n, [r["ropemodel_s"] for r in scale], "o-", label="ropemodel.sweep → Parquet")
+    ax.loglog(n, [r["ropemodel_s"] for r in scale], "o-", label="ropemodel.sweeps → Parquet")
     ax.loglog(n, [r["numpy_s"] for r in scale], "s--", label="numpy by hand → Parquet")
     ax.set_xlabel("points")
     ax.set_ylabel("seconds (this machine)")

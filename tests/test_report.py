@@ -30,7 +30,7 @@ SCENES = ("example", "winch_sizing_fig9", "winch_start", "sheave_hajduk_fig5", "
 @functools.lru_cache(maxsize=None)
 def page_of(name: str) -> str:
     """The report page of a built-in scene (built once per test session)."""
-    from ropemodel.report import build, load
+    from ropemodel.reports import build, load
 
     report = build(load(name))
     assert report.incomplete == [], report.incomplete
@@ -193,7 +193,7 @@ def test_catalogue_rope_properties_are_marked_as_derived():
 def test_a_sizing_scene_without_a_design_is_reported_at_the_recommended_design(tmp_path):
     from importlib import resources
 
-    from ropemodel.report import build, load
+    from ropemodel.reports import build, load
 
     toml = resources.files("ropemodel.data").joinpath("winch_sizing_fig9.toml").read_text()
     toml = re.sub(r'^(d|F_nwl|stroke) = .*$', "", toml, flags=re.M)
@@ -275,12 +275,12 @@ def test_the_page_refers_to_nothing_outside_itself(name):
 # --------------------------------------------------------------------------- text and formulas
 
 def test_formulas_are_typeset_and_text_is_escaped(tmp_path):
-    from ropemodel.report.page import typeset
+    from ropemodel.reports.page import typeset
 
     assert str(typeset("F_C = 0.5 F_nwl")) == "F<sub>C</sub> = 0.5 F<sub>nwl</sub>"
     assert str(typeset("traction = e^(μ_d α_d)")) == "traction = e<sup>μ<sub>d</sub> α<sub>d</sub></sup>"
     assert str(typeset("a < b & <script>")) == "a &lt; b &amp; &lt;script&gt;"
-    from ropemodel.report import build, load
+    from ropemodel.reports import build, load
 
     f = tmp_path / "s.toml"
     f.write_text('[scene]\nname = "<b>bold</b> & <script>x</script>"\n[parameters]\nL_u = "1150 m"\nL_ul = "500 m"\n'
@@ -312,8 +312,8 @@ def test_every_equation_has_a_formula():
 
 @pytest.fixture
 def registry():
-    from ropemodel.report import SECTIONS
-    from ropemodel.report.registry import sections
+    from ropemodel.reports import SECTIONS
+    from ropemodel.reports.registry import sections
 
     sections()
     before = list(SECTIONS)
@@ -322,7 +322,7 @@ def registry():
 
 
 def test_a_registered_section_appears_when_it_applies(registry):
-    from ropemodel.report import build, load, section
+    from ropemodel.reports import build, load, section
 
     @section("demo", "Demo section", when=lambda ctx: ctx.scene.model == "sheave")
     def demo(ctx):
@@ -337,7 +337,7 @@ def test_a_registered_section_appears_when_it_applies(registry):
 
 
 def test_a_section_that_cannot_be_computed_says_why(registry, tmp_path, capsys, monkeypatch):
-    from ropemodel.report import section
+    from ropemodel.reports import section
 
     @section("broken", "Broken", when=lambda ctx: True)
     def broken(ctx):
@@ -372,15 +372,15 @@ inclination = "10 deg"
 
 
 def test_the_documented_way_to_add_a_section_works(registry, tmp_path):
-    """The example of ropemodel.report's docstring, run as written: the energy section shows on a route of
+    """The example of ropemodel.reports's docstring, run as written: the energy section shows on a route of
     segments, with the energy of the trips the page's trip section reports, and only there."""
     import textwrap
 
-    import ropemodel.report
-    from ropemodel.report import build, load
-    from ropemodel.trip import prepare, trip
+    import ropemodel.reports
+    from ropemodel.reports import build, load
+    from ropemodel.trips import prepare, trip
 
-    code = textwrap.dedent(ropemodel.report.__doc__.split("energy.py``::\n", 1)[1].split("\nand its name", 1)[0])
+    code = textwrap.dedent(ropemodel.reports.__doc__.split("energy.py``::\n", 1)[1].split("\nand its name", 1)[0])
     exec(compile(code, "energy.py", "exec"), {})
     scene = tmp_path / "route.toml"
     scene.write_text(ROUTE.replace("[[route]]", 'v_pj = "2.5 m/s"\nt_ramp = "5 s"\n[[route]]', 1))
@@ -409,6 +409,6 @@ def test_the_trip_section_of_the_papers_incline():
 
 
 def build_shown(name):
-    from ropemodel.report import build, load
+    from ropemodel.reports import build, load
 
     return build(load(name)).shown

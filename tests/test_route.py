@@ -116,7 +116,7 @@ def test_route_parameters_sweep_and_differentiate():
     df = rm.sweep(scene, vary={"alpha_2": ["5 deg", "9 deg", "12 deg"]}, outputs=["F_C_up"], si=True)
     hand = [_two(math.radians(a)) for a in (5, 9, 12)]
     np.testing.assert_allclose(df["F_C_up [N]"], hand, rtol=1e-12)
-    e = rm.sensitivity.elasticities(scene, outputs=["F_C_up"], parameters=["alpha_2"])
+    e = rm.elasticities(scene, outputs=["F_C_up"], parameters=["alpha_2"])
     a = math.radians(9)
     dF = (467e3 * (math.cos(a) - 0.05 * math.sin(a)) + 80 * 650 * (math.cos(a) - 0.05 * math.sin(a)))
     assert float(e["elasticity"].iloc[0]) == pytest.approx(dF * a / _two(a), rel=1e-10)

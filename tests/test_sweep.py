@@ -7,7 +7,7 @@ import pytest
 
 import ropemodel as rm
 from ropemodel.cli import main as cli
-from ropemodel.sweep import parse_axis
+from ropemodel.sweeps import parse_axis
 
 
 def f_c_up_closed_form(alpha, G_m, s):
@@ -235,7 +235,7 @@ def test_a_slack_rope_is_no_result(fig9):
 
 
 def test_a_sweeps_own_marked_output_is_a_points_file(fig9, tmp_path):
-    from ropemodel.sweep import read_points
+    from ropemodel.sweeps import read_points
 
     out = tmp_path / "marked.csv"
     first = rm.sweep(fig9, {"alpha_u": "0 deg:8 deg:5"}, ["F_C_down"], errors="mark", out=out)

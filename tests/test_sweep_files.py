@@ -19,11 +19,11 @@ import pandas as pd
 import pytest
 
 import ropemodel as rm
-import ropemodel.sweep.files as files
-import ropemodel.sweep.runner as runner
-import ropemodel.sweep.store as store
+import ropemodel.sweeps.files as files
+import ropemodel.sweeps.schedule as schedule
+import ropemodel.sweeps.store as store
 from ropemodel.cli import main as cli
-from ropemodel.sweep.files import available_memory
+from ropemodel.sweeps.files import available_memory
 
 ROOT = Path(__file__).resolve().parents[1]
 VARY = {"alpha_u": "4deg:40deg:60", "G_m": "200kN:600kN:25"}
@@ -61,15 +61,15 @@ def no_compute(monkeypatch):
     def refuse(*args):
         raise AssertionError("a chunk was computed")
 
-    monkeypatch.setattr(runner, "run_chunk", refuse)
+    monkeypatch.setattr(schedule, "run_chunk", refuse)
 
 
 @pytest.fixture
 def count_chunks(monkeypatch):
     """The first point of every chunk computed."""
     calls = []
-    real = runner.run_chunk
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    real = schedule.run_chunk
+    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     return calls
 
 
@@ -220,8 +220,8 @@ def test_disk_full_at_the_end_keeps_the_parts_and_resumes(tmp_path, capsys, monk
         suffix == ".csv") + [whole.name] * (suffix != ".csv") + [out.name + ".parts"])
     monkeypatch.undo()
     calls = []
-    real = runner.run_chunk
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    real = schedule.run_chunk
+    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0 and calls == []
     assert out.read_bytes() == whole.read_bytes()
 
@@ -302,20 +302,20 @@ def test_ctrl_c_keeps_the_finished_chunks_and_resumes(tmp_path, capsys, monkeypa
     whole = tmp_path / f"whole{suffix}"
     assert cli(ARGS + ["-o", str(whole)]) == 0
     out = tmp_path / f"cut{suffix}"
-    real = runner.run_chunk
+    real = schedule.run_chunk
 
     def ctrl_c(job, start, inputs):
         if start == 500:
             raise KeyboardInterrupt
         return real(job, start, inputs)
 
-    monkeypatch.setattr(runner, "run_chunk", ctrl_c)
+    monkeypatch.setattr(schedule, "run_chunk", ctrl_c)
     assert cli(ARGS + ["-o", str(out)]) == 130
     err = capsys.readouterr().err
     assert err == "interrupted: 500 of 1500 points done; rerun the same command to resume\n"
     assert not out.exists() and len(list(tmp_path.glob(f"cut{suffix}.parts/part-*.arrow"))) == 5
     calls = []
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0
     assert calls == list(range(500, 1500, 100))
     assert out.read_bytes() == whole.read_bytes()
@@ -352,9 +352,9 @@ def test_rerun_of_a_finished_sweep_says_complete(tmp_path, capsys, monkeypatch, 
     assert capsys.readouterr().out == f"wrote 1500 points x 4 columns to {out}\n"
     first = out.read_bytes()
     stamp = out.stat().st_mtime_ns
-    real = runner.run_chunk
+    real = schedule.run_chunk
     calls = []
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0 and calls == []
     assert capsys.readouterr().out == f"already complete: {out} (1500 points)\n"
     assert cli(ARGS + ["-o", str(out), "--json"]) == 0 and calls == []
@@ -385,9 +385,9 @@ def test_an_edited_csv_is_not_taken_as_complete(tmp_path, capsys, monkeypatch, r
     assert cli(ARGS + ["-o", str(out)]) == 0
     first = out.read_bytes()
     out.write_bytes(first.replace(b"\n", b"\n0,", 1))  # one value changed, same size or not
-    real = runner.run_chunk
+    real = schedule.run_chunk
     calls = []
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0 and len(calls) == 15
     assert out.read_bytes() == first
     assert capsys.readouterr().out.endswith(f"wrote 1500 points x 4 columns to {out}\n")

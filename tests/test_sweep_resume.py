@@ -10,9 +10,9 @@ import pandas as pd
 import pytest
 
 import ropemodel as rm
-import ropemodel.sweep.runner as runner
+import ropemodel.sweeps.schedule as schedule
 from ropemodel.cli import main as cli
-from ropemodel.sweep.store import KILL_HOOK
+from ropemodel.sweeps.store import KILL_HOOK
 
 ROOT = Path(__file__).resolve().parents[1]
 ARGS = ["sweep", "example", "--vary", "alpha_u=4deg:40deg:60", "--vary", "G_m=200kN:600kN:25",
@@ -42,8 +42,8 @@ def test_killed_sweep_resumes_to_the_same_file(tmp_path, suffix, monkeypatch):
 
     # resume in-process to count the chunks computed: only the 11 missing ones
     calls = []
-    real = runner.run_chunk
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    real = schedule.run_chunk
+    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     scene = rm.load_scene()
     rm.sweep(scene, {"alpha_u": "4deg:40deg:60", "G_m": "200kN:600kN:25"}, out=cut, chunk_size=100,
              collect=False, progress=False)

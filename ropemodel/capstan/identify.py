@@ -18,8 +18,10 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import casadi as ca
 import numpy as np
@@ -28,6 +30,9 @@ import pandas as pd
 from ropemodel.numerics.capstan_rotation import ARGS, RTOL, STEPS, rotation, rotation_function, unwrap_load
 from ropemodel.errors import InputError, Problems, SolveError
 from ropemodel.units import factor
+
+if TYPE_CHECKING:
+    from ropemodel.scene import Scene
 
 FITTABLE = ("mu", "EA", "F_p", "L")
 SINGULAR = 1e-8
@@ -49,7 +54,7 @@ def read_data(data, R: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     a unit holds SI values.  Every problem of the columns is listed at once; a value that is not a
     finite number, or a negative load, is refused naming its row.
     """
-    from ropemodel.sweep.points import read_points
+    from ropemodel.sweeps.points import read_points
 
     if isinstance(data, (str, Path)):
         data = read_points(data, what="identification data file")
@@ -71,7 +76,7 @@ def read_data(data, R: float | None = None) -> tuple[np.ndarray, np.ndarray]:
 
 def _data_columns(data: pd.DataFrame) -> dict[str, tuple[str, str | None]]:
     """name → (column, unit or None) of the identification columns; every problem at once."""
-    from ropemodel.sweep.points import split_label
+    from ropemodel.sweeps.points import split_label
 
     cols, found = {}, Problems(" in the identification data")
     for c in data.columns:
@@ -96,7 +101,7 @@ def _data_columns(data: pd.DataFrame) -> dict[str, tuple[str, str | None]]:
 
 
 def _data_column(data: pd.DataFrame, col, unit: str | None, name: str) -> np.ndarray:
-    from ropemodel.sweep.points import finite_column
+    from ropemodel.sweeps.points import finite_column
 
     try:
         f = factor(unit.strip(), _UNITS[name]) if unit is not None else 1.0
@@ -146,13 +151,59 @@ def _finite(d):
     return {k: (v if math.isfinite(v) else None) for k, v in d.items()}
 
 
-def identify(scene, data, fit=("mu", "EA"), sigma: float | None = None, variant: str | None = None,
+def identify(scene: Scene, data: pd.DataFrame | str | Path, fit: Sequence[str] = ("mu", "EA"),
+             sigma: float | None = None, variant: str | None = None,
              ipopt_options: dict | None = None) -> Identification:
-    """Least-squares fit of ``fit`` (from mu, EA, F_p, L) to measured (F_T, Δα) points.
+    """Identify a capstan drive's parameters from a measured load curve: least squares by IPOPT
+    with exact derivatives, standard errors from the Jacobian (``ropemodel identify``).
 
-    scene: capstan scene giving the other parameters and the starting values; data: DataFrame
-    or CSV path (:func:`read_data`); sigma [rad]: known noise of Δα (else estimated from the
-    residuals); variant: stiffness law (default: the scene's).  Returns :class:`Identification`.
+    Parameters
+    ----------
+    scene : Scene
+        A capstan scene: the parameters not fitted, and the starting values of those fitted.
+    data : pandas.DataFrame or str or Path
+        Measured points: a load ``"F_T [N]"`` (or a torque ``"T [N*m]"``) and a rotation
+        ``"delta_alpha [rad]"`` (any unit in brackets; in a file the units are required;
+        :func:`read_data`).
+    fit : sequence of str
+        Parameters to fit, from ``mu`` [-], ``EA`` [N], ``F_p`` [N], ``L`` [m].
+    sigma : float, optional
+        Known standard deviation of the measured Δα [rad], > 0 (default: estimated from the
+        residuals).
+    variant : str, optional
+        Stiffness law (default: the scene's ``stiffness``).
+    ipopt_options : dict, optional
+        Options passed to IPOPT.
+
+    Returns
+    -------
+    Identification
+        ``estimates`` and ``standard_errors`` (SI: mu [-], EA [N], F_p [N], L [m]),
+        ``covariance``, ``identifiable`` (per parameter: determined by the data), ``ok``,
+        ``status``, ``rss`` [rad²], ``n_points``; ``table()`` gives one row per parameter.
+
+    Raises
+    ------
+    InputError
+        Not a capstan scene, an unknown parameter to fit, bad data (every problem of its columns
+        at once), a load that would unwrap the slack side.
+    SolveError
+        IPOPT found no fit.
+
+    Examples
+    --------
+    Fit back μ and EA from a load curve computed with μ = 0.12 and EA = 40 kN (no noise), starting
+    from the scene's μ = 0.25 and EA = 50 kN:
+
+    >>> import ropemodel as rm
+    >>> scene = rm.load_scene("capstan_li_experiment")
+    >>> truth = scene.with_values({"mu": 0.12, "EA": "40 kN"})
+    >>> curve = rm.load_curve(truth, "100 N", n=21)
+    >>> fit = rm.identify(scene, curve[["F_T [N]", "delta_alpha [rad]"]])
+    >>> round(fit.estimates["mu"], 6), round(fit.estimates["EA"])
+    (0.12, 40000)
+    >>> fit.ok
+    True
     """
     if scene.model != "capstan":
         raise InputError(f"identification is for capstan scenes; this scene's model is {scene.model!r}")
@@ -178,26 +229,7 @@ def identify(scene, data, fit=("mu", "EA"), sigma: float | None = None, variant:
     theta0 = np.array([p0[name] for name in fit])
     if np.any(theta0 <= 0):
         raise InputError("starting values (the scene's) of fitted parameters must be > 0")
-    x = ca.MX.sym("x", k)  # ln(θ/θ0): positive parameters over decades, well scaled
-    theta = ca.exp(x) * ca.DM(theta0)
-    env = {name: ca.MX(p0[name]) for name in ARGS[1:]}
-    env.update({name: theta[j] for j, name in enumerate(fit)})
-    delta = fun.map(n, "thread", 2)(ca.DM(F).T, *[env[a] for a in ARGS[1:]])[0]
-    pred = (delta / env["R"]).T
-    y_scale = max(float(np.sqrt(np.mean(meas ** 2))), 1e-300)
-    r = (pred - ca.DM(meas)) / y_scale
-    nlp = {"x": x, "f": 0.5 * ca.sumsqr(r)}
-    # Gauss–Newton Hessian of the Lagrangian, lam_f·JᵀJ (upper triangle): no second derivatives
-    # of the integrator are needed, and it is the information matrix the covariance uses.
-    Jr = ca.jacobian(r, x)
-    lam_f, lam_g, p_nlp = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", 0), ca.MX.sym("p", 0)
-    hess = ca.Function("nlp_hess_l", [x, p_nlp, lam_f, lam_g], [ca.triu(lam_f * (Jr.T @ Jr))],
-                       ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])
-    opts = {"ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False, "calc_lam_p": False,
-            "ipopt.sb": "yes", "ipopt.tol": 1e-8, "ipopt.acceptable_tol": 1e-4, "ipopt.acceptable_iter": 4,
-            "ipopt.max_iter": 100, "hess_lag": hess}
-    opts.update({f"ipopt.{a}": b for a, b in (ipopt_options or {}).items()})
-    solver = ca.nlpsol("capstan_fit", "ipopt", nlp, opts)
+    solver, pred, x = _least_squares(fun, F, meas, p0, fit, theta0, ipopt_options)
     bound = np.full(k, math.log(1e6))
     t0 = time.perf_counter()
     sol = solver(x0=np.zeros(k), lbx=-bound, ubx=bound)
@@ -216,6 +248,31 @@ def identify(scene, data, fit=("mu", "EA"), sigma: float | None = None, variant:
     rss = float(resid @ resid)
     s2 = sigma ** 2 if sigma is not None else rss / (n - k)
     return _summarise(fit, est, J, s2, resid, rss, n, stats, seconds)
+
+
+def _least_squares(fun, F: np.ndarray, meas: np.ndarray, p0: dict, fit, theta0: np.ndarray, ipopt_options):
+    """(IPOPT solver, predicted rotations, decision variable x = ln(θ/θ0)) of the fit."""
+    k = len(fit)
+    x = ca.MX.sym("x", k)  # ln(θ/θ0): positive parameters over decades, well scaled
+    theta = ca.exp(x) * ca.DM(theta0)
+    env = {name: ca.MX(p0[name]) for name in ARGS[1:]}
+    env.update({name: theta[j] for j, name in enumerate(fit)})
+    delta = fun.map(F.size, "thread", 2)(ca.DM(F).T, *[env[a] for a in ARGS[1:]])[0]
+    pred = (delta / env["R"]).T
+    y_scale = max(float(np.sqrt(np.mean(meas ** 2))), 1e-300)
+    r = (pred - ca.DM(meas)) / y_scale
+    nlp = {"x": x, "f": 0.5 * ca.sumsqr(r)}
+    # Gauss–Newton Hessian of the Lagrangian, lam_f·JᵀJ (upper triangle): no second derivatives
+    # of the integrator are needed, and it is the information matrix the covariance uses.
+    Jr = ca.jacobian(r, x)
+    lam_f, lam_g, p_nlp = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", 0), ca.MX.sym("p", 0)
+    hess = ca.Function("nlp_hess_l", [x, p_nlp, lam_f, lam_g], [ca.triu(lam_f * (Jr.T @ Jr))],
+                       ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])
+    opts = {"ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False, "calc_lam_p": False,
+            "ipopt.sb": "yes", "ipopt.tol": 1e-8, "ipopt.acceptable_tol": 1e-4, "ipopt.acceptable_iter": 4,
+            "ipopt.max_iter": 100, "hess_lag": hess}
+    opts.update({f"ipopt.{a}": b for a, b in (ipopt_options or {}).items()})
+    return ca.nlpsol("capstan_fit", "ipopt", nlp, opts), pred, x
 
 
 def _check_unwrap(scene, F: np.ndarray, meas: np.ndarray, variant: str) -> None:

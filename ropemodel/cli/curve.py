@@ -25,7 +25,7 @@ def main(args) -> int:
     from contextlib import nullcontext
 
     from ropemodel.capstan.curves import load_curve
-    from ropemodel.sweep.files import OutputLock, check_output, write_frame
+    from ropemodel.sweeps.files import OutputLock, check_output, write_frame
 
     if args.json and args.output is not None:
         raise InputError("curve: give either --json or -o FILE, not both")

@@ -45,10 +45,10 @@ def _num(v):
 
 
 def main(args) -> int:
-    from ropemodel.sensitivity import elasticities, sobol, sobol_indices, table, tornado
-    from ropemodel.sensitivity.plot import check_plot
-    from ropemodel.sensitivity.sobol import check_samples, check_seed, parse_range
-    from ropemodel.sweep.files import OutputLock
+    from ropemodel.sensitivities import elasticities, sobol, sobol_indices, table, tornado
+    from ropemodel.sensitivities.plot import check_plot
+    from ropemodel.sensitivities.sobol import check_samples, check_seed, parse_range
+    from ropemodel.sweeps.files import OutputLock
 
     ranges = named(args.sobol, "--sobol", "NAME=LOW:HIGH, e.g. alpha_u=10deg:20deg")
     if ranges and args.plot is not None:

@@ -17,7 +17,7 @@ def add_arguments(parser) -> None:
 
 def main(args) -> int:
     from ropemodel.dynamics import simulate
-    from ropemodel.sweep.files import OutputLock, check_output, write_frame
+    from ropemodel.sweeps.files import OutputLock, check_output, write_frame
 
     out = check_output(args.output) if args.output is not None else None   # checked before any work
     sim = simulate(scene_from_args(args))

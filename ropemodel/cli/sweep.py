@@ -57,8 +57,8 @@ def _names(items):
 
 def main(args) -> int:
     from ropemodel.progress import enabled
-    from ropemodel.sweep import read_points, sweep
-    from ropemodel.sweep.runner import SweepInterrupted
+    from ropemodel.sweeps import read_points, sweep
+    from ropemodel.sweeps.runner import SweepInterrupted
 
     scene = scene_from_args(args)
     vary = named(args.vary, "--vary", "NAME=START:STOP:N, e.g. alpha_u=5deg:45deg:1000")
@@ -97,7 +97,7 @@ def _summary(path, as_json: bool, rows: int, columns: list[str], status: str = "
 def _sizing(scene, vary, points, args) -> int:
     from optimisation.sweep import sizing_sweep
     from ropemodel.progress import enabled
-    from ropemodel.sweep.files import OutputLock, check_output, write_frame
+    from ropemodel.sweeps.files import OutputLock, check_output, write_frame
 
     if args.given or args.find or args.outputs:
         raise InputError("--sizing computes d, F_nwl and stroke; it takes no --given, --find or --outputs")

@@ -2,12 +2,18 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
+
 from ropemodel.dynamics.assemble import build
 from ropemodel.dynamics.history import Simulation
 from ropemodel.dynamics.hybrid import HybridIntegrator
 
+if TYPE_CHECKING:
+    from ropemodel.scene import Scene
 
-def simulate(scene, values: dict | None = None, progress: bool | None = None) -> Simulation:
+
+def simulate(scene: Scene, values: Mapping | None = None, progress: bool | None = None) -> Simulation:
     """Simulate the transient of a scene with a transient (``dynamics`` "start", "stop" or "trip").
 
     Parameters

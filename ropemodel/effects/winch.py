@@ -166,7 +166,7 @@ class SteadyMotion(Submodel):
 class RigidInertia(Submodel):
     """A haulage speeding up at ``a_h`` in its direction of travel (negative: slowing down), the rope
     inextensible: the winding side gains (G_m + q_l L_u)/g·a_h, the unwinding side loses q_l L_u/g·a_h
-    (:mod:`ropemodel.papers.route`).  The trip (:mod:`ropemodel.trip`) and sizing through the ramps use it."""
+    (:mod:`ropemodel.papers.route`).  The trip (:mod:`ropemodel.trips`) and sizing through the ramps use it."""
 
     description = "rigid-body inertia of the load and both rope sides at acceleration a_h"
     citations = ("krauze2025",)

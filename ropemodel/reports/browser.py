@@ -16,7 +16,7 @@ import tempfile
 from pathlib import Path
 
 from ropemodel.errors import InputError
-from ropemodel.sweep.files import OutputError
+from ropemodel.sweeps.files import OutputError
 
 #: names Chromium goes by on PATH, in the order tried
 NAMES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")

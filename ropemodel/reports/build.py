@@ -3,13 +3,14 @@ computed shows why, and is listed in :attr:`Report.incomplete`."""
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 
 from ropemodel.errors import RopeModelError, require
-from ropemodel.report import page
-from ropemodel.report.context import Context
-from ropemodel.report.registry import sections
-from ropemodel.report.sections.scene import stamp, version
+from ropemodel.reports import page
+from ropemodel.reports.context import Context
+from ropemodel.reports.registry import sections
+from ropemodel.reports.sections.scene import stamp, version
 
 
 @dataclass
@@ -30,8 +31,52 @@ def requirements() -> None:
     require("matplotlib", "report")
 
 
+def report(scene: str | os.PathLike, values: dict | None = None, method: str | None = None) -> Report:
+    """The design report of a scene: one self-contained HTML page (``ropemodel report``).
+
+    Parameters
+    ----------
+    scene : str or Path
+        A scene TOML file or the name of a built-in scene (``"example"``: Krauze et al. 2025, Fig. 9).
+        A sizing scene (a winch with a catalogue rope) is sized, and the page reports the design.
+    values : dict, optional
+        Parameters that replace or complete the file's, ``{name: value}`` (SI floats, strings with
+        units, pint Quantities), checked with the file's.
+    method : {"next-size-up", "bonmin"}, optional
+        Sizing scenes: how to pick the catalogue diameter.
+
+    Returns
+    -------
+    Report
+        ``html`` (the page: styles inline, pictures as SVG data URIs, no network resource),
+        ``shown`` (the sections on it), ``incomplete`` (sections that could not be computed, and
+        why; the page says so in their place) and ``verdicts`` (the checks and the sizing, one line
+        each).  Write it with ``Path("report.html").write_text(r.html, encoding="utf-8")``; the PDF:
+        ``ropemodel report SCENE --pdf report.pdf`` (headless Chromium).
+
+    Raises
+    ------
+    InputError
+        Every problem of the scene and of ``values`` at once; the ``report`` extra (Jinja2,
+        matplotlib) missing.
+
+    Examples
+    --------
+    >>> import ropemodel as rm
+    >>> r = rm.report("example")
+    >>> "190.949" in r.html and r.incomplete == []       # F_C_up of Fig. 9, kN
+    True
+    >>> r.shown[:4]
+    ['scene', 'inputs', 'equations', 'results']
+    """
+    from ropemodel.reports.context import load
+
+    requirements()
+    return build(load(scene, values, origin="values", method=method))
+
+
 def build(ctx: Context) -> Report:
-    """The report of ``ctx`` (see :func:`ropemodel.report.context.load`)."""
+    """The report of ``ctx`` (see :func:`ropemodel.reports.context.load`)."""
     requirements()
     report, parts = Report(""), []
     for s in sections():
@@ -51,8 +96,8 @@ def build(ctx: Context) -> Report:
 
 def verdicts(ctx: Context) -> list[str]:
     """The report's conclusions in one line each: the checks, the sizing (what was computed)."""
-    from ropemodel.report.sections.results import margins_of
-    from ropemodel.report.sections.sizing import design_text
+    from ropemodel.reports.sections.results import margins_of
+    from ropemodel.reports.sections.sizing import design_text
 
     out = []
     try:

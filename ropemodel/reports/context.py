@@ -2,7 +2,7 @@
 
 An analysis that fails (a :class:`~ropemodel.errors.RopeModelError`: no valid solution, an
 infeasible design, a transient the scene cannot run) fails every section that asks for it with
-the same error; the page shows the error in those sections (see :mod:`ropemodel.report.build`).
+the same error; the page shows the error in those sections (see :mod:`ropemodel.reports.build`).
 """
 
 from __future__ import annotations
@@ -104,8 +104,8 @@ class Context:
 
     @once
     def trips(self) -> dict:
-        """The whole trip up and down (``ropemodel.trip``) at :attr:`point`: direction → Trip."""
-        from ropemodel.trip import prepare, trip
+        """The whole trip up and down (``ropemodel.trips``) at :attr:`point`: direction → Trip."""
+        from ropemodel.trips import prepare, trip
 
         scene = prepare(self.point)
         return {d: trip(scene, d) for d in ("up", "down")}

@@ -82,9 +82,9 @@ def panels(frame, x: str, units, title: str = "", height: float = 2.1):
 
 def tornado(frame, output: str, top: int = 8, width: float = WIDTH / 2):
     """A tornado chart of ``output``'s elasticities (its ``top`` largest), as an SVG data URI, or None when
-    no elasticity of it is defined and nonzero.  Drawn by :func:`ropemodel.sensitivity.tornado`, resized
+    no elasticity of it is defined and nonzero.  Drawn by :func:`ropemodel.sensitivities.tornado`, resized
     to ``width`` inches."""
-    from ropemodel.sensitivity import tornado as draw
+    from ropemodel.sensitivities import tornado as draw
 
     rows = frame[(frame["output"] == output) & frame["defined"] & (frame["elasticity"] != 0.0)]
     if rows.empty:

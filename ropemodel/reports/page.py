@@ -3,7 +3,7 @@
 Everything a section takes from a scene (names, file paths, warnings) is text and is escaped; a
 section's own markup is built with :func:`fragment` (a Jinja2 template, autoescaped) or the helpers
 below, which return :class:`markupsafe.Markup`.  The page is self-contained: styles inline, no
-script, no font to fetch, pictures as ``data:`` URIs (:mod:`ropemodel.report.figures`).
+script, no font to fetch, pictures as ``data:`` URIs (:mod:`ropemodel.reports.figures`).
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """The sections of a report: each a function ``ctx -> HTML fragment`` and a predicate saying when it applies.
 
 Sections are registered with :func:`section` when their module is imported; the modules are imported
-in the order of :data:`ropemodel.report.sections.MODULES`, so the page shows the sections in that
+in the order of :data:`ropemodel.reports.sections.MODULES`, so the page shows the sections in that
 order (and, within a module, in the order they are defined).
 """
 
@@ -23,7 +23,7 @@ class Section:
     name: a short identifier, also the fragment the table of contents links to (``#name``).
     title: the heading shown on the page.
     render: ``render(ctx) -> str``, the section's HTML (a fragment: no ``<html>``, no ``<section>``); text
-        from the scene must be escaped (the helpers of :mod:`ropemodel.report.page` do).
+        from the scene must be escaped (the helpers of :mod:`ropemodel.reports.page` do).
     applies: ``applies(ctx) -> bool``; a section whose predicate is false is left out of the page.
     """
 
@@ -51,7 +51,7 @@ def section(name: str, title: str, when: Callable = always):
 
 def sections() -> list[Section]:
     """Every registered section, in page order (their modules imported first)."""
-    from ropemodel.report.sections import load_all
+    from ropemodel.reports.sections import load_all
 
     load_all()
     return list(SECTIONS)

@@ -3,18 +3,19 @@
 ::
 
     import ropemodel as rm
-    e = rm.sensitivity.elasticities(rm.load_scene())        # tidy: output, parameter, elasticity, ...
-    print(rm.sensitivity.table(e))                           # outputs x parameters
-    rm.sensitivity.tornado(e, ["F_C_up", "dF_up"], path="tornado.png")
-    s = rm.sensitivity.sobol(rm.load_scene(), {"alpha_u": "10deg:20deg", "G_m": "300kN:500kN"})
+    import ropemodel.sensitivities
+    e = rm.elasticities(rm.load_scene())        # tidy: output, parameter, elasticity, ...
+    print(rm.sensitivities.table(e))             # outputs x parameters
+    rm.tornado(e, ["F_C_up", "dF_up"], path="tornado.png")
+    s = rm.sobol(rm.load_scene(), {"alpha_u": "10deg:20deg", "G_m": "300kN:500kN"})
 
 Modules: :mod:`.local` (elasticities ∂ln y/∂ln p from the Jacobian of the
 compiled Function), :mod:`.sobol` (Sobol indices; any vectorised function, a
 scene, or the sizing optimum), :mod:`.plot` (tornado charts).
 """
 
-from ropemodel.sensitivity.local import elasticities, jacobian, matrix, table
-from ropemodel.sensitivity.plot import tornado
-from ropemodel.sensitivity.sobol import parse_range, sobol, sobol_indices
+from ropemodel.sensitivities.local import elasticities, jacobian, matrix, table
+from ropemodel.sensitivities.plot import tornado
+from ropemodel.sensitivities.sobol import parse_range, sobol, sobol_indices
 
 __all__ = ["elasticities", "jacobian", "matrix", "parse_range", "sobol", "sobol_indices", "table", "tornado"]

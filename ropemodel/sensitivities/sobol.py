@@ -8,7 +8,7 @@ with a bootstrap 95 % confidence half-width.
 
 :func:`sobol_indices` works on any vectorised function ``{name: array} →
 {output: array}``; :func:`sobol` evaluates a scene through
-:func:`ropemodel.sweep.sweep` (so every sampled point is range-checked).  An
+:func:`ropemodel.sweeps.sweep` (so every sampled point is range-checked).  An
 output that does not vary over the ranges has no variance to share: its
 indices are reported missing with ``defined = False`` and a note, never as a
 silent NaN.
@@ -17,6 +17,8 @@ silent NaN.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
@@ -24,6 +26,9 @@ import pandas as pd
 from ropemodel.errors import InputError, require
 from ropemodel.problem import Problem
 from ropemodel.units import to_si
+
+if TYPE_CHECKING:
+    from ropemodel.scene import Scene
 
 MAX_SEED = 2**32 - 1
 
@@ -58,7 +63,7 @@ def check_samples(n, dimensions: int) -> None:
         raise InputError(f"{_short(n)} base samples: the number must be a power of two >= 4 (4, 8, ..., 1024, "
                          f"...): SALib's Sobol' sequence is balanced only at powers of two, and fewer than 4 "
                          f"give no usable variance")
-    from ropemodel.sweep.files import check_size
+    from ropemodel.sweeps.files import check_size
 
     check_size(int(n) * (dimensions + 2), dimensions + 1, what="the Sobol samples are kept in memory")
 
@@ -104,14 +109,57 @@ def sobol_indices(func, ranges: dict[str, tuple[float, float]], n: int = 1024, s
     return pd.DataFrame(rows)
 
 
-def sobol(scene, ranges: dict, outputs=None, n: int = 1024, seed: int = 0, given=(), find=(),
-          **sweep_options) -> pd.DataFrame:
-    """Sobol indices of a scene's outputs over uniform ranges of its inputs.
+def sobol(scene: Scene, ranges: Mapping, outputs: Sequence[str] | None = None, n: int = 1024, seed: int = 0,
+          given: Mapping | Sequence[str] = (), find: Sequence[str] = (), **sweep_options: Any) -> pd.DataFrame:
+    """Global sensitivities: Sobol indices of a scene's outputs over uniform ranges of its inputs
+    (Saltelli sampling and Jansen estimators by SALib; the outputs by :func:`ropemodel.sweep`).
 
-    ranges: name → ``"LOW:HIGH"`` or (low, high), SI numbers or strings with units.
-    outputs: outputs to analyse (default: every result of the problem).
+    Parameters
+    ----------
+    scene : Scene
+        The scene (:func:`ropemodel.load_scene`); inputs not in ``ranges`` keep its values.
+    ranges : dict
+        ``{name: "LOW:HIGH"}`` with units (``"300kN:500kN"``) or ``(low, high)`` in SI units.
+    outputs : list of str, optional
+        Outputs to analyse (default: every unknown of the problem).
+    n : int
+        Base samples, a power of two ≥ 4; the model runs n·(k + 2) times for k ranges.
+    seed : int
+        Seed of the sampler and of the bootstrap confidence intervals, 0 to 2³² − 1.
+    given, find : optional
+        An inverse problem, as in :func:`ropemodel.solve`.
+    **sweep_options
+        Passed to :func:`ropemodel.sweep` (``threads``, ``backend``, ``chunk_size``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (output, parameter): ``output``, ``parameter``, ``S1`` (first-order index [-]:
+        the share of the output's variance due to the parameter alone), ``S1_conf`` (its 95 %
+        bootstrap half-width), ``ST`` (total index [-], with interactions), ``ST_conf``,
+        ``defined`` and ``note`` (an output that does not vary has no indices).
+
+    Raises
+    ------
+    InputError
+        A name that is not an input, a range outside the quantity's valid range, ``n`` or ``seed``
+        out of range, the ``sobol`` extra (SALib) missing.
+    SolveError
+        A sampled point without a solution.
+
+    Examples
+    --------
+    What the winding rope's force depends on, over 10-20 deg and 300-500 kN:
+
+    >>> import ropemodel as rm
+    >>> s = rm.sobol(rm.load_scene(), {"alpha_u": "10deg:20deg", "G_m": "300kN:500kN"},
+    ...              outputs=["F_C_up"], n=256)
+    >>> s[["parameter", "S1", "ST"]].round(2)
+      parameter    S1    ST
+    0   alpha_u  0.64  0.64
+    1       G_m  0.35  0.37
     """
-    from ropemodel.sweep import sweep
+    from ropemodel.sweeps import sweep
 
     problem = Problem(scene, given, find)
     q = problem.model.quantities

@@ -6,7 +6,7 @@ Checks
     write permission); :func:`check_disk` and :func:`check_size` refuse work whose results
     cannot fit on the disk or, kept in memory, in memory.  Each need is a lower bound
     (8 bytes a value), so nothing that could fit is refused.  (The number of points itself
-    is bounded where grids are made, :mod:`ropemodel.sweep.points`.)
+    is bounded where grids are made, :mod:`ropemodel.sweeps.points`.)
 Lock
     :class:`OutputLock` holds an exclusive ``flock`` on ``FILE.lock`` beside the output for
     the whole run, so a second writer of the same output is refused at once.  The kernel

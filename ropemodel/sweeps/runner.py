@@ -18,9 +18,10 @@ import contextlib
 import hashlib
 import json
 import os
-from collections import deque
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import casadi as ca
 import numpy as np
@@ -32,12 +33,16 @@ from ropemodel.core.evaluate import COMPILE_MIN, Job, evaluator
 from ropemodel.errors import InputError
 from ropemodel.progress import bar, enabled, status
 from ropemodel.problem import Problem
-from ropemodel.sweep.chunk import ChunkJob, run_chunk
-from ropemodel.sweep.files import OutputLock, check_disk, check_output, check_size
-from ropemodel.sweep.points import MAX_AXIS, grid, table
-from ropemodel.sweep.store import ChunkStore, complete_rows, discard_parts, read_output
-from ropemodel.sweep.validate import check_ranges, check_rules
+from ropemodel.sweeps.chunk import ChunkJob
+from ropemodel.sweeps.schedule import results
+from ropemodel.sweeps.files import OutputLock, check_disk, check_output, check_size
+from ropemodel.sweeps.points import MAX_AXIS, grid, table
+from ropemodel.sweeps.store import ChunkStore, complete_rows, discard_parts, read_output
+from ropemodel.sweeps.validate import check_ranges, check_rules
 from ropemodel.units import label
+
+if TYPE_CHECKING:
+    from ropemodel.scene import Scene
 
 CHUNK = 65536  # points per chunk: ~20 MB of results for 40 columns
 ERRORS = ("raise", "mark")
@@ -78,11 +83,12 @@ class SweepFile(os.PathLike):
         return str(self.path)
 
 
-def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out=None,
-          chunk_size: int = CHUNK, executor=None, threads: int | None = None, backend: str = "auto",
-          si: bool = False, errors: str = "raise", progress: bool | None = None, restart: bool = False,
-          collect: bool = True):
-    """Evaluate ``scene`` at many points; a tidy DataFrame (see the module doc for columns and units).
+def sweep(scene: Scene, vary: Mapping | pd.DataFrame | None = None, outputs: Sequence[str] | None = None, *,
+          points: pd.DataFrame | None = None, given: Mapping | Sequence[str] = (), find: Sequence[str] = (),
+          out: str | os.PathLike | None = None, chunk_size: int = CHUNK, executor: Any = None,
+          threads: int | None = None, backend: str = "auto", si: bool = False, errors: str = "raise",
+          progress: bool | None = None, restart: bool = False, collect: bool = True) -> pd.DataFrame | SweepFile:
+    """Evaluate ``scene`` at many points: a grid or a table of inputs, in chunks, resumable on disk.
 
     Parameters
     ----------
@@ -96,7 +102,7 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
     out: ``.csv`` or ``.parquet`` path, checked and locked before any work (a second writer of it
         is refused); results are written chunk by chunk and an interrupted sweep rerun with the
         same arguments resumes where it stopped; a finished one is found complete and not
-        recomputed (see :mod:`ropemodel.sweep.store`).
+        recomputed (see :mod:`ropemodel.sweeps.store`).
     chunk_size: points per chunk, 1 to 1e8 (bounded memory: one chunk per worker in flight).
     executor: a ``concurrent.futures.Executor`` or a ``dask.distributed.Client``: chunks are
         submitted to it (the compiled Function travels pickled; each worker compiles it once).
@@ -112,12 +118,43 @@ def sweep(scene, vary=None, outputs=None, *, points=None, given=(), find=(), out
     restart: discard an unfinished sweep of ``out``, or recompute a finished one.
     collect: return the DataFrame (False: return a :class:`SweepFile`; memory stays bounded).
 
+    Returns
+    -------
+    pandas.DataFrame or SweepFile
+        One row per point: the varied inputs, then the outputs, each column named
+        ``"name [unit]"`` in the quantity's display unit (``"alpha_u [deg]"``, ``"F_C_up [kN]"``,
+        ``"dF_up [mm]"``; ``si=True``: ``"name [N]"``, ``"[m]"``, ``"[rad]"``). With
+        ``errors="mark"`` two more columns: ``solved`` (bool) and ``invalid`` (why a point has no
+        result; missing where it has one). ``collect=False``: the path of ``out``.
+
     Raises
     ------
     InputError: bad input, an output that cannot be written or is being written by another
         process, work that cannot fit (beyond the grid limits, results beyond memory or disk).
     OutputError: the output could not be written (disk full, I/O error); finished chunks are kept.
     SweepInterrupted: a KeyboardInterrupt; finished chunks are kept.
+
+    Examples
+    --------
+    The pull on the winding rope over inclinations and loads (Krauze et al. 2025, eq. (12)):
+
+    >>> import ropemodel as rm
+    >>> df = rm.sweep(rm.load_scene(), vary={"alpha_u": "10deg:20deg:3", "G_m": ["300 kN", "467 kN"]},
+    ...               outputs=["F_C_up", "dF_up"], progress=False)
+    >>> df.round(2)
+       alpha_u [deg]  G_m [kN]  F_C_up [kN]  dF_up [mm]
+    0           10.0     300.0        97.37      805.14
+    1           10.0     467.0       134.59     1021.03
+    2           15.0     300.0       130.39     1042.59
+    3           15.0     467.0       181.68     1340.06
+    4           20.0     300.0       162.49     1273.87
+    5           20.0     467.0       227.45     1650.66
+
+    A route falling toward the drive leaves the unwinding rope slack: no result, and why:
+
+    >>> rm.sweep(rm.load_scene(), vary={"alpha_u": ["-10 deg"]}, outputs=["F_C_up"], errors="mark",
+    ...          progress=False).loc[0, "invalid"]
+    'outside the model: F_S_up <= 0: the unwinding rope is slack (upward travel)'
     """
     _check_options(errors, chunk_size, collect, out, threads)
     show = enabled(progress)
@@ -226,9 +263,9 @@ def _run(job, plan: _Plan, store, executor, show: bool, collect: bool) -> dict:
     done = 0 if store is None else store.done_points
     tables: dict[int, pa.Table] = {}
     shown = bar(plan.n, "sweep", unit="pt", flag=show, initial=done, unit_scale=True)
-    results = _results(job, plan.pts, plan.bounds, todo, executor)
+    chunks = results(job, plan.pts, plan.bounds, todo, executor)
     try:
-        for k, t in results:
+        for k, t in chunks:
             if store is not None:
                 store.write(k, t)
             if collect:
@@ -239,7 +276,7 @@ def _run(job, plan: _Plan, store, executor, show: bool, collect: bool) -> dict:
         raise SweepInterrupted(done if store is None else store.done_points, plan.n,
                                store is not None and store.resumable) from None
     finally:
-        results.close()
+        chunks.close()
         shown.close()
     return tables
 
@@ -337,46 +374,3 @@ def _signature(scene, problem, pts, base, outputs, chunk_size, si, errors) -> di
         "version": __version__,
     }
     return json.loads(json.dumps(sig))
-
-
-def _results(job, pts, bounds, todo, executor):
-    """(chunk index, table) in chunk order; with an executor, a bounded window of chunks in flight."""
-    if executor is None:
-        for k in todo:
-            start, stop = bounds[k]
-            yield k, run_chunk(job, start, pts.chunk(start, stop))
-        return
-    window = max(2, 2 * _workers(executor))
-    pending: deque = deque()
-    it = iter(todo)
-    try:
-        for k in it:
-            start, stop = bounds[k]
-            pending.append((k, executor.submit(run_chunk, job, start, pts.chunk(start, stop))))
-            if len(pending) >= window:
-                break
-        while pending:
-            k, fut = pending.popleft()
-            result = fut.result()
-            nxt = next(it, None)
-            if nxt is not None:
-                start, stop = bounds[nxt]
-                pending.append((nxt, executor.submit(run_chunk, job, start, pts.chunk(start, stop))))
-            yield k, result
-    finally:  # interrupted or failed: chunks not started are not started
-        for _, fut in pending:
-            fut.cancel()
-
-
-def _workers(executor) -> int:
-    """Best guess of the executor's parallelism (only sizes the window of chunks in flight)."""
-    n = getattr(executor, "_max_workers", None)
-    if n:
-        return int(n)
-    info = getattr(executor, "nthreads", None)  # dask.distributed.Client
-    if callable(info):
-        try:
-            return max(1, sum(info().values()))
-        except Exception:  # a client that cannot answer: assume a small cluster
-            return 4
-    return 4

@@ -1,6 +1,6 @@
 """Chunked, resumable storage of a sweep's results, and finished outputs found again.
 
-The output itself is checked, locked and written atomically by :mod:`ropemodel.sweep.files`.
+The output itself is checked, locked and written atomically by :mod:`ropemodel.sweeps.files`.
 
 Parts
     While a sweep runs, each finished chunk goes to its own Arrow file in a parts directory
@@ -13,7 +13,7 @@ Parts
 Complete outputs
     The signature is also stored in the finished output, so a rerun of a finished sweep
     finds it complete instead of recomputing it.  Parquet holds it in the file's key-value
-    metadata (``ropemodel.sweep``).  A CSV file cannot hold it without breaking its readers
+    metadata (``ropemodel.sweeps``).  A CSV file cannot hold it without breaking its readers
     (a comment line fails ``pandas.read_csv`` unless ``comment='#'`` is passed, an extra
     column or row changes the data), so it goes to a sidecar ``FILE.csv.sweep.json`` with
     the CSV's size and SHA-256: the sidecar vouches for exactly those bytes, and an edited,
@@ -37,10 +37,10 @@ import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 
 from ropemodel.errors import InputError
-from ropemodel.sweep.files import OutputError, cause, remove, tmp_of, verified, write_atomic
+from ropemodel.sweeps.files import OutputError, cause, remove, tmp_of, verified, write_atomic
 
 KILL_HOOK = "ROPEMODEL_SWEEP_KILL_AFTER"
-META_KEY = b"ropemodel.sweep"
+META_KEY = b"ropemodel.sweeps"
 SIDECAR = ".sweep.json"
 
 
@@ -61,7 +61,7 @@ def _write_part(table, path):
         writer.write_table(table)
 
 
-#: output suffix (:data:`ropemodel.sweep.files.SUFFIXES`) → writer(tables iterator, schema, path)
+#: output suffix (:data:`ropemodel.sweeps.files.SUFFIXES`) → writer(tables iterator, schema, path)
 FORMATS = {".parquet": _write_parquet, ".pq": _write_parquet, ".csv": _write_csv}
 
 

@@ -18,7 +18,7 @@ import warnings
 import numpy as np
 
 from ropemodel.errors import InputError
-from ropemodel.sweep.points import Grid
+from ropemodel.sweeps.points import Grid
 
 MAX_COMBINATIONS = 2_000_000
 

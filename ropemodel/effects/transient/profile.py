@@ -148,7 +148,7 @@ class Trip(Profile):
     (known times: the drum's speed is prescribed and the rope inextensible), and each phase carries the
     load's place, so its segment is constant within a phase.  Linear ramps and an inextensible rope only
     (an elastic rope's spans are frozen over a transient, and a trip moves the load along the whole
-    route): the transient version of :func:`ropemodel.trip.trip`, with which it agrees.
+    route): the transient version of :func:`ropemodel.trips.trip`, with which it agrees.
     """
 
     description = "a whole trip: ramp up, run, ramp down, the load along the whole route"

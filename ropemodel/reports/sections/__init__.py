@@ -1,7 +1,7 @@
 """The report's sections, one module per group; the page shows them in the order of :data:`MODULES`.
 
 A new section is a module here with one or more functions decorated by
-:func:`ropemodel.report.registry.section`, and its name in :data:`MODULES` where it belongs.
+:func:`ropemodel.reports.registry.section`, and its name in :data:`MODULES` where it belongs.
 """
 
 from __future__ import annotations

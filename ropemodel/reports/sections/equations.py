@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 from ropemodel.citations import CITATIONS
-from ropemodel.report import page
-from ropemodel.report.registry import section
-from ropemodel.report.sections.inputs import derived_note
+from ropemodel.reports import page
+from ropemodel.reports.registry import section
+from ropemodel.reports.sections.inputs import derived_note
 
 GROUP = """<h3>{{ effect }} = "{{ variant }}": {{ description }}{% if refs %} [{{ refs }}]{% endif %}</h3>
 {% for e in equations %}

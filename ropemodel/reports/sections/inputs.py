@@ -5,8 +5,8 @@ from __future__ import annotations
 
 from ropemodel.effects.winch_rope import RopeCatalogue
 from ropemodel.errors import RopeModelError
-from ropemodel.report import page
-from ropemodel.report.registry import section
+from ropemodel.reports import page
+from ropemodel.reports.registry import section
 
 #: scene.origin → what the report says
 ORIGIN = {"scene": "scene file", "default": "default (see below)", "--set": "--set on the command line",

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from ropemodel.report import page
-from ropemodel.report.registry import section
+from ropemodel.reports import page
+from ropemodel.reports.registry import section
 
 
 @section("references", "References")

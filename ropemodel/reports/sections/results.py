@@ -7,9 +7,9 @@ import re
 
 from ropemodel.effects.winch_checks import CHECKS, margin_names
 from ropemodel.errors import RopeModelError
-from ropemodel.report import figures, page
-from ropemodel.report.registry import section
-from ropemodel.report.sections.inputs import derived_note
+from ropemodel.reports import figures, page
+from ropemodel.reports.registry import section
+from ropemodel.reports.sections.inputs import derived_note
 
 _DIR = re.compile(r"^(?P<base>.+)_(?P<dir>up|down)$")
 #: the direction a pair's description names (the table's columns say it)

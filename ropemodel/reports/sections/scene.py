@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from ropemodel.report import page
-from ropemodel.report.registry import section
+from ropemodel.reports import page
+from ropemodel.reports.registry import section
 
 HEAD = """<dl class="head">
 <dt>scene</dt><dd>{{ scene.name }}</dd>

@@ -8,8 +8,8 @@ results that depend on the most inputs.
 
 from __future__ import annotations
 
-from ropemodel.report import figures, page
-from ropemodel.report.registry import section
+from ropemodel.reports import figures, page
+from ropemodel.reports.registry import section
 
 #: headline results, by name (``base`` matches ``base``, ``base_up`` and ``base_down``), in order
 HEADLINE = ("F_C", "dF", "N_p", "S", "K", "delta_alpha")
@@ -49,7 +49,7 @@ def headline(model, values: dict) -> list[str]:
 
 @section("sensitivity", "What matters most")
 def sensitivity(ctx):
-    from ropemodel.sensitivity import elasticities
+    from ropemodel.sensitivities import elasticities
 
     result = ctx.result
     outputs = headline(result.model, result.values)

@@ -3,9 +3,9 @@ the recommended design; or, when no design exists, which checks conflict and by 
 
 from __future__ import annotations
 
-from ropemodel.report import page
-from ropemodel.report.registry import section
-from ropemodel.report.sections.results import checks_html
+from ropemodel.reports import page
+from ropemodel.reports.registry import section
+from ropemodel.reports.sections.results import checks_html
 
 INTRO = """<p>The lightest catalogue rope, then the least pretension, then the least stroke, with every design check
 met in both directions of travel (<code>ropemodel size</code>; catalogue diameter by {{ method }}).</p>"""

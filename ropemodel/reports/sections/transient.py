@@ -3,8 +3,8 @@ and its histories as pictures.  Uses only ``simulate(scene)``, ``.history``, ``.
 
 from __future__ import annotations
 
-from ropemodel.report import figures, page
-from ropemodel.report.registry import section
+from ropemodel.reports import figures, page
+from ropemodel.reports.registry import section
 
 #: units of the history's columns drawn, one panel each: forces, speeds, lengths
 UNITS = ("N", "m/s", "m")

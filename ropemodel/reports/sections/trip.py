@@ -1,5 +1,5 @@
 """Section "trip": a whole trip up and down the route (``ropemodel trip``): forces, drive power and
-energy, exactly piece by piece (:mod:`ropemodel.trip`), with the route's profile when it has segments.
+energy, exactly piece by piece (:mod:`ropemodel.trips`), with the route's profile when it has segments.
 
 Shown for a winch scene about trips (``dynamics = "trip"`` or a route of ``[[route]]`` segments) that
 gives the speed ``v_pj`` and the ramp time ``t_ramp``.
@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import math
 
-from ropemodel.report import figures, page
-from ropemodel.report.registry import section
+from ropemodel.reports import figures, page
+from ropemodel.reports.registry import section
 
 #: summary key → (label, unit shown, factor from SI)
 ROWS = {"t_trip": ("trip time", "s", 1.0), "F_C_max": ("largest winding-rope force F_C", "kN", 1e-3),
