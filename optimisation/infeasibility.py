@@ -104,7 +104,7 @@ def diagnose(problem: SizingProblem, p=None, d_range=None, fix_d: float | None =
     gz = np.asarray(gfun(z1[:3], p)).ravel()
     if t_star <= TOL:
         return Diagnosis(True, t_star)
-    conflicting = [c for c, l in zip(problem.constraints, lam) if l > 1e-6]
+    conflicting = [c for c, m in zip(problem.constraints, lam) if m > 1e-6]
     margins = {c: float(v * s) for c, v, s in zip(problem.constraints, gz, problem.g_scale)}
 
     # 2. one check relaxed at a time

@@ -53,7 +53,7 @@ class Solution:
         return self.success and bool(np.all(self.g >= -FEAS_TOL))
 
     @property
-    def start(self) -> "Start":
+    def start(self) -> Start:
         """This optimum and its multipliers, as the warm start of a neighbouring problem."""
         return Start(self.xs.copy(), self.lam_x.copy(), self.lam_g.copy())
 

@@ -92,7 +92,7 @@ class Scene:
         """The model with this scene's effects (only their equations are built)."""
         return Model(self.model, self.effects, tables.options(self.numerics, self.route, "L_ul" in self.parameters))
 
-    def with_values(self, values: dict, bare: str = "si", origin: str = "api") -> "Scene":
+    def with_values(self, values: dict, bare: str = "si", origin: str = "api") -> Scene:
         """A copy with parameters replaced, every problem checked and listed at once.
 
         values: name → value; strings carry units, numbers are SI (``bare="si"``, the Python API) or,
@@ -129,7 +129,7 @@ class Scene:
         _verify_checks(out, Problems()).raise_if_any()
         return out
 
-    def with_effects(self, effects: dict[str, str], optional=(), emit: bool = False) -> "Scene":
+    def with_effects(self, effects: dict[str, str], optional=(), emit: bool = False) -> Scene:
         """The same scene file read again with some effects set (e.g. sizing's ``checks = "design"``)."""
         if not self.raw:
             raise InputError("this scene was not loaded from a file or dict; build it again with those effects")
@@ -320,7 +320,7 @@ def _input_variants(model: Model, name: str) -> list[str]:
     """``effect = 'variant'`` choices under which ``name`` is a parameter instead of computed."""
     effect = model.defined_by[name]
     out = []
-    for variant, cls in effects_of(model.name)[effect].variants.items():
+    for variant in effects_of(model.name)[effect].variants:
         if variant == model.effects[effect]:
             continue
         trial = Model(model.name, {**model.effects, effect: variant}, model.options)

@@ -226,8 +226,8 @@ def data_cases() -> list[Case]:
     for what, path, files in (("a directory", "{d}/dd.csv", {"dd.csv": DIR}), ("missing", "{d}/none.csv", {}),
                               ("under a file", "{d}/f/d.csv", {"f": b"x"})):
         cases.append(_opt("identify", f"data file {what}", argv=[path], files=files, kind="data"))
-    torque = "\n".join(l for l in __import__("_fuzz").builtin(
-        "capstan_li_experiment").splitlines() if not l.startswith("F_T")).replace('load = "force"', 'load = "torque"')
+    torque = "\n".join(line for line in __import__("_fuzz").builtin(
+        "capstan_li_experiment").splitlines() if not line.startswith("F_T")).replace('load = "force"', 'load = "torque"')
     cases.append(Case("identify", "data", "data: torque without a unit", ["identify", "{d}/scene.toml", "{d}/d.csv"],
                       {"scene.toml": (torque + '\nT = "7.5 N*m"\n').encode(), "d.csv": b"T,delta_alpha [deg]\n1.5,0.9\n3,1.7\n6,3.1\n"}))
     return cases

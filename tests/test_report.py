@@ -27,7 +27,7 @@ from test_krauze2025 import FIG9
 SCENES = ("example", "winch_sizing_fig9", "winch_start", "sheave_hajduk_fig5", "capstan_li_experiment")
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def page_of(name: str) -> str:
     """The report page of a built-in scene (built once per test session)."""
     from ropemodel.reports import build, load

@@ -38,7 +38,7 @@ OWN_LINES = ("warning: ", "error: ", "interrupted")
 class _Guarded:
     """stdout that refuses to print once the command was interrupted."""
 
-    def __init__(self, stream, interrupts: "Interrupts"):
+    def __init__(self, stream, interrupts: Interrupts):
         self._stream, self._interrupts = stream, interrupts
 
     def write(self, text):
@@ -53,7 +53,7 @@ class _Guarded:
 class _Held:
     """stderr that, once the command was interrupted, holds what is written (see :meth:`release`)."""
 
-    def __init__(self, stream, interrupts: "Interrupts"):
+    def __init__(self, stream, interrupts: Interrupts):
         self._stream, self._interrupts, self._held = stream, interrupts, []
 
     def write(self, text):

@@ -34,10 +34,10 @@ class SwitchState:
     banded: np.ndarray
 
     @classmethod
-    def at_start(cls, g: np.ndarray) -> "SwitchState":
+    def at_start(cls, g: np.ndarray) -> SwitchState:
         return cls(g > ARM_TOL, g >= -ARM_TOL)
 
-    def arm(self, more: np.ndarray) -> "SwitchState":
+    def arm(self, more: np.ndarray) -> SwitchState:
         return SwitchState(self.armed | more, self.banded)
 
     def band(self) -> np.ndarray:

@@ -44,10 +44,10 @@ class Simulation:
     def finish(self, events):
         t = np.concatenate(self._t)
         names = self.system.functions(0, self._modes[0]).out_names
-        O = dict(zip(names, np.concatenate(self._o, axis=1)))
-        O["E [J]"] = O["E [J]"] - O["E [J]"][0]
-        O["energy_residual [J]"] = O["W_drum [J]"] - O["E [J]"] - O["D [J]"]
-        columns = {"t [s]": t, **O}
+        out = dict(zip(names, np.concatenate(self._o, axis=1)))
+        out["E [J]"] = out["E [J]"] - out["E [J]"][0]
+        out["energy_residual [J]"] = out["W_drum [J]"] - out["E [J]"] - out["D [J]"]
+        columns = {"t [s]": t, **out}
         for p in self.system.parts:
             if p.column:
                 columns[p.column] = [m[p.effect] for m in self._modes]

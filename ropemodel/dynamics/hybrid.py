@@ -171,7 +171,7 @@ class HybridIntegrator:
 
             band = 0.0 if hit.state.armed[i] else ARM_TOL
 
-            def f(s, i=i):
+            def f(s, band=band):
                 return g_i(s) + band
 
             hi = h_j

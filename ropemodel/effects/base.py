@@ -26,7 +26,8 @@ the effects that share a quantity.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, ClassVar
+from typing import ClassVar
+from collections.abc import Callable
 
 import casadi as ca
 
@@ -51,7 +52,7 @@ class Equation:
     formula: str = ""
 
     @classmethod
-    def from_call(cls, defines: str, fun: ca.Function, args, source: str, formula: str = "") -> "Equation":
+    def from_call(cls, defines: str, fun: ca.Function, args, source: str, formula: str = "") -> Equation:
         """``defines = fun(*args)``: ``fun`` takes one scalar per name in ``args`` and returns one scalar.
 
         The compiled solver calls ``fun`` directly when it solves for ``defines``,
@@ -120,7 +121,7 @@ class Submodel:
         """
         return []
 
-    def invalid_mask(self, values: dict) -> dict[str, "object"]:
+    def invalid_mask(self, values: dict) -> dict[str, object]:
         """Vectorised :meth:`invalid` for sweeps: reason → boolean array over the points of ``values``
         (only the names of :meth:`invalid_needs_for` are in ``values``)."""
         return {}

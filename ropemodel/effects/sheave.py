@@ -371,5 +371,6 @@ def distribution_frame(values: dict, scene, points: int | None = None):
         frame["e^(mu alpha) [-]"] = euler
     else:   # no inf in a result: the reference column is left out, and said so
         warnings.warn(f"the reference column e^(mu alpha) is left out: at mu alpha = "
-                      f"{values['mu'] * values['alpha']:.4g} it exceeds the largest number a float holds", UserWarning)
+                      f"{values['mu'] * values['alpha']:.4g} it exceeds the largest number a float holds", UserWarning,
+                      stacklevel=2)
     return pd.DataFrame(frame)

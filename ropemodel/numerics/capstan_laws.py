@@ -21,7 +21,7 @@ numpy arrays and CasADi symbols.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from collections.abc import Callable
 
 import casadi as ca
 import numpy as np

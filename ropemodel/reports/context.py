@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import replace
-from datetime import datetime, timezone
+from datetime import datetime, UTC
 
 from ropemodel.errors import RopeModelError, SolveError
 from ropemodel.scene import Scene
@@ -56,7 +56,7 @@ class Context:
         self.scene = scene
         self.sizing = sizes(scene) if sizing is None else sizing
         self.method = method
-        self.created = created or datetime.now(timezone.utc).replace(microsecond=0)
+        self.created = created or datetime.now(UTC).replace(microsecond=0)
 
     @once
     def design(self):

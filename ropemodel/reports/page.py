@@ -75,7 +75,7 @@ PAGE = """<!DOCTYPE html>
 """
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def environment():
     """The Jinja2 environment of every report template (autoescaping on)."""
     jinja2 = require("jinja2", "report")
@@ -85,7 +85,7 @@ def environment():
     return env
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _template(text: str):
     return environment().from_string(text)
 

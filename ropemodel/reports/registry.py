@@ -8,7 +8,7 @@ order (and, within a module, in the order they are defined).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from collections.abc import Callable
 
 
 def always(ctx) -> bool:

@@ -96,13 +96,13 @@ class Mode:
     items: tuple[tuple[str, str], ...]
 
     @classmethod
-    def of(cls, modes: dict[str, str]) -> "Mode":
+    def of(cls, modes: dict[str, str]) -> Mode:
         return cls(tuple(modes.items()))
 
     def __getitem__(self, effect: str) -> str:
         return dict(self.items)[effect]
 
-    def replace(self, effect: str, mode: str) -> "Mode":
+    def replace(self, effect: str, mode: str) -> Mode:
         return Mode(tuple((e, mode if e == effect else m) for e, m in self.items))
 
     def __str__(self) -> str:
@@ -168,7 +168,7 @@ class Setup:
     f_scale: float = 1.0
     v_scale: float = 1.0
 
-    def part(self, effect: str) -> "TransientSubmodel":
+    def part(self, effect: str) -> TransientSubmodel:
         return self.parts[effect]
 
     @property

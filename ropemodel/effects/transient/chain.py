@@ -133,7 +133,7 @@ def build_elastic(values: dict, route: Route, L_u: float, x_m: float, segments: 
             s0, s1 = sorted((s_a + j * step, s_a + (j + 1) * step))
             m, w, r = route.rope("unwinding" if name == "S" else "winding", s0, s1)
             w = w if step > 0 else -w                     # weight along +p
-            for node, other in ((cur, b), (b, cur)):
+            for node in (cur, b):
                 f = 0.5 if share == 0.0 else (0.0 if node == sheave else 1.0)    # sheave's loads: far node
                 fm = 0.5 if share < 1.0 else (0.0 if node == sheave else 1.0)
                 nodes.add(node, "S" if name == "S" else "C", fm * m, f * w, f * r)

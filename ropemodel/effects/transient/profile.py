@@ -15,7 +15,7 @@ once a scene has a transient, and stay out of static scenes.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from collections.abc import Callable
 
 from ropemodel._math import if_else
 from ropemodel.effects.base import Submodel, define_effect, register
