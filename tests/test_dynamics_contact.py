@@ -3,7 +3,7 @@
 Truths: the rigid drum's transient (limit of a stiff contact, D → 0), closed-form natural
 frequencies of springs in series with the contact spring (Li et al. eq. (12) typed here from the
 paper), the static model (unchanged by the effect), and the continuity of the tight side's
-stiffness at the slip zone's saturation (MODELS.md §3).
+stiffness at the slip zone's saturation (docs/physics.md §5).
 """
 
 from __future__ import annotations

@@ -130,7 +130,7 @@ def _two(a2):
 
 
 def test_run_worst_puts_the_load_where_F_C_up_is_largest(capsys):
-    """--worst: the segment of the largest F_C_up, by hand (MODELS.md §4: the load term G_m (sin α_j + μ_pm cos α_j))."""
+    """--worst: the segment of the largest F_C_up, by hand (docs/physics.md §4: the load term G_m (sin α_j + μ_pm cos α_j))."""
     from ropemodel.cli import main
 
     assert main(["run", "route_segments", "--worst", "--json"]) == 0
