@@ -163,7 +163,7 @@ def size(scene: Scene | str | os.PathLike, method: str = DEFAULT_DISCRETE, with_
     sol = solve_best(problem)
     if not sol.feasible:   # confirm independently: every catalogue size, F_nwl and stroke found with d fixed
         probe = discrete.next_size_up(problem, 0.0)
-        if probe.found:
+        if probe.solution is not None:
             sol = solve_best(problem, x0=probe.solution.xs)
     if not sol.feasible:
         design.diagnosis = diagnose(problem)
@@ -183,16 +183,14 @@ def size(scene: Scene | str | os.PathLike, method: str = DEFAULT_DISCRETE, with_
         disc = discrete.bonmin_with_timeout(problem, BONMIN_TIMEOUT, x0=sol.xs)
     else:
         disc = discrete.next_size_up(problem, d_star)
-    if not disc.found:
+    if disc.solution is None:
         cat = ropes.diameters()
         above = [dk for dk in cat if dk >= d_star - 1e-9]
-        fix = above[0] if above else None
-        diag = diagnose(problem, fix_d=fix, x0=sol.xs) if fix is not None else None
-        design.diagnosis = diag
-        if fix is None:
+        if not above:
             design.message = (f"no catalogue diameter: the continuous optimum d = {d_star * 1e3:.4g} mm is above "
                               f"the largest catalogue size {cat[-1] * 1e3:g} mm")
         else:
+            design.diagnosis = diag = diagnose(problem, fix_d=above[0], x0=sol.xs)
             design.message = "no catalogue diameter meets every check; " + diag.text(problem.units)
         if disc.method.endswith("(timed out)"):
             design.message = (f"bonmin did not finish within {BONMIN_TIMEOUT:g} s; use --discrete next-size-up. "

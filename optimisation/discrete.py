@@ -23,6 +23,7 @@ import sys
 import threading
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -114,11 +115,12 @@ def bonmin(problem: SizingProblem, p=None, catalogue=None, x0=None) -> DiscreteD
     f, g = sub(xs, problem.p)
     z = ca.vertcat(b, y)
     nlp = {"x": z, "p": problem.p, "f": f, "g": ca.vertcat(g, ca.sum1(b))}
-    opts = {"discrete": [True] * nk + [False, False], "print_time": False, "show_eval_warnings": False, "calc_lam_p": False,
-            "bonmin.print_level": 0, "bonmin.bb_log_level": 0, "bonmin.nlp_log_level": 0,
-            "bonmin.algorithm": "B-BB", "bonmin.integer_tolerance": 1e-9, "bonmin.time_limit": 120.0,
-            "bonmin.node_limit": 2000, "bonmin.num_resolve_at_infeasibles": 0, "bonmin.num_resolve_at_node": 0,
-            "bonmin.num_resolve_at_root": 0, "bonmin.num_retry_unsolved_random_point": 0}
+    opts: dict[str, Any] = {
+        "discrete": [True] * nk + [False, False], "print_time": False, "show_eval_warnings": False,
+        "calc_lam_p": False, "bonmin.print_level": 0, "bonmin.bb_log_level": 0, "bonmin.nlp_log_level": 0,
+        "bonmin.algorithm": "B-BB", "bonmin.integer_tolerance": 1e-9, "bonmin.time_limit": 120.0,
+        "bonmin.node_limit": 2000, "bonmin.num_resolve_at_infeasibles": 0, "bonmin.num_resolve_at_node": 0,
+        "bonmin.num_resolve_at_root": 0, "bonmin.num_retry_unsolved_random_point": 0}
     solver = ca.nlpsol("sizing_minlp", "bonmin", nlp, opts)
     ng = problem.g.numel()
     x_start = problem.x0() if x0 is None else np.asarray(x0)
@@ -136,7 +138,7 @@ def bonmin(problem: SizingProblem, p=None, catalogue=None, x0=None) -> DiscreteD
     except RuntimeError:     # bonmin raises on some infeasible trees instead of returning a status
         res, ok = None, False
     seconds = time.perf_counter() - t0
-    if not ok:
+    if not ok or res is None:
         return DiscreteDesign(None, "bonmin", seconds, [])
     zopt = np.asarray(res["x"]).ravel()
     dk = float(catalogue[int(np.argmax(zopt[:nk]))])

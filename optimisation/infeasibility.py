@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -36,8 +37,8 @@ REMEDIES = {
     "slack_margin": (("F_S_min", "max"),),
     "drum_margin": (("D", "min"), ("D_ratio_min", "max")),
 }
-OPTS = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False, "calc_lam_p": False,
-        "ipopt.sb": "yes", "ipopt.max_iter": 1000}
+OPTS: dict[str, Any] = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False,
+                        "calc_lam_p": False, "ipopt.sb": "yes", "ipopt.max_iter": 1000}
 TOL = 1e-7
 
 

@@ -19,24 +19,30 @@ as variables) the first block row drops out: ∂x/∂p = −J_A⁻¹ ∂g_A/∂p
 
 from __future__ import annotations
 
+import weakref
+
 import casadi as ca
 import numpy as np
 
 from optimisation.ipopt import Solution
 from optimisation.problem import VARIABLES, SizingProblem
 
+#: the KKT matrices' Function of each problem, built once (kept while the problem lives)
+_KKT: weakref.WeakKeyDictionary[SizingProblem, ca.Function] = weakref.WeakKeyDictionary()
 
-def _functions(problem: SizingProblem):
-    if not hasattr(problem, "_kkt_funs"):
+
+def _functions(problem: SizingProblem) -> ca.Function:
+    kkt = _KKT.get(problem)
+    if kkt is None:
         lam = ca.MX.sym("lam", problem.g.numel())
         L = problem.f + ca.dot(lam, problem.g)
         grad_L = ca.gradient(L, problem.xs)
-        problem._kkt_funs = ca.Function(
+        kkt = _KKT[problem] = ca.Function(
             "kkt", [problem.xs, problem.p, lam],
             [ca.jacobian(grad_L, problem.xs), ca.jacobian(grad_L, problem.p),
              ca.jacobian(problem.g, problem.xs), ca.jacobian(problem.g, problem.p)],
             ["x", "p", "lam"], ["H", "Lxp", "Jx", "Jp"])
-    return problem._kkt_funs
+    return kkt
 
 
 def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, dict[str, float]]:

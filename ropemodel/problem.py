@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -91,9 +92,10 @@ class Problem:
         guesses = {n: scene.parameters[n] for n in find if n in scene.parameters}
         self.function = solver_of(model, self.structure, guesses)
 
-    def inputs(self, values: dict | None = None) -> dict[str, float]:
+    def inputs(self, values: Mapping | None = None) -> dict[str, float]:
         """SI values of every known: the scene's parameters, then ``given`` values, then ``values``."""
-        out = {k: self.scene.parameters[k] for k in self.knowns if k in self.scene.parameters}
+        # floats; an array given in ``values`` passes through as it is
+        out: dict[str, Any] = {k: self.scene.parameters[k] for k in self.knowns if k in self.scene.parameters}
         out.update(self.given_values)
         for k, v in (values or {}).items():
             if k not in self.knowns:
@@ -104,7 +106,7 @@ class Problem:
             raise InputError(f"no value given for {', '.join(missing)}")
         return out
 
-    def solve(self, values: dict | None = None) -> Result:
+    def solve(self, values: Mapping | None = None) -> Result:
         """Solve for one point; ``values`` override scene parameters or given outputs (SI or with units).
 
         Returns
@@ -218,7 +220,7 @@ def reach(model, params: dict, find: str, given: str, n: int = 401):
     g = abs(q.guess) or 1.0
     if q.low >= 0 and not math.isfinite(q.high):
         grid = np.concatenate([[q.low] if not q.low_open else [], g * np.logspace(-12, 12, n)])
-        ends = (_fmt_limit(q.low) if q.low_open else None, "inf")
+        ends: tuple[str | None, str | None] = (_fmt_limit(q.low) if q.low_open else None, "inf")
     else:
         lo = q.low if math.isfinite(q.low) else -1e12 * g
         hi = q.high if math.isfinite(q.high) else 1e12 * g

@@ -63,7 +63,8 @@ class Scene:
     ----------
     defaults: parameter → why its default value (every default this scene relies on).
     unused: parameter given but not used by the chosen effects → the variants that would use it.
-    checks: computed quantity given in the scene → :class:`~ropemodel.scene_tables.Check` (verified when the scene loads).
+    checks: computed quantity given in the scene → :class:`~ropemodel.scene_tables.Check` (verified when the
+        scene loads).
     absent: optional parameters left out (e.g. what sizing chooses itself).
     warnings: every warning of the scene, one line each (the command line prints them once).
     origin: parameter → where its value came from (``"scene"``, ``"default"``, ``"--set"``, ``"api"``).
@@ -92,7 +93,7 @@ class Scene:
         """The model with this scene's effects (only their equations are built)."""
         return Model(self.model, self.effects, tables.options(self.numerics, self.route, "L_ul" in self.parameters))
 
-    def with_values(self, values: dict, bare: str = "si", origin: str = "api") -> Scene:
+    def with_values(self, values: Mapping, bare: str = "si", origin: str = "api") -> Scene:
         """A copy with parameters replaced, every problem checked and listed at once.
 
         values: name → value; strings carry units, numbers are SI (``bare="si"``, the Python API) or,
@@ -203,7 +204,7 @@ def load(path: str | os.PathLike | None = None, optional: Iterable[str] = (), em
     ropemodel.errors.InputError: G_m = 300 has no unit; write e.g. "300 kN"
     """
     name = EXAMPLE if path is None or str(path) == "example" else None
-    p = Path(path) if name is None else Path(f"{EXAMPLE}.toml")
+    p = Path(path) if name is None and path is not None else Path(f"{EXAMPLE}.toml")
     stem = p.name[:-5] if p.name.endswith(".toml") else p.name
     if name is None and not p.exists() and str(path) in (stem, p.name) and stem in builtin_scenes():
         name = stem
@@ -227,7 +228,7 @@ def load(path: str | os.PathLike | None = None, optional: Iterable[str] = (), em
     return from_toml(text, str(p), optional, emit, values, bare, origin)
 
 
-def from_toml(text: str, source: str | None = None, optional=(), emit: bool = True, values: dict | None = None,
+def from_toml(text: str, source: str | None = None, optional=(), emit: bool = True, values: Mapping | None = None,
               bare: str = "si", origin: str = "api") -> Scene:
     """Parse and validate a scene from TOML text (see :func:`from_dict`)."""
     if "\x00" in text:
@@ -247,7 +248,7 @@ def from_toml(text: str, source: str | None = None, optional=(), emit: bool = Tr
 
 
 def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", optional=(), emit: bool = True,
-              digest: str | None = None, values: dict | None = None, values_bare: str = "si",
+              digest: str | None = None, values: Mapping | None = None, values_bare: str = "si",
               values_origin: str = "api") -> Scene:
     """Validate a scene given as nested dicts (the TOML structure); every problem at once.
 
@@ -256,7 +257,8 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
     ``values_origin``): as in :func:`load`.
     """
     where = f" in {source}" if source else ""
-    found, notes = Problems(where), []
+    found = Problems(where)
+    notes: list[str] = []
     if not isinstance(data, dict):
         raise InputError(f"a scene is a table of tables, got {type(data).__name__}")
     name, model_name = tables.read_head(data, found)

@@ -13,6 +13,7 @@ against the model are :mod:`ropemodel.scene`'s).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ropemodel.core.model import Model
@@ -70,7 +71,7 @@ def read_route(data: dict, effects: dict, given: dict, found: Problems):
     if "L_u" in given:
         found.add("L_u is the sum of the [[route]] segments' lengths: remove it from [parameters]")
         given.pop("L_u")
-    values = {}
+    values: dict[str, tuple[str | None, object]] = {}     # name -> (label, value)
     for i, seg in enumerate(segments, start=1):
         for key, value in seg.items():
             if key not in ROUTE_KEYS:
@@ -169,7 +170,7 @@ def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes
     return params, checks, unused, origin
 
 
-def set_values(model: Model, values: dict, bare: str, origin_label: str, params: dict, origin: dict,
+def set_values(model: Model, values: Mapping, bare: str, origin_label: str, params: dict, origin: dict,
                 unused: dict, found: Problems, notes: list) -> None:
     """Parameters set on top of the file (``--set``): they replace the file's values."""
     for key, value in values.items():

@@ -68,7 +68,7 @@ class Trip:
     drive and moves toward it (``sign`` +1, upward) or away (−1).
     """
 
-    scene: object
+    scene: Scene
     direction: str
     eta: float
     phases: list[tuple[float, float, float, float]]
@@ -199,7 +199,8 @@ def _taut(trip: Trip, F_nwl: float) -> None:
     side = "winding" if worst.F_C <= worst.F_S else "unwinding"
     raise SolveError(f"the {side} rope would have to push ({least / 1e3:.6g} kN) at t = {worst.t0:.6g} s of the "
                      f"{trip.direction}ward trip, the load at x_m = {trip.position(worst.t0):.6g} m: it is slack and "
-                     f"the model no longer holds; every rope stays taut with F_nwl > {(F_nwl - 2 * least) / 1e3:.6g} kN")
+                     f"the model no longer holds; every rope stays taut with "
+                     f"F_nwl > {(F_nwl - 2 * least) / 1e3:.6g} kN")
 
 
 def _segment_lengths(values: dict) -> list[float]:

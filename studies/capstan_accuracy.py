@@ -210,7 +210,8 @@ def plot(df, out, fast):
     for m, g in df[df["method"].str.startswith("scipy")].groupby("method"):
         ax.plot(g["max rel. error"].clip(lower=1e-16), g["time per point [s]"], "s--", label=m)
     mine = df[df["method"].str.startswith("ropemodel")].sort_values("rtol")
-    ax.plot(mine["max rel. error"], mine["time per point [s]"], "k.-", label="ropemodel li (compiled), rtol 1e-11..1e-5")
+    ax.plot(mine["max rel. error"], mine["time per point [s]"], "k.-",
+            label="ropemodel li (compiled), rtol 1e-11..1e-5")
     o = df[df["method"] == DEFAULT].iloc[0]
     ax.plot(o["max rel. error"], o["time per point [s]"], "k*", ms=14, label=o["method"])
     ax.set(xscale="log", yscale="log", xlabel="max relative error of the rotation (vs event-located DOP853)",

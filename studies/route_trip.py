@@ -28,7 +28,8 @@ def equivalent_slope(scene):
     lengths = [v[f"L_{i}"] for i in range(1, 100) if f"L_{i}" in v]
     rise = sum(v[f"L_{i}"] * math.sin(v[f"alpha_{i}"]) for i in range(1, len(lengths) + 1))
     raw = dict(scene.raw)
-    raw["route"] = [{"length": f"{sum(lengths)!r} m", "inclination": f"{math.degrees(math.asin(rise / sum(lengths)))!r} deg"}]
+    raw["route"] = [{"length": f"{sum(lengths)!r} m",
+                     "inclination": f"{math.degrees(math.asin(rise / sum(lengths)))!r} deg"}]
     return rm.from_dict(raw, emit=False)
 
 

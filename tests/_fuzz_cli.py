@@ -49,7 +49,8 @@ def _run_solve_size() -> list[Case]:
         ("--set outside the range", ["--set", "alpha_u=90deg"]), ("--set a 400-digit G_m", ["--set", f"G_m={BIG}kN"]),
         ("--set beyond the route", ["--set", "L_ul=2000m"]), ("--json and bad --set", ["--json", "--set", "G_m=x"]),
     )]
-    solve = [("no --given, no --find", []), ("--find twice", ["--given", "dF_up=1000mm", "--find", "q_lw", "--find", "q_lw"]),
+    solve = [("no --given, no --find", []),
+             ("--find twice", ["--given", "dF_up=1000mm", "--find", "q_lw", "--find", "q_lw"]),
              ("--find listed twice", ["--given", "dF_up=1000mm", "--find", "q_lw,q_lw"]),
              ("--find unknown", ["--given", "dF_up=1000mm", "--find", "q_lww"]),
              ("--find an output", ["--given", "dF_up=1000mm", "--find", "F_C_up"]),
@@ -79,7 +80,8 @@ def _curve() -> list[Case]:
             ("--to overflow", ["--to", "1e999N"]), ("--to nan", ["--to", "nan N"]), ("--to inf", ["--to", "inf N"]),
             ("--to wrong unit", ["--to", "100m"]), ("--to text", ["--to", "lots"]), ("--to empty", ["--to", ""]),
             ("--to 400 digits", ["--to", f"{BIG}N"]), ("--to unwraps", ["--to", "1e6N"]),
-            ("--from above --to", ["--from", "200N", "--to", "100N"]), ("--from negative", ["--from", "-1N", "--to", "100N"]),
+            ("--from above --to", ["--from", "200N", "--to", "100N"]),
+            ("--from negative", ["--from", "-1N", "--to", "100N"]),
             ("--from bare", ["--from", "5", "--to", "100N"]), ("-n 0", ["--to", "100N", "-n", "0"]),
             ("-n 1", ["--to", "100N", "-n", "1"]), ("-n -5", ["--to", "100N", "-n", "-5"]),
             ("-n a fraction", ["--to", "100N", "-n", "2.5"]), ("-n text", ["--to", "100N", "-n", "many"]),
@@ -95,7 +97,8 @@ def _identify_options() -> list[Case]:
             ("--sigma nan", ["--sigma", "nan deg"]), ("--sigma inf", ["--sigma", "inf deg"]),
             ("--sigma bare", ["--sigma", "0.01"]), ("--sigma wrong unit", ["--sigma", "1kN"]),
             ("--sigma text", ["--sigma", "small"]), ("--sigma 400 digits", ["--sigma", f"{BIG}deg"]),
-            ("--sigma empty", ["--sigma", ""]), ("--fit unknown", ["--fit", "mu,EAA"]), ("--fit twice", ["--fit", "mu,mu"]),
+            ("--sigma empty", ["--sigma", ""]), ("--fit unknown", ["--fit", "mu,EAA"]),
+            ("--fit twice", ["--fit", "mu,mu"]),
             ("--fit empty", ["--fit", ""]), ("--fit commas", ["--fit", ",,"]), ("--fit R", ["--fit", "R"]),
             ("--fit as many as the points", ["--fit", "mu,EA,F_p,L"]))
     few = {"data.csv": b"F_T [N],delta_alpha [deg]\n10,0.0314\n20,0.0691\n40,0.1464\n60,0.2238\n"}
@@ -108,24 +111,35 @@ def _identify_options() -> list[Case]:
 def _sweep_options() -> list[Case]:
     out = ["-o", "{d}/out.csv"]
     vary = ["--vary", "alpha_u=5deg:20deg:3"]
-    rows = (("--vary without =", ["--vary", "alpha_u"] + out), ("--vary bare angles", ["--vary", "alpha_u=0:45:10"] + out),
-            ("--vary N = 0", ["--vary", "alpha_u=0deg:45deg:0"] + out), ("--vary N < 0", ["--vary", "alpha_u=0deg:45deg:-1"] + out),
+    rows = (("--vary without =", ["--vary", "alpha_u"] + out),
+            ("--vary bare angles", ["--vary", "alpha_u=0:45:10"] + out),
+            ("--vary N = 0", ["--vary", "alpha_u=0deg:45deg:0"] + out),
+            ("--vary N < 0", ["--vary", "alpha_u=0deg:45deg:-1"] + out),
             ("--vary N fraction", ["--vary", "alpha_u=0deg:45deg:2.5"] + out),
             ("--vary 1e11 points", ["--vary", "alpha_u=0deg:45deg:100000000000"] + out),
             ("--vary N 400 digits", ["--vary", f"alpha_u=0deg:45deg:{BIG}"] + out),
-            ("--vary 1e12-point product", ["--vary", "alpha_u=0deg:45deg:1000000", "--vary", "G_m=1kN:2kN:1000000"] + out),
-            ("--vary two parts", ["--vary", "alpha_u=0deg:45deg"] + out), ("--vary four parts", ["--vary", "alpha_u=0deg:1deg:2deg:3"] + out),
+            ("--vary 1e12-point product",
+             ["--vary", "alpha_u=0deg:45deg:1000000", "--vary", "G_m=1kN:2kN:1000000"] + out),
+            ("--vary two parts", ["--vary", "alpha_u=0deg:45deg"] + out),
+            ("--vary four parts", ["--vary", "alpha_u=0deg:1deg:2deg:3"] + out),
             ("--vary unknown", ["--vary", "alpha_uu=0deg:45deg:3"] + out), ("--vary twice", vary + vary + out),
             ("--vary outside the range", ["--vary", "alpha_u=80deg:100deg:3"] + out),
-            ("--vary an output", ["--vary", "F_C_up=1kN:2kN:3"] + out), ("--vary empty list", ["--vary", "alpha_u=,"] + out),
-            ("--vary nan", ["--vary", "alpha_u=nan deg,1deg"] + out), ("--vary bare list", ["--vary", "G_m=300,400"] + out),
+            ("--vary an output", ["--vary", "F_C_up=1kN:2kN:3"] + out),
+            ("--vary empty list", ["--vary", "alpha_u=,"] + out),
+            ("--vary nan", ["--vary", "alpha_u=nan deg,1deg"] + out),
+            ("--vary bare list", ["--vary", "G_m=300,400"] + out),
             ("neither --vary nor --points", out), ("no -o", vary),
-            ("--chunk-size 0", vary + out + ["--chunk-size", "0"]), ("--chunk-size -1", vary + out + ["--chunk-size", "-1"]),
-            ("--chunk-size text", vary + out + ["--chunk-size", "big"]), ("--chunk-size 400 digits", vary + out + ["--chunk-size", BIG]),
+            ("--chunk-size 0", vary + out + ["--chunk-size", "0"]),
+            ("--chunk-size -1", vary + out + ["--chunk-size", "-1"]),
+            ("--chunk-size text", vary + out + ["--chunk-size", "big"]),
+            ("--chunk-size 400 digits", vary + out + ["--chunk-size", BIG]),
             ("--threads 0", vary + out + ["--threads", "0"]), ("--threads -1", vary + out + ["--threads", "-1"]),
-            ("--threads 2.5", vary + out + ["--threads", "2.5"]), ("--threads 400 digits", vary + out + ["--threads", BIG]),
-            ("--backend unknown", vary + out + ["--backend", "gpu"]), ("--outputs unknown", vary + out + ["--outputs", "F_C_upp"]),
-            ("--outputs a parameter", vary + out + ["--outputs", "G_m"]), ("--given unknown", vary + out + ["--given", "foo"]),
+            ("--threads 2.5", vary + out + ["--threads", "2.5"]),
+            ("--threads 400 digits", vary + out + ["--threads", BIG]),
+            ("--backend unknown", vary + out + ["--backend", "gpu"]),
+            ("--outputs unknown", vary + out + ["--outputs", "F_C_upp"]),
+            ("--outputs a parameter", vary + out + ["--outputs", "G_m"]),
+            ("--given unknown", vary + out + ["--given", "foo"]),
             ("--find without --given", vary + out + ["--find", "q_lw"]),
             ("--given without --find", ["--vary", "dF_up=900mm:1000mm:3"] + out + ["--given", "dF_up"]),
             ("--find twice", ["--vary", "dF_up=900mm:1000mm:3"] + out + ["--given", "dF_up", "--find", "q_lw,q_lw"]),
@@ -139,9 +153,12 @@ def _sensitivity_options() -> list[Case]:
     rows = (("--outputs unknown", ["--outputs", "F_C_upp"]), ("--parameters unknown", ["--parameters", "G_mm"]),
             ("--outputs a parameter", ["--outputs", "G_m"]), ("--parameters an output", ["--parameters", "F_C_up"]),
             ("--sobol without =", ["--sobol", "alpha_u"]), ("--sobol bare", ["--sobol", "alpha_u=10:20"]),
-            ("--sobol reversed", ["--sobol", "alpha_u=20deg:10deg"]), ("--sobol empty range", ["--sobol", "alpha_u=10deg:10deg"]),
-            ("--sobol outside the range", ["--sobol", "alpha_u=10deg:100deg"]), ("--sobol unknown", ["--sobol", "G_mm=1kN:2kN"]),
-            ("--sobol three parts", ["--sobol", "alpha_u=1deg:2deg:3deg"]), ("--sobol nan", ["--sobol", "alpha_u=nan deg:2deg"]),
+            ("--sobol reversed", ["--sobol", "alpha_u=20deg:10deg"]),
+            ("--sobol empty range", ["--sobol", "alpha_u=10deg:10deg"]),
+            ("--sobol outside the range", ["--sobol", "alpha_u=10deg:100deg"]),
+            ("--sobol unknown", ["--sobol", "G_mm=1kN:2kN"]),
+            ("--sobol three parts", ["--sobol", "alpha_u=1deg:2deg:3deg"]),
+            ("--sobol nan", ["--sobol", "alpha_u=nan deg:2deg"]),
             ("--sobol an output", ["--sobol", "F_C_up=1kN:2kN"]), ("--sobol twice", s + s),
             ("--samples 0", s + ["--samples", "0"]), ("--samples 1", s + ["--samples", "1"]),
             ("--samples 2", s + ["--samples", "2"]), ("--samples 3", s + ["--samples", "3"]),
@@ -161,9 +178,11 @@ POINTS = {
     "empty": b"", "header only": b"alpha_u [deg]\n", "ragged": b"alpha_u [deg],G_m [kN]\n10,300\n12\n14,300,5\n",
     "binary": bytes(range(256)) * 8, "Latin-1": "alpha_u [\xb0]\n10\n".encode("latin-1"),
     "UTF-16": "alpha_u [deg]\n10\n".encode("utf-16"), "booleans": b"alpha_u [deg]\ntrue\nfalse\n",
-    "mixed booleans": b"alpha_u [deg]\n10\ntrue\n", "NaN": b"alpha_u [deg]\n10\nnan\n", "empty cell": b"alpha_u [deg],mu_pm\n10,\n",
+    "mixed booleans": b"alpha_u [deg]\n10\ntrue\n", "NaN": b"alpha_u [deg]\n10\nnan\n",
+    "empty cell": b"alpha_u [deg],mu_pm\n10,\n",
     "inf": b"alpha_u [deg]\ninf\n", "text": b"alpha_u [deg]\nsteep\n", "no unit": b"alpha_u\n10\n",
-    "wrong unit": b"alpha_u [kN]\n10\n", "unknown unit": b"alpha_u [furlong]\n10\n", "unknown column": b"alpha_uu [deg]\n10\n",
+    "wrong unit": b"alpha_u [kN]\n10\n", "unknown unit": b"alpha_u [furlong]\n10\n",
+    "unknown column": b"alpha_uu [deg]\n10\n",
     "duplicate column": b"alpha_u [deg],alpha_u [rad]\n10,0.1\n", "only outputs": b"F_C_up [kN]\n100\n",
     "400-digit number": b"G_m [kN]\n" + BIG.encode() + b"\n", "outside the range": b"alpha_u [deg]\n95\n",
     "broken label": b"alpha_u [deg\n10\n", "unclosed quote": b'"alpha_u [deg]\n10\n', "only commas": b",,,\n,,,\n",
@@ -186,8 +205,8 @@ def points_cases() -> list[Case]:
     full = parquet_bytes(pd.DataFrame({"alpha_u [deg]": [10.0, 12.0]}))
     parquet["truncated Parquet"] = full[: len(full) // 2]
     for what, data in parquet.items():
-        cases.append(_opt("sweep", f"points: {what}", argv=["--points", "{d}/p.parquet", *out], files={"p.parquet": data},
-                          kind="data"))
+        cases.append(_opt("sweep", f"points: {what}", argv=["--points", "{d}/p.parquet", *out],
+                          files={"p.parquet": data}, kind="data"))
     for what, path, files in (("a directory", "{d}/pd.csv", {"pd.csv": DIR}), ("missing", "{d}/none.csv", {}),
                               ("unknown suffix", "{d}/p.xlsx", {"p.xlsx": b"alpha_u [deg]\n10\n"}),
                               ("no suffix", "{d}/p", {"p": b"alpha_u [deg]\n10\n"}),
@@ -199,17 +218,22 @@ def points_cases() -> list[Case]:
 
 
 DATA = {
-    "empty": b"", "header only": b"F_T [N],delta_alpha [deg]\n", "ragged": b"F_T [N],delta_alpha [deg]\n10,0.9\n20\n40,3,1\n",
-    "binary": bytes(range(256)) * 8, "Latin-1": "F_T [N],delta_alpha [\xb0]\n10,0.9\n20,1.7\n40,3.1\n".encode("latin-1"),
+    "empty": b"", "header only": b"F_T [N],delta_alpha [deg]\n",
+    "ragged": b"F_T [N],delta_alpha [deg]\n10,0.9\n20\n40,3,1\n",
+    "binary": bytes(range(256)) * 8,
+    "Latin-1": "F_T [N],delta_alpha [\xb0]\n10,0.9\n20,1.7\n40,3.1\n".encode("latin-1"),
     "UTF-16": CAPSTAN_DATA.decode().encode("utf-16"), "corrupt Parquet bytes": b"PAR1" + bytes(range(200)) + b"PAR1",
     "booleans": b"F_T [N],delta_alpha [deg]\n10,true\n20,false\n40,true\n",
     "NaN": CAPSTAN_DATA + b"120,nan\n", "inf": CAPSTAN_DATA + b"inf,8\n", "empty cell": CAPSTAN_DATA + b"120,\n",
     "text": CAPSTAN_DATA + b"120,big\n", "negative load": CAPSTAN_DATA + b"-5,0.1\n",
     "load beyond the unwrap limit": CAPSTAN_DATA + b"100000,60\n",
-    "no units": b"F_T,delta_alpha\n10,0.9\n20,1.7\n40,3.1\n", "no unit on F_T": b"F_T,delta_alpha [deg]\n10,0.9\n20,1.7\n40,3.1\n",
+    "no units": b"F_T,delta_alpha\n10,0.9\n20,1.7\n40,3.1\n",
+    "no unit on F_T": b"F_T,delta_alpha [deg]\n10,0.9\n20,1.7\n40,3.1\n",
     "no unit on delta_alpha": b"F_T [N],delta_alpha\n10,0.016\n20,0.03\n40,0.054\n",
-    "wrong unit": b"F_T [deg],delta_alpha [deg]\n10,0.9\n20,1.7\n40,3.1\n", "unknown unit": b"F_T [furlong],delta_alpha [deg]\n10,0.9\n",
-    "no delta_alpha": b"F_T [N]\n10\n20\n", "no load": b"delta_alpha [deg]\n1\n2\n", "one point": b"F_T [N],delta_alpha [deg]\n10,0.9\n",
+    "wrong unit": b"F_T [deg],delta_alpha [deg]\n10,0.9\n20,1.7\n40,3.1\n",
+    "unknown unit": b"F_T [furlong],delta_alpha [deg]\n10,0.9\n",
+    "no delta_alpha": b"F_T [N]\n10\n20\n", "no load": b"delta_alpha [deg]\n1\n2\n",
+    "one point": b"F_T [N],delta_alpha [deg]\n10,0.9\n",
     "duplicate column": b"F_T [N],F_T [kN],delta_alpha [deg]\n10,0.01,0.9\n20,0.02,1.7\n40,0.04,3.1\n",
     "400-digit load": CAPSTAN_DATA + BIG.encode() + b",5\n", "rotations that fall with the load":
         b"F_T [N],delta_alpha [deg]\n10,6\n20,5\n40,4\n60,3\n80,2\n100,1\n",
@@ -226,17 +250,20 @@ def data_cases() -> list[Case]:
     for what, path, files in (("a directory", "{d}/dd.csv", {"dd.csv": DIR}), ("missing", "{d}/none.csv", {}),
                               ("under a file", "{d}/f/d.csv", {"f": b"x"})):
         cases.append(_opt("identify", f"data file {what}", argv=[path], files=files, kind="data"))
-    torque = "\n".join(line for line in __import__("_fuzz").builtin(
-        "capstan_li_experiment").splitlines() if not line.startswith("F_T")).replace('load = "force"', 'load = "torque"')
+    li_scene = __import__("_fuzz").builtin("capstan_li_experiment")
+    torque = "\n".join(line for line in li_scene.splitlines()
+                       if not line.startswith("F_T")).replace('load = "force"', 'load = "torque"')
     cases.append(Case("identify", "data", "data: torque without a unit", ["identify", "{d}/scene.toml", "{d}/d.csv"],
-                      {"scene.toml": (torque + '\nT = "7.5 N*m"\n').encode(), "d.csv": b"T,delta_alpha [deg]\n1.5,0.9\n3,1.7\n6,3.1\n"}))
+                      {"scene.toml": (torque + '\nT = "7.5 N*m"\n').encode(),
+                       "d.csv": b"T,delta_alpha [deg]\n1.5,0.9\n3,1.7\n6,3.1\n"}))
     return cases
 
 
 # ---------------------------------------------------------------- output paths
 
 def output_cases() -> list[Case]:
-    paths = (("a directory", "{d}/o.csv", {"o.csv": DIR}, None), ("under a regular file", "{d}/f/o.csv", {"f": b"x"}, None),
+    paths = (("a directory", "{d}/o.csv", {"o.csv": DIR}, None),
+             ("under a regular file", "{d}/f/o.csv", {"f": b"x"}, None),
              ("in a missing directory", "{d}/no/such/o.csv", {}, None), ("unknown suffix", "{d}/o.xyz", {}, None),
              ("no suffix", "{d}/o", {}, None), ("empty name", "", {}, None),
              ("unwritable place", "/proc/ropemodel-fuzz.csv", {}, None))

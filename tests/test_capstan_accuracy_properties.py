@@ -40,7 +40,8 @@ def sample(n, seed):
 
 def k_row1(F, F_p, mu, EA, R, L):
     """Eq. (26) row 1, written here."""
-    return mu * EA * (F_p + F) / (2 * R * F + mu * L * (F_p + F)) + mu * EA * (F_p - F) / (2 * R * F + mu * L * (F_p - F))
+    return (mu * EA * (F_p + F) / (2 * R * F + mu * L * (F_p + F))
+            + mu * EA * (F_p - F) / (2 * R * F + mu * L * (F_p - F)))
 
 
 def relative_errors(d, ref):

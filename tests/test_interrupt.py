@@ -147,8 +147,9 @@ def _ipopt_interrupted_at_its_third_evaluation():
             return [ca.sumsqr(arg[0] - 1)]
 
     f, x = Objective(), ca.MX.sym("x", 2)
-    solver = ca.nlpsol("s", "ipopt", {"x": x, "f": f(x)}, {"ipopt.print_level": 0, "print_time": False,
-                                                           "ipopt.sb": "yes", "ipopt.hessian_approximation": "limited-memory"})
+    solver = ca.nlpsol("s", "ipopt", {"x": x, "f": f(x)},
+                       {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
+                        "ipopt.hessian_approximation": "limited-memory"})
     solver(x0=[5.0, 5.0])
     return solver.stats()["return_status"]
 

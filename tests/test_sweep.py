@@ -224,8 +224,9 @@ def test_a_slack_rope_is_no_result(fig9):
     assert df["solved"].tolist() == taut.tolist()
     np.testing.assert_allclose(df["F_C_down [N]"][taut], c_down[taut], rtol=1e-13)
     assert df["F_C_down [N]"][~taut].isna().all() and df["F_S_up [N]"][~taut].isna().all()
-    assert set(df["invalid"][~taut]) <= {"outside the model: F_S_up <= 0: the unwinding rope is slack (upward travel)",
-                                          "outside the model: F_C_down <= 0: the winding rope is slack (downward travel)"}
+    assert set(df["invalid"][~taut]) <= {
+        "outside the model: F_S_up <= 0: the unwinding rope is slack (upward travel)",
+        "outside the model: F_C_down <= 0: the winding rope is slack (downward travel)"}
     assert df["invalid"][taut].isna().all()
     with pytest.raises(rm.SolveError, match=r"point 0 \(F_nwl = 0, SI\): outside the model: F_S_up <= 0"):
         rm.sweep(fig9.with_values({"alpha_u": 0.0}), {"F_nwl": f_nwl}, ["F_C_down", "F_S_up"])

@@ -69,7 +69,8 @@ def count_chunks(monkeypatch):
     """The first point of every chunk computed."""
     calls = []
     real = schedule.run_chunk
-    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     return calls
 
 
@@ -221,7 +222,8 @@ def test_disk_full_at_the_end_keeps_the_parts_and_resumes(tmp_path, capsys, monk
     monkeypatch.undo()
     calls = []
     real = schedule.run_chunk
-    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0 and calls == []
     assert out.read_bytes() == whole.read_bytes()
 
@@ -315,7 +317,8 @@ def test_ctrl_c_keeps_the_finished_chunks_and_resumes(tmp_path, capsys, monkeypa
     assert err == "interrupted: 500 of 1500 points done; rerun the same command to resume\n"
     assert not out.exists() and len(list(tmp_path.glob(f"cut{suffix}.parts/part-*.arrow"))) == 5
     calls = []
-    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0
     assert calls == list(range(500, 1500, 100))
     assert out.read_bytes() == whole.read_bytes()
@@ -354,7 +357,8 @@ def test_rerun_of_a_finished_sweep_says_complete(tmp_path, capsys, monkeypatch, 
     stamp = out.stat().st_mtime_ns
     real = schedule.run_chunk
     calls = []
-    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0 and calls == []
     assert capsys.readouterr().out == f"already complete: {out} (1500 points)\n"
     assert cli(ARGS + ["-o", str(out), "--json"]) == 0 and calls == []
@@ -387,7 +391,8 @@ def test_an_edited_csv_is_not_taken_as_complete(tmp_path, capsys, monkeypatch, r
     out.write_bytes(first.replace(b"\n", b"\n0,", 1))  # one value changed, same size or not
     real = schedule.run_chunk
     calls = []
-    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0 and len(calls) == 15
     assert out.read_bytes() == first
     assert capsys.readouterr().out.endswith(f"wrote 1500 points x 4 columns to {out}\n")

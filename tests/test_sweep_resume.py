@@ -43,7 +43,8 @@ def test_killed_sweep_resumes_to_the_same_file(tmp_path, suffix, monkeypatch):
     # resume in-process to count the chunks computed: only the 11 missing ones
     calls = []
     real = schedule.run_chunk
-    monkeypatch.setattr(schedule, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     scene = rm.load_scene()
     rm.sweep(scene, {"alpha_u": "4deg:40deg:60", "G_m": "200kN:600kN:25"}, out=cut, chunk_size=100,
              collect=False, progress=False)

@@ -94,8 +94,8 @@ def load_curve(scene: Scene, F_max: float | str, n: int = 201, F_min: float | st
     last = int(np.argmin(values["alpha_2"]))
     if values["alpha_2"][last] <= 0:
         check_wrap(F[last], values["delta"][last], p["mu"], p["EA"], p["R"], p["L"], p["alpha_0"], p["F_p"],
-                   scene.effects["stiffness"], scene.numerics.get("steps", STEPS), scene.numerics.get("sharpness", 30.0),
-                   scene.numerics.get("rtol", RTOL))
+                   scene.effects["stiffness"], scene.numerics.get("steps", STEPS),
+                   scene.numerics.get("sharpness", 30.0), scene.numerics.get("rtol", RTOL))
     q = scene.built.quantities
     data = {}
     for name in ("F_T",) + CURVE_OUTPUTS:

@@ -21,7 +21,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import casadi as ca
 import numpy as np
@@ -78,7 +78,8 @@ def _data_columns(data: pd.DataFrame) -> dict[str, tuple[str, str | None]]:
     """name → (column, unit or None) of the identification columns; every problem at once."""
     from ropemodel.sweeps.points import split_label
 
-    cols, found = {}, Problems(" in the identification data")
+    cols: dict[str, tuple[str, str | None]] = {}
+    found = Problems(" in the identification data")
     for c in data.columns:
         name, unit = split_label(str(c))
         if name not in _UNITS:
@@ -268,9 +269,9 @@ def _least_squares(fun, F: np.ndarray, meas: np.ndarray, p0: dict, fit, theta0: 
     lam_f, lam_g, p_nlp = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", 0), ca.MX.sym("p", 0)
     hess = ca.Function("nlp_hess_l", [x, p_nlp, lam_f, lam_g], [ca.triu(lam_f * (Jr.T @ Jr))],
                        ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])
-    opts = {"ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False, "calc_lam_p": False,
-            "ipopt.sb": "yes", "ipopt.tol": 1e-8, "ipopt.acceptable_tol": 1e-4, "ipopt.acceptable_iter": 4,
-            "ipopt.max_iter": 100, "hess_lag": hess}
+    opts: dict[str, Any] = {"ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False,
+                            "calc_lam_p": False, "ipopt.sb": "yes", "ipopt.tol": 1e-8, "ipopt.acceptable_tol": 1e-4,
+                            "ipopt.acceptable_iter": 4, "ipopt.max_iter": 100, "hess_lag": hess}
     opts.update({f"ipopt.{a}": b for a, b in (ipopt_options or {}).items()})
     return ca.nlpsol("capstan_fit", "ipopt", nlp, opts), pred, x
 
@@ -302,7 +303,8 @@ def _check_inside(fit, x_hat: np.ndarray, bound: np.ndarray, theta0: np.ndarray)
     edge = np.flatnonzero(np.abs(x_hat) >= bound * (1.0 - 1e-6))
     if edge.size:
         j = int(edge[0])
-        raise SolveError(f"the fit of {fit[j]} ran to the edge of its search range ({math.exp(x_hat[j]) * theta0[j]:.3g}, "
+        raise SolveError(f"the fit of {fit[j]} ran to the edge of its search range "
+                         f"({math.exp(x_hat[j]) * theta0[j]:.3g}, "
                          f"10^{'+' if x_hat[j] > 0 else '-'}6 times the scene's value): the data do not determine it; "
                          f"check their units and signs, or start from other values")
 

@@ -54,7 +54,8 @@ class _Held:
     """stderr that, once the command was interrupted, holds what is written (see :meth:`release`)."""
 
     def __init__(self, stream, interrupts: Interrupts):
-        self._stream, self._interrupts, self._held = stream, interrupts, []
+        self._stream, self._interrupts = stream, interrupts
+        self._held: list[str] = []
 
     def write(self, text):
         if self._interrupts.seen:

@@ -62,7 +62,7 @@ def _write_html(path: Path, text: str) -> None:
     write_atomic(path, write, check)
 
 
-def _write_pdf(path: Path, text: str, exe: str) -> None:
+def _write_pdf(path: Path, text: str, exe: str | None) -> None:
     from ropemodel.reports.browser import print_pdf
     from ropemodel.sweeps.files import write_atomic
 
@@ -89,8 +89,8 @@ def main(args) -> int:
     ctx = load(args.scene, assignments(args.set, "--set"), method=args.discrete)
     warn(ctx.scene.warnings)
     with ExitStack() as locks:
-        for path in (p for p in (html, pdf) if p is not None):
-            locks.enter_context(OutputLock(path))
+        for locked in (p for p in (html, pdf) if p is not None):
+            locks.enter_context(OutputLock(locked))
         with status(f"report of {ctx.scene.name}: computing and drawing"):
             report = build(ctx)
         writers = ((html, lambda p: _write_html(p, report.html)), (pdf, lambda p: _write_pdf(p, report.html, exe)))

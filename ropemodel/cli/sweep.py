@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import sys
+from typing import cast
 
 from ropemodel.cli._common import add_scene_arguments, assignments, named, scene_from_args
 from ropemodel.errors import InputError
@@ -35,7 +36,8 @@ def add_arguments(parser) -> None:
                         help="a parameter to solve for at every point, freed by a --given")
     parser.add_argument("-o", "--output", required=True, metavar="FILE", help="FILE.csv or FILE.parquet")
     parser.add_argument("--chunk-size", type=int, default=65536, help="points per chunk, 1 to 1e8 (default 65536)")
-    parser.add_argument("--threads", type=int, default=None, help="threads, a positive whole number (default: number of CPUs)")
+    parser.add_argument("--threads", type=int, default=None,
+                        help="threads, a positive whole number (default: number of CPUs)")
     parser.add_argument("--backend", default="auto", choices=["auto", "casadi", "compiled"],
                         help="evaluation backend (default auto: compiled C if a compiler works)")
     parser.add_argument("--si", action="store_true", help="SI units in the columns (default: display units)")
@@ -58,7 +60,7 @@ def _names(items):
 def main(args) -> int:
     from ropemodel.progress import enabled
     from ropemodel.sweeps import read_points, sweep
-    from ropemodel.sweeps.runner import SweepInterrupted
+    from ropemodel.sweeps.runner import SweepFile, SweepInterrupted
 
     scene = scene_from_args(args)
     vary = named(args.vary, "--vary", "NAME=START:STOP:N, e.g. alpha_u=5deg:45deg:1000")
@@ -67,7 +69,7 @@ def main(args) -> int:
         raise InputError("give either --vary grids or --points FILE, not both")
     if args.sizing:
         return _sizing(scene, vary, points, args)
-    given = {g.strip(): None for g in args.given if "=" not in g}
+    given: dict[str, str | None] = {g.strip(): None for g in args.given if "=" not in g}
     given.update(assignments([g for g in args.given if "=" in g], "--given"))
     try:
         written = sweep(scene, vary or None, _names(args.outputs) or None, points=points, given=given,
@@ -79,7 +81,8 @@ def main(args) -> int:
     except SweepInterrupted as exc:
         print(f"interrupted: {exc}", file=sys.stderr)
         return 130
-    _summary(written.path, args.json, written.rows, written.columns, written.status)
+    file = cast(SweepFile, written)             # collect=False: the output file, not a DataFrame
+    _summary(file.path, args.json, file.rows, file.columns, file.status)
     return 0
 
 

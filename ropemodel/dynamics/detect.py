@@ -58,10 +58,10 @@ class Detection(NamedTuple):
 
 
 class Crossing(NamedTuple):
-    """A located event: time after the interval's start, index of the switching function."""
+    """A located event: time after the interval's start, index ``switch`` of the switching function."""
 
     s: float
-    index: int
+    switch: int
 
 
 def hermite_min(g0, g1, d0, d1):

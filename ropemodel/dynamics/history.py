@@ -107,7 +107,8 @@ class Simulation:
         for p in self.system.parts:
             lines += p.report(s)
         masses = ", ".join(f"{k} {v:.6g} kg" for k, v in s["moving_masses"].items())
-        lines += [f"  moving masses: {masses}", f"  energy balance residual {s['energy_residual']:.2e} of the drum's work"]
+        lines += [f"  moving masses: {masses}",
+                  f"  energy balance residual {s['energy_residual']:.2e} of the drum's work"]
         return "\n".join(lines + [line for p in self.system.parts for line in p.ending(s)])
 
 

@@ -140,7 +140,7 @@ class HybridIntegrator:
             x = self._step(m, x_a, t_a, best.s) if best.s > 0 else x_a
             t = t_a + best.s
             self._record(m, np.array([t]), x[:, None], on_record, mode)
-            return self.system.transition(k, mode, best.index, x, t), t
+            return self.system.transition(k, mode, best.switch, x, t), t
 
     def _detect(self, m: _Compiled, state: SwitchState, x, t, X, times):
         """(first flagged :class:`~ropemodel.dynamics.detect.Detection` or None, switching functions on the

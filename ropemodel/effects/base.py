@@ -68,7 +68,7 @@ class Equation:
         """Every quantity the equation involves."""
         if self.call is not None:
             return [self.defines, *self.call[1]]
-        return [s.name() for s in ca.symvar(self.residual)]
+        return [s.name() for s in ca.symvar(self.residual)] if self.residual is not None else [self.defines]
 
 
 class Symbols(dict):

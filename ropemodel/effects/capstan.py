@@ -131,7 +131,8 @@ class _Stiffness(Submodel):
     def _rotation_equations(self):
         """delta and delta_error as two call equations of one rotation Function (inlined: the core merges them)."""
         fun = self._rotation()
-        src = ("eq. (11): delta = integral of dF/K(F, alpha(delta))", "error estimate of the rotation (summed local estimates)")
+        src = ("eq. (11): delta = integral of dF/K(F, alpha(delta))",
+               "error estimate of the rotation (summed local estimates)")
         formulas = ("δ = ∫₀^F_T dF / K(F, α_1(δ), α_2(δ))",
                     "δ_error = 2 Σ |x5 − x4| / δ over the adaptive Dormand–Prince 5(4) steps, rounded up to one digit")
         eqs = []

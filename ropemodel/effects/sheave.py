@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from typing import ClassVar
 
 import casadi as ca
 import numpy as np
@@ -103,7 +104,7 @@ class _Lining(Submodel):
     ``data(S_0, omega, *args)`` → (Q_R, k_R, Q_T, k_T) as expressions (SX, MX or float).
     """
 
-    citations = ("hajduk1992",)
+    citations: ClassVar[tuple[str, ...]] = ("hajduk1992",)
     args: tuple[str, ...] = ()
     #: the equations as a person reads them (reports): the closed form, eq. (19), and the ODE, eq. (5)-(6)
     closed_formula = "ln(S/S_0) + S [Q_R (1 − e^(−α/(λ_R ω))) + Q_T (1 − e^(−α/(λ_T ω)))] = μ α"
@@ -250,9 +251,9 @@ class AnisotropicVoigtLining(_Lining):
     """Voigt lining with separate radial and tangential bodies: Hajduk (1992) eq. (5), (19) generalised."""
 
     description = "anisotropic Voigt lining: Q_R, Q_T, lambda_R, lambda_T"
-    quantities = (S_0, MU, ALPHA, OMEGA, _compliance("Q_R", "radial"), _compliance("Q_T", "tangential"),
-                  _retardation("lambda_R", "radial"), _retardation("lambda_T", "tangential"), S_OUT, S_RATIO,
-                  S_ERROR)
+    quantities: ClassVar[tuple[Quantity, ...]] = (
+        S_0, MU, ALPHA, OMEGA, _compliance("Q_R", "radial"), _compliance("Q_T", "tangential"),
+        _retardation("lambda_R", "radial"), _retardation("lambda_T", "tangential"), S_OUT, S_RATIO, S_ERROR)
     args = ("Q_R", "Q_T", "lambda_R", "lambda_T")
 
     def data(self, S_0, omega, Q_R, Q_T, lam_R, lam_T):
@@ -292,7 +293,8 @@ class PhysicalVoigtLining(AnisotropicVoigtLining):
         v = values
         return {**v, "Q_R": hj.radial_compliance(v["h"], v["E"], v["R"], v["a"]),
                 "Q_T": hj.tangential_compliance(v["mu"], v["G"], v["R"], v["a"]),
-                "lambda_R": hj.retardation_time(v["eta_R"], v["E"]), "lambda_T": hj.retardation_time(v["eta_T"], v["G"])}
+                "lambda_R": hj.retardation_time(v["eta_R"], v["E"]),
+                "lambda_T": hj.retardation_time(v["eta_T"], v["G"])}
 
 
 @register(MODEL, "friction", "constant")
@@ -352,11 +354,11 @@ def distribution_frame(values: dict, scene, points: int | None = None):
     o = scene.numerics
     if o.get("method", "closed") == "ode":
         seg = segment_function(o.get("integrator", DEFAULT), o.get("state", "log"), float(o.get("rtol", 1e-7)))
-        y = [0.0]
+        ys = [0.0]
         for a0, a1 in zip(alpha[:-1], alpha[1:]):
-            y.append(float(seg(y_a=y[-1], alpha_a=a0, alpha_b=a1, mu=values["mu"], q_R=q_R, k_R=k_R, q_T=q_T,
-                               k_T=k_T, beta=values.get("c_mu", 0.0) * values["S_0"])["y_b"]))
-        y = np.array(y)
+            ys.append(float(seg(y_a=ys[-1], alpha_a=a0, alpha_b=a1, mu=values["mu"], q_R=q_R, k_R=k_R, q_T=q_T,
+                                k_T=k_T, beta=values.get("c_mu", 0.0) * values["S_0"])["y_b"]))
+        y = np.array(ys)
         if not np.all(np.isfinite(y)):
             raise SolveError("the lining ODE could not meet its tolerance along the arc; loosen [numerics] rtol")
     else:

@@ -115,7 +115,8 @@ class HaulageForces(Submodel):
             eqs.append(Equation(f"F_S_{d}", v[f"F_S_{d}"] - kr.unwinding_rope_force(v["F_nwl"], v["G_ls"], T_S, sign),
                                 "eq. (12)" + (" + inertia" if rigid else ""),
                                 formula=f"F_S = 0.5 F_nwl + G_ls {pm} T_ls" + (extra_S if rigid else "")))
-            eqs.append(Equation(f"F_C_{d}", v[f"F_C_{d}"] - kr.winding_rope_force(v["F_nwl"], v["G_lmC"], T_C, 0.0, sign),
+            eqs.append(Equation(f"F_C_{d}",
+                                v[f"F_C_{d}"] - kr.winding_rope_force(v["F_nwl"], v["G_lmC"], T_C, 0.0, sign),
                                 "eq. (13)" + (" + inertia" if rigid else ""),
                                 formula=f"F_C = 0.5 F_nwl + G_lmC {'+' if d == 'up' else '−'} (T_m + T_l)"
                                 + (extra_C if rigid else "")))

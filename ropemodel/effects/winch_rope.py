@@ -15,10 +15,12 @@
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 from ropemodel.papers import en12385 as ropes
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.effects.winch import MODEL, Q
-from ropemodel.quantity import positive
+from ropemodel.quantity import Quantity, positive
 
 SRC = "EN 12385-4"
 
@@ -58,7 +60,7 @@ class RopeCatalogue(Submodel):
 
     description = "q_l, q_lw, F_min, A_m, m_l from d and the construction (EN 12385-4)"
     citations = ("krauze2025", "en12385_4")
-    quantities = (
+    quantities: ClassVar[tuple[Quantity, ...]] = (
         D_ROPE,
         F_MIN,
         *FACTORS,

@@ -118,7 +118,7 @@ def _dopri_step(f: ca.Function, n_p: int) -> ca.Function:
     rest = 1.0 - t
     last = h >= rest
     he = ca.if_else(last, rest, h)
-    k = []
+    k: list[ca.SX] = []
     for i in range(7):
         xi = x + he * sum((a * kj for a, kj in zip(A[i], k) if a != 0.0), ca.SX(0))
         k.append(f(xi, t + C[i] * he, p))

@@ -70,7 +70,8 @@ def panels(frame, x: str, units, title: str = "", height: float = 2.1):
         shown, f = SHOWN.get(unit, (unit, 1.0))
         for col in groups[unit]:
             if col != x:
-                ax.plot(xs, frame[col].to_numpy(dtype=float) * f, lw=1.2, label=_UNIT.match(col)["name"])
+                m = _UNIT.match(col)         # every grouped column matches
+                ax.plot(xs, frame[col].to_numpy(dtype=float) * f, lw=1.2, label=m["name"] if m else col)
         ax.set_ylabel(f"[{shown}]")
         ax.grid(True, lw=0.4, alpha=0.6)
         ax.legend(fontsize=7.5, loc="best", ncols=min(4, len(groups[unit])))

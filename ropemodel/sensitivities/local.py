@@ -35,7 +35,7 @@ if TYPE_CHECKING:
 ZERO_RTOL = 1e-12
 
 
-def jacobian(problem: Problem, values: dict | None = None, parameters=None, outputs=None):
+def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, outputs=None):
     """(y, J, x): outputs, ∂outputs/∂parameters (SI) and the parameter values at one point."""
     fun = problem.function
     x = problem.inputs(values)
@@ -159,10 +159,11 @@ def table(frame: pd.DataFrame, width: int = 10) -> str:
     lines = [head]
     for o in outs:
         r0 = cell[(o, params[0])]
-        text = f"{label(o, r0.y_unit):<22}"
+        text = f"{label(o, str(r0.y_unit)):<22}"
         for p in params:
             r = cell[(o, p)]
-            text += f"{r.elasticity:>{width}.3g}" if r.defined else f"{('y=0' if 'y = 0' in r.note else 'p=0'):>{width}}"
+            why = "y=0" if "y = 0" in str(r.note) else "p=0"
+            text += f"{r.elasticity:>{width}.3g}" if r.defined else f"{why:>{width}}"
         lines.append(text)
     notes = frame.loc[~frame["defined"], ["output", "parameter", "dy_dp", "y_unit", "p_unit", "note"]]
     if len(notes):

@@ -205,7 +205,8 @@ def table(frame: pd.DataFrame, quantities: dict, ignore=()) -> Table:
     :func:`read_points`); a pure number may go without (``mu`` or ``mu [-]``).  In a DataFrame
     built in Python, a column named without a unit holds SI values (the Python API's numbers).
     Columns named in ``ignore`` (the outputs of the problem, and the ``solved``/``invalid``
-    columns a sweep writes) are left out, so a sweep's own output file is a valid points file.  Every problem of every column is listed at once.
+    columns a sweep writes) are left out, so a sweep's own output file is a valid points file.  Every
+    problem of every column is listed at once.
     """
     cols, found = {}, Problems()
     if frame.shape[1] == 0 or len(frame) == 0:

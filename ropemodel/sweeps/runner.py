@@ -36,7 +36,7 @@ from ropemodel.problem import Problem
 from ropemodel.sweeps.chunk import ChunkJob
 from ropemodel.sweeps.schedule import results
 from ropemodel.sweeps.files import OutputLock, check_disk, check_output, check_size
-from ropemodel.sweeps.points import MAX_AXIS, grid, table
+from ropemodel.sweeps.points import MAX_AXIS, Points, grid, table
 from ropemodel.sweeps.store import ChunkStore, complete_rows, discard_parts, read_output
 from ropemodel.sweeps.validate import check_ranges, check_rules
 from ropemodel.units import label
@@ -168,7 +168,7 @@ def sweep(scene: Scene, vary: Mapping | pd.DataFrame | None = None, outputs: Seq
         store = ChunkStore(out, plan.signature, plan.bounds, restart) if out is not None else None
         try:
             if store is not None:
-                check_disk(plan.n - store.done_points, len(plan.labels()), out)
+                check_disk(plan.n - store.done_points, len(plan.labels()), store.path)
             job = _job(plan, backend, threads or (1 if executor is not None else (os.cpu_count() or 1)))
             if executor is None:  # compiled once per process: here, while a status line says so
                 with status("sweep: compiling", show):
@@ -204,7 +204,7 @@ class _Plan:
     """A sweep checked and ready to run: its problem, points, outputs, chunks and signature."""
 
     problem: Problem
-    pts: object
+    pts: Points
     base: dict
     outputs: list[str]
     si: bool

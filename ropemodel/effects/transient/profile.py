@@ -15,6 +15,7 @@ once a scene has a transient, and stay out of static scenes.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 from collections.abc import Callable
 
 from ropemodel._math import if_else
@@ -22,7 +23,7 @@ from ropemodel.effects.base import Submodel, define_effect, register
 from ropemodel.effects.transient.base import MODEL, TransientSubmodel, gathered_parameters
 from ropemodel.errors import InputError
 from ropemodel.papers import route as rt
-from ropemodel.quantity import positive
+from ropemodel.quantity import Quantity, positive
 
 define_effect(MODEL, "dynamics", "none",
               "time-domain transient: none, start (drive ramps up), stop (ramps down) or a whole trip")
@@ -55,7 +56,7 @@ class Profile(TransientSubmodel):
     """A transient: the drum's surface speed as phases; ``initial_fraction``, ``final_fraction`` of v_pj."""
 
     citations = ("krauze2025",)
-    quantities = (T_RAMP, T_END)
+    quantities: ClassVar[tuple[Quantity, ...]] = (T_RAMP, T_END)
     reads = ("v_pj",)                    # declared by the static model's power and lining effects
     order = 2
     gathered = False
