@@ -4,6 +4,7 @@ sensitivities — or, when no design exists, which checks conflict and by how mu
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -109,32 +110,60 @@ def solve_best(problem: SizingProblem, p=None, x0=None) -> Solution:
     return sol
 
 
-def size(scene: Scene, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
-    """Size the winch of ``scene``: the lightest catalogue rope, then the least pretension, then the least stroke.
+def size(scene: Scene | str | os.PathLike, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
+    """Size the winch of ``scene``: the lightest catalogue rope, then the least pretension, then the least stroke
+    (Krauze et al. 2025: every design check of eq. (12)-(23) as a constraint; ``ropemodel size``).
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or Path
         A winch scene with a catalogue rope (``rope = "catalogue"`` or a construction such as
-        ``"6x36-IWRC"``).  It needs no starting design (d, F_nwl, stroke) and no power effect: the
-        design checks are switched on here, and the drive power is reported when ``v_pj`` is given.
-        Without a drum diameter ``D`` (rigid drum), the least drum, D_ratio_min·d, is a result.
+        ``"6x36-IWRC"``), or its TOML file or built-in name (read by
+        :func:`optimisation.problem.load_sizing`).  It needs no starting design (d, F_nwl, stroke)
+        and no power effect: the design checks are switched on here, and the drive power is
+        reported when ``v_pj`` is given.  Without a drum diameter ``D`` (rigid drum), the least
+        drum, D_ratio_min·d, is a result.
     method : {"next-size-up", "bonmin"}
         How the catalogue diameter is chosen.
     with_sensitivities : bool
-        Also compute ∂x*/∂p of the continuous optimum.
+        Also compute ∂x*/∂p of the continuous optimum (from its KKT system).
 
     Returns
     -------
     Design
-        ``feasible`` with the catalogue design and its margins, or the reason no design exists.
+        ``feasible``; ``design``: the catalogue design, SI (``d`` [m], ``F_nwl`` [N],
+        ``stroke`` [m]); ``continuous``: the continuous optimum, SI; ``active``: the checks that
+        limit it; ``margins`` of every check at the catalogue design [-]; ``to_dict()``: what
+        ``ropemodel size --json`` prints.  When no design exists: ``message`` and ``diagnosis``
+        (the conflicting checks and how much they conflict).
+
+    Raises
+    ------
+    InputError
+        The scene cannot be sized (not a winch, a rope without a catalogue, bad values).
+
+    Examples
+    --------
+    The Fig. 9 haulage: the 38 mm rope of the catalogue, limited by slip and by the stroke
+    on the way up:
+
+    >>> from optimisation import size
+    >>> design = size("winch_sizing_fig9", with_sensitivities=False)
+    >>> design.design["d"], design.design["F_nwl"], design.design["stroke"]    # m, N, m
+    (0.038, 43600.0, 4.763)
+    >>> design.active
+    ['slip_margin_up', 'stroke_margin_up', 'd (catalogue size)']
     """
+    if not isinstance(scene, Scene):
+        from optimisation.problem import load_sizing
+
+        scene = load_sizing(scene, emit=False)
     problem = SizingProblem(scene)
     design = Design(problem.scene, False, method=method, units=dict(problem.units))
     sol = solve_best(problem)
     if not sol.feasible:   # confirm independently: every catalogue size, F_nwl and stroke found with d fixed
         probe = discrete.next_size_up(problem, 0.0)
-        if probe.found:
+        if probe.solution is not None:
             sol = solve_best(problem, x0=probe.solution.xs)
     if not sol.feasible:
         design.diagnosis = diagnose(problem)
@@ -154,16 +183,14 @@ def size(scene: Scene, method: str = DEFAULT_DISCRETE, with_sensitivities: bool 
         disc = discrete.bonmin_with_timeout(problem, BONMIN_TIMEOUT, x0=sol.xs)
     else:
         disc = discrete.next_size_up(problem, d_star)
-    if not disc.found:
+    if disc.solution is None:
         cat = ropes.diameters()
         above = [dk for dk in cat if dk >= d_star - 1e-9]
-        fix = above[0] if above else None
-        diag = diagnose(problem, fix_d=fix, x0=sol.xs) if fix is not None else None
-        design.diagnosis = diag
-        if fix is None:
+        if not above:
             design.message = (f"no catalogue diameter: the continuous optimum d = {d_star * 1e3:.4g} mm is above "
                               f"the largest catalogue size {cat[-1] * 1e3:g} mm")
         else:
+            design.diagnosis = diag = diagnose(problem, fix_d=above[0], x0=sol.xs)
             design.message = "no catalogue diameter meets every check; " + diag.text(problem.units)
         if disc.method.endswith("(timed out)"):
             design.message = (f"bonmin did not finish within {BONMIN_TIMEOUT:g} s; use --discrete next-size-up. "

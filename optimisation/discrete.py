@@ -18,9 +18,12 @@ from __future__ import annotations
 import contextlib
 import multiprocessing as mp
 import os
+import signal
 import sys
+import threading
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -44,6 +47,18 @@ def _quiet():
         os.dup2(saved, 1)
         os.close(devnull)
         os.close(saved)
+
+
+@contextlib.contextmanager
+def _keep_sigint():
+    """bonmin's CBC installs a C-level SIGINT handler of its own and leaves it in place, after which
+    Ctrl-C no longer reaches Python: put Python's handler back afterwards (main thread only)."""
+    handler = signal.getsignal(signal.SIGINT)
+    try:
+        yield
+    finally:
+        if handler is not None and threading.current_thread() is threading.main_thread():
+            signal.signal(signal.SIGINT, handler)
 
 
 @dataclass
@@ -100,11 +115,12 @@ def bonmin(problem: SizingProblem, p=None, catalogue=None, x0=None) -> DiscreteD
     f, g = sub(xs, problem.p)
     z = ca.vertcat(b, y)
     nlp = {"x": z, "p": problem.p, "f": f, "g": ca.vertcat(g, ca.sum1(b))}
-    opts = {"discrete": [True] * nk + [False, False], "print_time": False, "show_eval_warnings": False,
-            "bonmin.print_level": 0, "bonmin.bb_log_level": 0, "bonmin.nlp_log_level": 0,
-            "bonmin.algorithm": "B-BB", "bonmin.integer_tolerance": 1e-9, "bonmin.time_limit": 120.0,
-            "bonmin.node_limit": 2000, "bonmin.num_resolve_at_infeasibles": 0, "bonmin.num_resolve_at_node": 0,
-            "bonmin.num_resolve_at_root": 0, "bonmin.num_retry_unsolved_random_point": 0}
+    opts: dict[str, Any] = {
+        "discrete": [True] * nk + [False, False], "print_time": False, "show_eval_warnings": False,
+        "calc_lam_p": False, "bonmin.print_level": 0, "bonmin.bb_log_level": 0, "bonmin.nlp_log_level": 0,
+        "bonmin.algorithm": "B-BB", "bonmin.integer_tolerance": 1e-9, "bonmin.time_limit": 120.0,
+        "bonmin.node_limit": 2000, "bonmin.num_resolve_at_infeasibles": 0, "bonmin.num_resolve_at_node": 0,
+        "bonmin.num_resolve_at_root": 0, "bonmin.num_retry_unsolved_random_point": 0}
     solver = ca.nlpsol("sizing_minlp", "bonmin", nlp, opts)
     ng = problem.g.numel()
     x_start = problem.x0() if x0 is None else np.asarray(x0)
@@ -116,13 +132,13 @@ def bonmin(problem: SizingProblem, p=None, catalogue=None, x0=None) -> DiscreteD
     ubg = np.concatenate([np.full(ng, np.inf), [1.0]])
     t0 = time.perf_counter()
     try:
-        with _quiet():
+        with _quiet(), _keep_sigint():
             res = solver(x0=z0, p=p, lbx=lbz, ubx=ubz, lbg=lbg, ubg=ubg)
         ok = bool(solver.stats()["success"])
     except RuntimeError:     # bonmin raises on some infeasible trees instead of returning a status
         res, ok = None, False
     seconds = time.perf_counter() - t0
-    if not ok:
+    if not ok or res is None:
         return DiscreteDesign(None, "bonmin", seconds, [])
     zopt = np.asarray(res["x"]).ravel()
     dk = float(catalogue[int(np.argmax(zopt[:nk]))])
@@ -153,11 +169,21 @@ def bonmin_with_timeout(problem: SizingProblem, timeout: float, p=None, x0=None)
 
     proc = ctx.Process(target=work)
     t0 = time.perf_counter()
-    proc.start()
-    proc.join(timeout)
-    if proc.is_alive():
-        proc.terminate()
-        proc.join()
+    # Ctrl-C is the parent's to answer: the child starts with SIGINT blocked (bonmin's CBC would
+    # otherwise catch it, stop its search early and report what it had), and ends with the parent
+    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        proc.start()
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+    try:
+        proc.join(timeout)
+    finally:
+        timed_out = proc.is_alive()
+        if timed_out:   # or interrupted: never leave the child running
+            proc.terminate()
+            proc.join()
+    if timed_out:
         return DiscreteDesign(None, "bonmin (timed out)", time.perf_counter() - t0, [])
     if not parent.poll():
         return DiscreteDesign(None, "bonmin", time.perf_counter() - t0, [])

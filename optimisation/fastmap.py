@@ -89,7 +89,7 @@ class MapPoints:
     solved: np.ndarray
 
     @classmethod
-    def empty(cls, N: int, n: int, ng: int) -> "MapPoints":
+    def empty(cls, N: int, n: int, ng: int) -> MapPoints:
         return cls(np.full((N, n), np.nan), np.zeros(N, bool), np.zeros(N, int), np.zeros(N), np.zeros(N, int),
                    np.zeros((N, ng)), np.zeros((N, n)), np.zeros(N, bool))
 

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -36,7 +37,8 @@ REMEDIES = {
     "slack_margin": (("F_S_min", "max"),),
     "drum_margin": (("D", "min"), ("D_ratio_min", "max")),
 }
-OPTS = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False, "ipopt.sb": "yes", "ipopt.max_iter": 1000}
+OPTS: dict[str, Any] = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False,
+                        "calc_lam_p": False, "ipopt.sb": "yes", "ipopt.max_iter": 1000}
 TOL = 1e-7
 
 
@@ -103,7 +105,7 @@ def diagnose(problem: SizingProblem, p=None, d_range=None, fix_d: float | None =
     gz = np.asarray(gfun(z1[:3], p)).ravel()
     if t_star <= TOL:
         return Diagnosis(True, t_star)
-    conflicting = [c for c, l in zip(problem.constraints, lam) if l > 1e-6]
+    conflicting = [c for c, m in zip(problem.constraints, lam) if m > 1e-6]
     margins = {c: float(v * s) for c, v, s in zip(problem.constraints, gz, problem.g_scale)}
 
     # 2. one check relaxed at a time

@@ -11,22 +11,25 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import Any
 
 import casadi as ca
 import numpy as np
 
 from optimisation.problem import VARIABLES, SizingProblem
 
-IPOPT_OPTIONS = {"ipopt.tol": 1e-10, "ipopt.acceptable_tol": 1e-8, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False,
-                 "ipopt.sb": "yes", "ipopt.max_iter": 500}
+IPOPT_OPTIONS: dict[str, Any] = {"ipopt.tol": 1e-10, "ipopt.acceptable_tol": 1e-8, "ipopt.print_level": 0,
+                                 "print_time": False, "show_eval_warnings": False, "calc_lam_p": False,
+                                 "ipopt.sb": "yes", "ipopt.max_iter": 500}
 ACTIVE_G = 1e-7      # scaled margin below which a constraint counts as active
 ACTIVE_LAM = 1e-9    # multiplier above which it counts as binding
 #: scaled margin above which a design counts as meeting a check (IPOPT's own tolerance is 1e-10)
 FEAS_TOL = 1e-8
 #: IPOPT settings for a start from a neighbouring optimum and its multipliers (sizing maps): an
 #: interior-point method given only a primal start moves back to the central path and gains little
-WARM_OPTIONS = {"ipopt.warm_start_init_point": "yes", "ipopt.mu_init": 1e-6, "ipopt.warm_start_bound_push": 1e-9,
-                "ipopt.warm_start_slack_bound_push": 1e-9, "ipopt.warm_start_mult_bound_push": 1e-9}
+WARM_OPTIONS: dict[str, Any] = {"ipopt.warm_start_init_point": "yes", "ipopt.mu_init": 1e-6,
+                                "ipopt.warm_start_bound_push": 1e-9, "ipopt.warm_start_slack_bound_push": 1e-9,
+                                "ipopt.warm_start_mult_bound_push": 1e-9}
 
 
 @dataclass
@@ -53,7 +56,7 @@ class Solution:
         return self.success and bool(np.all(self.g >= -FEAS_TOL))
 
     @property
-    def start(self) -> "Start":
+    def start(self) -> Start:
         """This optimum and its multipliers, as the warm start of a neighbouring problem."""
         return Start(self.xs.copy(), self.lam_x.copy(), self.lam_g.copy())
 
@@ -190,7 +193,7 @@ def _lexicographic_ok(problem, sol, p) -> bool:
     from scipy.optimize import nnls
 
     lam, resid = nnls(N, gf)
-    return bool(resid <= 1e-6 * max(1.0, np.linalg.norm(gf)))
+    return bool(resid <= 1e-6 * max(1.0, float(np.linalg.norm(gf))))
 
 
 def design_of(problem: SizingProblem, sol: Solution) -> dict[str, float]:

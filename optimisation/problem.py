@@ -138,7 +138,7 @@ def _applies(check: str, state: State, all_states) -> bool:
     return state is all_states[0]
 
 
-def load_sizing(path, emit: bool = True) -> "Scene":
+def load_sizing(path, emit: bool = True) -> Scene:
     """Load a scene file for sizing (:func:`prepare`): no starting design needed; warnings of the scene
     as sizing reads it (``emit=False``: kept in ``scene.warnings`` for the caller to print)."""
     import warnings
@@ -152,7 +152,7 @@ def load_sizing(path, emit: bool = True) -> "Scene":
     return scene
 
 
-def prepare(scene) -> "Scene":
+def prepare(scene) -> Scene:
     """The scene as sizing needs it: design checks on; drive power on when ``v_pj`` is given.
 
     The scene may leave out d, F_nwl and stroke (:data:`SIZED`, the sizing chooses them) and, for a

@@ -19,30 +19,38 @@ as variables) the first block row drops out: ∂x/∂p = −J_A⁻¹ ∂g_A/∂p
 
 from __future__ import annotations
 
+import weakref
+
 import casadi as ca
 import numpy as np
 
 from optimisation.ipopt import Solution
 from optimisation.problem import VARIABLES, SizingProblem
 
+#: the KKT matrices' Function of each problem, built once (kept while the problem lives)
+_KKT: weakref.WeakKeyDictionary[SizingProblem, ca.Function] = weakref.WeakKeyDictionary()
 
-def _functions(problem: SizingProblem):
-    if not hasattr(problem, "_kkt_funs"):
+
+def _functions(problem: SizingProblem) -> ca.Function:
+    kkt = _KKT.get(problem)
+    if kkt is None:
         lam = ca.MX.sym("lam", problem.g.numel())
         L = problem.f + ca.dot(lam, problem.g)
         grad_L = ca.gradient(L, problem.xs)
-        problem._kkt_funs = ca.Function(
+        kkt = _KKT[problem] = ca.Function(
             "kkt", [problem.xs, problem.p, lam],
             [ca.jacobian(grad_L, problem.xs), ca.jacobian(grad_L, problem.p),
              ca.jacobian(problem.g, problem.xs), ca.jacobian(problem.g, problem.p)],
             ["x", "p", "lam"], ["H", "Lxp", "Jx", "Jp"])
-    return problem._kkt_funs
+    return kkt
 
 
 def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, dict[str, float]]:
     """∂{d, F_nwl, stroke}*/∂p_j in SI units for every scene parameter p_j.
 
-    Returns ``{param: {"d": ∂d*/∂p, "F_nwl": ∂F_nwl*/∂p, "stroke": ∂stroke*/∂p}}``.
+    Returns ``{param: {"d": ∂d*/∂p, "F_nwl": ∂F_nwl*/∂p, "stroke": ∂stroke*/∂p}}``, or ``{}`` where the
+    optimum is not regular (the KKT matrix is singular, e.g. a load G_m near 0 on which nothing
+    depends): the derivatives do not exist there, and no number is made up for them.
     """
     p = problem.p0 if p is None else np.asarray(p, dtype=float)
     kkt = _functions(problem)
@@ -59,5 +67,10 @@ def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, di
     K[n:n + na, :n] = Jx[idx, :]
     K[n + na:, :n] = E
     rhs = -np.vstack([Lxp, Jp[idx, :], np.zeros((nb, len(problem.params)))])
-    dx = np.linalg.solve(K, rhs)[:n, :] * problem.x_scale[:, None]
+    try:
+        dx = np.linalg.solve(K, rhs)[:n, :] * problem.x_scale[:, None]
+    except np.linalg.LinAlgError:
+        return {}
+    if not np.all(np.isfinite(dx)):
+        return {}
     return {name: {v: float(dx[i, j]) for i, v in enumerate(VARIABLES)} for j, name in enumerate(problem.params)}

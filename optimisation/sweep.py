@@ -40,8 +40,8 @@ from optimisation.fastmap import ActiveSetMap
 from optimisation.ipopt import solve_continuous
 from optimisation.problem import VARIABLES, SizingProblem
 from ropemodel.errors import InputError
-from ropemodel.sweep.points import grid, table
-from ropemodel.sweep.validate import check_ranges, check_rules
+from ropemodel.sweeps.points import grid, table
+from ropemodel.sweeps.validate import check_ranges, check_rules
 from ropemodel.units import label
 
 DESIGN_UNITS = {"d": "mm", "F_nwl": "kN", "stroke": "mm"}

@@ -40,18 +40,23 @@ sqrt = _unary(np.sqrt, ca.sqrt)
 fabs = _unary(np.abs, ca.fabs)
 
 
+def _scalar(out, *args):
+    """A Python float when every argument is a Python (or numpy) scalar, as the unary functions give."""
+    return float(out) if all(np.ndim(a) == 0 for a in args) else out
+
+
 def if_else(cond, a, b):
     """``a`` where ``cond`` else ``b``.  Both branches are evaluated: keep each safe."""
     if _is_casadi(cond, a, b):
         return ca.if_else(cond, a, b)
-    return np.where(cond, a, b)
+    return _scalar(np.where(cond, a, b), cond, a, b)
 
 
 def fmax(a, b):
     """Element-wise maximum."""
-    return ca.fmax(a, b) if _is_casadi(a, b) else np.maximum(a, b)
+    return ca.fmax(a, b) if _is_casadi(a, b) else _scalar(np.maximum(a, b), a, b)
 
 
 def fmin(a, b):
     """Element-wise minimum."""
-    return ca.fmin(a, b) if _is_casadi(a, b) else np.minimum(a, b)
+    return ca.fmin(a, b) if _is_casadi(a, b) else _scalar(np.minimum(a, b), a, b)

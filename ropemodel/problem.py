@@ -16,6 +16,8 @@ range a given output can reach at all.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -90,9 +92,10 @@ class Problem:
         guesses = {n: scene.parameters[n] for n in find if n in scene.parameters}
         self.function = solver_of(model, self.structure, guesses)
 
-    def inputs(self, values: dict | None = None) -> dict[str, float]:
+    def inputs(self, values: Mapping | None = None) -> dict[str, float]:
         """SI values of every known: the scene's parameters, then ``given`` values, then ``values``."""
-        out = {k: self.scene.parameters[k] for k in self.knowns if k in self.scene.parameters}
+        # floats; an array given in ``values`` passes through as it is
+        out: dict[str, Any] = {k: self.scene.parameters[k] for k in self.knowns if k in self.scene.parameters}
         out.update(self.given_values)
         for k, v in (values or {}).items():
             if k not in self.knowns:
@@ -103,7 +106,7 @@ class Problem:
             raise InputError(f"no value given for {', '.join(missing)}")
         return out
 
-    def solve(self, values: dict | None = None) -> Result:
+    def solve(self, values: Mapping | None = None) -> Result:
         """Solve for one point; ``values`` override scene parameters or given outputs (SI or with units).
 
         Returns
@@ -141,7 +144,7 @@ class Problem:
         Evaluated in chunks by :func:`ropemodel.core.evaluate.evaluate_columns` (``Function.map``, or
         the same Function compiled to C; ``parallel`` threads), so memory stays bounded and the
         Function is compiled once per process.  No range check is made here; callers validate their
-        inputs (see :mod:`ropemodel.sweep`).
+        inputs (see :mod:`ropemodel.sweeps`).
         """
         n = max((np.size(v) for v in columns.values()), default=1)
         base = self.inputs({k: v for k, v in columns.items() if not isinstance(v, np.ndarray)})
@@ -217,7 +220,7 @@ def reach(model, params: dict, find: str, given: str, n: int = 401):
     g = abs(q.guess) or 1.0
     if q.low >= 0 and not math.isfinite(q.high):
         grid = np.concatenate([[q.low] if not q.low_open else [], g * np.logspace(-12, 12, n)])
-        ends = (_fmt_limit(q.low) if q.low_open else None, "inf")
+        ends: tuple[str | None, str | None] = (_fmt_limit(q.low) if q.low_open else None, "inf")
     else:
         lo = q.low if math.isfinite(q.low) else -1e12 * g
         hi = q.high if math.isfinite(q.high) else 1e12 * g
@@ -283,7 +286,7 @@ def worst_position(scene: Scene, output: str = "F_C_up") -> float:
     return float(mids[int(np.argmax(values))])
 
 
-def run(scene: Scene, values: dict | None = None) -> Result:
+def run(scene: Scene, values: Mapping | None = None) -> Result:
     """Forward solve: every output of the scene from its parameters.
 
     Parameters
@@ -315,7 +318,7 @@ def run(scene: Scene, values: dict | None = None) -> Result:
     return Problem(scene).solve(values)
 
 
-def solve(scene: Scene, given: dict, find, bare: str = "si") -> Result:
+def solve(scene: Scene, given: Mapping, find: Sequence[str] | str, bare: str = "si") -> Result:
     """Inverse solve: ``given`` outputs (name → value) in place of the ``find`` parameters.
 
     Parameters

@@ -45,7 +45,17 @@ def bar(total: float, desc: str, unit: str = "it", flag: bool | None = None, **k
     from tqdm.auto import tqdm
 
     return tqdm(total=total, desc=desc, unit=unit, disable=not enabled(flag), file=sys.stderr,
-                mininterval=0.2, **kw)
+                mininterval=0.2, **_size(), **kw)
+
+
+def _size() -> dict:
+    """ncols and nrows of the terminal on stderr; 80 x 24 where it says 0 x 0 (a pseudo-terminal whose size
+    was never set: tqdm then took -1 rows and drew nothing)."""
+    try:
+        size = os.get_terminal_size(sys.stderr.fileno())
+    except (AttributeError, ValueError, OSError):
+        return {"ncols": 80, "nrows": 24}
+    return {"ncols": size.columns or 80, "nrows": size.lines or 24}
 
 
 class _Status:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from ropemodel.errors import InputError
 from ropemodel.units import factor, to_si
@@ -137,3 +138,14 @@ def _fmt(x: float) -> str:
     if math.isinf(x):
         return "inf" if x > 0 else "-inf"
     return f"{x:.6g}"
+
+
+def positive(name: str, unit: str, description: str, display: str | None = None, **kw: Any) -> Quantity:
+    """A strictly positive quantity: valid range (0, ∞); as an unknown of a nonlinear block it is
+    solved for in log space.  Other fields as :class:`Quantity`."""
+    return Quantity(name, unit, description, display, low=0.0, low_open=True, positive=True, **kw)
+
+
+def non_negative(name: str, unit: str, description: str, display: str | None = None, **kw: Any) -> Quantity:
+    """A quantity with valid range [0, ∞).  Other fields as :class:`Quantity`."""
+    return Quantity(name, unit, description, display, low=0.0, **kw)

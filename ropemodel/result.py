@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import math
 import re
+from typing import Any
 
 from ropemodel.units import label
 
@@ -52,7 +53,7 @@ class Result:
     def to_json(self, **extra) -> str:
         """One JSON object: every solved quantity (SI), then ``given`` (inverse questions), ``found``,
         ``defaults`` (parameter → why its default), ``unused``, ``unlimited``, ``warnings`` and ``citations``."""
-        out = {k: (v if math.isfinite(v) else None) for k, v in self.to_dict().items()}
+        out: dict[str, Any] = {k: (v if math.isfinite(v) else None) for k, v in self.to_dict().items()}
         if self.given:
             out["given"] = {k: self.values[k] for k in self.given}
             out["found"] = list(self.find)

@@ -32,41 +32,27 @@ from __future__ import annotations
 
 import hashlib
 import math
+import os
 import tomllib
 import warnings
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from importlib import resources
 from pathlib import Path
 
+from ropemodel import scene_tables as tables
 from ropemodel.core.compile import forward_of
 from ropemodel.core.model import Model
-from ropemodel.effects import all_quantities, effects_of, misplaced, models, numerics_of, resolve_effects
+from ropemodel.effects import all_quantities, effects_of, models, resolve_effects
 from ropemodel.errors import InputError, Problems, suggest
-from ropemodel.units import last_digit, split_value, to_si
 
-TABLES = ("scene", "effects", "parameters", "numerics", "route")
-#: keys of a ``[[route]]`` segment → the parameter each becomes (``{i}``: the segment's number from the drive)
-ROUTE_KEYS = {"length": "L_{i}", "inclination": "alpha_{i}", "mu_winding": "mu_w{i}"}
-SCENE_KEYS = ("name", "model", "description")
 EXAMPLE = "krauze2025_fig9"
 
 
 class SceneWarning(UserWarning):
     """Valid but worth a look: an unused parameter, a value outside the range usual for the field."""
 
-
-#: kept for code that caught the old name
-BeyondSourceWarning = SceneWarning
-
-
-@dataclass(frozen=True)
-class Check:
-    """A computed quantity given in a scene: the model must reproduce it to the digits typed."""
-
-    value: float       # SI
-    tolerance: float   # SI: half a unit of the last digit typed
-    text: str          # as typed
 
 
 @dataclass(frozen=True)
@@ -77,7 +63,8 @@ class Scene:
     ----------
     defaults: parameter → why its default value (every default this scene relies on).
     unused: parameter given but not used by the chosen effects → the variants that would use it.
-    checks: computed quantity given in the scene → :class:`Check` (verified when the scene loads).
+    checks: computed quantity given in the scene → :class:`~ropemodel.scene_tables.Check` (verified when the
+        scene loads).
     absent: optional parameters left out (e.g. what sizing chooses itself).
     warnings: every warning of the scene, one line each (the command line prints them once).
     origin: parameter → where its value came from (``"scene"``, ``"default"``, ``"--set"``, ``"api"``).
@@ -92,7 +79,7 @@ class Scene:
     source: str | None = None
     defaults: dict[str, str] = field(default_factory=dict)
     unused: dict[str, str] = field(default_factory=dict)
-    checks: dict[str, Check] = field(default_factory=dict)
+    checks: dict[str, tables.Check] = field(default_factory=dict)
     absent: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
     origin: dict[str, str] = field(default_factory=dict)
@@ -104,9 +91,9 @@ class Scene:
     @cached_property
     def built(self) -> Model:
         """The model with this scene's effects (only their equations are built)."""
-        return Model(self.model, self.effects, _options(self.numerics, self.route, "L_ul" in self.parameters))
+        return Model(self.model, self.effects, tables.options(self.numerics, self.route, "L_ul" in self.parameters))
 
-    def with_values(self, values: dict, bare: str = "si", origin: str = "api") -> "Scene":
+    def with_values(self, values: Mapping, bare: str = "si", origin: str = "api") -> Scene:
         """A copy with parameters replaced, every problem checked and listed at once.
 
         values: name → value; strings carry units, numbers are SI (``bare="si"``, the Python API) or,
@@ -124,7 +111,7 @@ class Scene:
                     unused[name] = " or ".join(model.owners(name)) or "no effect of this model"
                     notes.append(f"{name} is not used: it belongs to {unused[name]}")
                 continue
-            problem = _settable(model, name, origin)
+            problem = tables.settable(model, name, origin)
             if problem:
                 found.add(problem)
                 continue
@@ -143,7 +130,7 @@ class Scene:
         _verify_checks(out, Problems()).raise_if_any()
         return out
 
-    def with_effects(self, effects: dict[str, str], optional=(), emit: bool = False) -> "Scene":
+    def with_effects(self, effects: dict[str, str], optional=(), emit: bool = False) -> Scene:
         """The same scene file read again with some effects set (e.g. sizing's ``checks = "design"``)."""
         if not self.raw:
             raise InputError("this scene was not loaded from a file or dict; build it again with those effects")
@@ -159,40 +146,65 @@ class Scene:
         return [n for n in self.built.parameters if q[n].default is None]
 
 
-def _settable(model: Model, name: str, origin: str) -> str | None:
-    if name in model.parameters:
-        return None
-    option = "--set" if origin == "--set" else "with_values"
-    if name in effects_of(model.name):
-        return f"{name} is an effect: it cannot be set with {option}; choose its variant in the scene's [effects]"
-    if name in model.outputs:
-        return (f"{name} is computed by this scene ({model.quantities[name].equation or 'an output'}), not a "
-                f"parameter; use solve --given {name}=... --find <parameter>")
-    return model.name_problem(name)
-
-
 def builtin_scenes() -> list[str]:
     """Names of the scenes shipped in the package (``ropemodel/data/*.toml``), without ``.toml``."""
     return sorted(f.name[:-5] for f in resources.files("ropemodel.data").iterdir()
                   if f.name.endswith(".toml") and "[scene]" in f.read_text())
 
 
-def load(path: str | Path | None = None, optional=(), emit: bool = True, values: dict | None = None,
-         bare: str = "si", origin: str = "api") -> Scene:
-    """Load a scene file.
+def load(path: str | os.PathLike | None = None, optional: Iterable[str] = (), emit: bool = True,
+         values: Mapping | None = None, bare: str = "si", origin: str = "api") -> Scene:
+    """Load a scene: a TOML file or a built-in scene, every problem of it named at once.
 
-    path: a TOML file; ``None`` or ``"example"`` is the built-in example (Krauze et al. 2025,
-        Fig. 9); the name of a built-in scene (:func:`builtin_scenes`, e.g. ``"capstan_li_experiment"``)
-        loads that one when no such file exists.
-    optional: parameters the scene may leave out (a command that chooses them itself, e.g. sizing).
-    emit: issue the scene's warnings as :class:`SceneWarning` (the command line prints them itself).
-    values: parameters to set (they replace or complete the file's), checked with the file's;
-        numbers follow ``bare`` (``"si"`` in Python, ``"refuse"`` for the command line's ``--set``),
-        and ``origin`` says where they came from.
-    Raises :class:`InputError` listing every problem of the file and of ``values``.
+    Parameters
+    ----------
+    path : str or Path, optional
+        A TOML scene file. ``None`` or ``"example"``: the built-in example (Krauze et al. 2025,
+        Fig. 9); the name of a built-in scene (:func:`builtin_scenes`, e.g.
+        ``"capstan_li_experiment"``) loads that one when no such file exists.
+    optional : iterable of str
+        Parameters the scene may leave out (a command that chooses them itself, e.g. sizing).
+    emit : bool
+        Issue the scene's warnings (unused parameters, values outside the usual range) as
+        :class:`SceneWarning`; the command line prints them itself.
+    values : dict, optional
+        Parameters to set, ``{name: value}``; they replace or complete the file's and are checked
+        with them. A value is a number in SI units [N, m, rad, s, ...] (``bare="si"``), a string
+        with its unit (``"467 kN"``, ``"16 deg"``) or a pint Quantity.
+    bare : {"si", "refuse"}
+        What a number without a unit in ``values`` means: SI (Python) or an error for a dimensional
+        quantity (the command line's ``--set``). In the file, a dimensional value always needs its unit.
+    origin : str
+        Where ``values`` came from, as the scene records it (``scene.origin``) and reports show it.
+
+    Returns
+    -------
+    Scene
+        The scene: ``parameters`` (SI floats), ``effects``, ``origin`` of each value, ``unused``
+        (valid parameters the chosen effects do not use) and ``warnings``.
+
+    Raises
+    ------
+    InputError
+        Every problem at once, one line each: unreadable file, unknown names (with the nearest
+        valid one), a key in the wrong table, missing or bad units, values out of range, missing
+        parameters, cross-parameter rules, a given output that disagrees with the model.
+
+    Examples
+    --------
+    >>> import ropemodel as rm
+    >>> scene = rm.load_scene("example", values={"alpha_u": "18 deg"})
+    >>> round(scene.parameters["alpha_u"], 6)        # SI inside: rad
+    0.314159
+    >>> scene.parameters["G_m"]                      # the file says "467 kN"
+    467000.0
+    >>> rm.load_scene("example", values={"G_m": "300"})
+    Traceback (most recent call last):
+    ...
+    ropemodel.errors.InputError: G_m = 300 has no unit; write e.g. "300 kN"
     """
     name = EXAMPLE if path is None or str(path) == "example" else None
-    p = Path(path) if name is None else Path(f"{EXAMPLE}.toml")
+    p = Path(path) if name is None and path is not None else Path(f"{EXAMPLE}.toml")
     stem = p.name[:-5] if p.name.endswith(".toml") else p.name
     if name is None and not p.exists() and str(path) in (stem, p.name) and stem in builtin_scenes():
         name = stem
@@ -216,7 +228,7 @@ def load(path: str | Path | None = None, optional=(), emit: bool = True, values:
     return from_toml(text, str(p), optional, emit, values, bare, origin)
 
 
-def from_toml(text: str, source: str | None = None, optional=(), emit: bool = True, values: dict | None = None,
+def from_toml(text: str, source: str | None = None, optional=(), emit: bool = True, values: Mapping | None = None,
               bare: str = "si", origin: str = "api") -> Scene:
     """Parse and validate a scene from TOML text (see :func:`from_dict`)."""
     if "\x00" in text:
@@ -225,6 +237,8 @@ def from_toml(text: str, source: str | None = None, optional=(), emit: bool = Tr
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"invalid TOML in {source or 'scene'}: {exc}") from None
+    except RecursionError:  # tomllib parses nested arrays and tables recursively
+        raise InputError(f"invalid TOML in {source or 'scene'}: arrays or tables nested too deeply") from None
     scene = from_dict(data, source, optional=optional, emit=False, digest=hashlib.sha256(text.encode()).hexdigest(),
                       values=values, values_bare=bare, values_origin=origin)
     if emit:
@@ -234,7 +248,7 @@ def from_toml(text: str, source: str | None = None, optional=(), emit: bool = Tr
 
 
 def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", optional=(), emit: bool = True,
-              digest: str | None = None, values: dict | None = None, values_bare: str = "si",
+              digest: str | None = None, values: Mapping | None = None, values_bare: str = "si",
               values_origin: str = "api") -> Scene:
     """Validate a scene given as nested dicts (the TOML structure); every problem at once.
 
@@ -243,28 +257,29 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
     ``values_origin``): as in :func:`load`.
     """
     where = f" in {source}" if source else ""
-    found, notes = Problems(where), []
+    found = Problems(where)
+    notes: list[str] = []
     if not isinstance(data, dict):
         raise InputError(f"a scene is a table of tables, got {type(data).__name__}")
-    name, model_name = _head(data, found)
+    name, model_name = tables.read_head(data, found)
     data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
     known = model_name in models()
-    effects = resolve_effects(model_name, _table(data, "effects", found), found) if known else {}
-    numerics = _numerics(model_name, _table(data, "numerics", found), found) if known else {}
-    given = _table(data, "parameters", found)
+    effects = resolve_effects(model_name, tables.read_table(data, "effects", found), found) if known else {}
+    numerics = tables.read_numerics(model_name, tables.read_table(data, "numerics", found), found) if known else {}
+    given = tables.read_table(data, "parameters", found)
     if not known:
         for key in given:   # names can still be checked against every model's quantities
             universe = {n for m in models() for n in all_quantities(m)}
             if key not in universe:
                 found.add(f"unknown parameter {key!r}{suggest(key, universe)}")
         found.raise_if_any()
-    route, route_values = _route(data, effects, given, found)
-    model = Model(model_name, effects, _options(numerics, route, "L_ul" in given))
-    params, checks, unused, origin = _parameters(model, given, bare, found, notes)
-    _route_parameters(model, route_values, bare, params, origin, found)
+    route, route_values = tables.read_route(data, effects, given, found)
+    model = Model(model_name, effects, tables.options(numerics, route, "L_ul" in given))
+    params, checks, unused, origin = tables.read_parameters(model, given, bare, found, notes)
+    tables.route_parameters(model, route_values, bare, params, origin, found)
     if values:
-        _set_values(model, values, values_bare, values_origin, params, origin, unused, found, notes)
-    defaults, absent = _missing(model, params, origin, tuple(optional), found)
+        tables.set_values(model, values, values_bare, values_origin, params, origin, unused, found, notes)
+    defaults, absent = tables.fill_missing(model, params, origin, tuple(optional), found)
     for problem in model.problems(params):
         found.add(problem)
     scene = Scene(str(name if name is not None else source or "unnamed"), model_name, effects, params, numerics,
@@ -277,187 +292,6 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
         for note in scene.warnings:
             warnings.warn(note, SceneWarning, stacklevel=2)
     return scene
-
-
-def _options(numerics: dict, route: tuple, point_A: bool = False) -> dict:
-    """The model's options: the scene's numerics and the structure of its route (if it has one)."""
-    return {**numerics, "route": route, "point_A": point_A} if route else dict(numerics)
-
-
-def _route(data: dict, effects: dict, given: dict, found: Problems):
-    """The ``[[route]]`` segments: (structure, {parameter name: value as typed, with the segment's label})."""
-    segments = data.get("route")
-    wanted = effects.get("route") == "segments"
-    if segments is None:
-        if wanted:
-            found.add('route = "segments" needs the segments: one [[route]] table each, listed from the drive, '
-                      'with length and inclination (e.g. length = "400 m", inclination = "22 deg")')
-        return (), {}
-    if not wanted:
-        found.add('[[route]] segments are given but the route effect is "straight": set [effects] route = "segments"')
-        return (), {}
-    if not isinstance(segments, list) or not segments or not all(isinstance(s, dict) for s in segments):
-        found.add("[[route]] must be a list of tables, one per segment (write [[route]] before each segment); "
-                  "an empty route has no segment")
-        return (), {}
-    if "L_u" in given:
-        found.add("L_u is the sum of the [[route]] segments' lengths: remove it from [parameters]")
-        given.pop("L_u")
-    values = {}
-    for i, seg in enumerate(segments, start=1):
-        for key, value in seg.items():
-            if key not in ROUTE_KEYS:
-                found.add(f"[[route]] segment {i}: unknown key {key!r}; valid: {', '.join(ROUTE_KEYS)}"
-                          f"{suggest(key, ROUTE_KEYS)}")
-                continue
-            values[ROUTE_KEYS[key].format(i=i)] = (f"[[route]] segment {i}: {key}", value)
-        for key in ("length", "inclination"):
-            if key not in seg:
-                found.add(f"[[route]] segment {i} has no {key} (e.g. {key} = "
-                          f"{chr(34)}{'400 m' if key == 'length' else '10 deg'}{chr(34)})")
-                values[ROUTE_KEYS[key].format(i=i)] = (None, None)   # said: not "missing" again
-    return tuple("mu_winding" in seg for seg in segments), values
-
-
-def _route_parameters(model: Model, values: dict, bare: str, params: dict, origin: dict, found: Problems) -> None:
-    for name, (label, value) in values.items():
-        if label is None:
-            origin[name] = "route (missing)"
-            continue
-        q = model.quantities[name]
-        try:
-            params[name] = to_si(label, value, q.unit, q.display_unit, bare)
-            origin[name] = "route"
-        except InputError as exc:
-            found.add(str(exc))
-            origin[name] = "route (refused)"
-
-
-def _table(data: dict, key: str, found: Problems) -> dict:
-    value = data.get(key, {})
-    if not isinstance(value, dict):
-        found.add(f"[{key}] must be a table of NAME = VALUE lines, got {type(value).__name__}")
-        return {}
-    return value
-
-
-def _head(data: dict, found: Problems):
-    for key in data:
-        if key not in TABLES:
-            found.add(f"unknown table [{key}]; valid tables: {', '.join(TABLES)}{suggest(key, TABLES)}")
-    head = _table(data, "scene", found)
-    for key in head:
-        if key not in SCENE_KEYS:
-            found.add(f"unknown key {key!r} in [scene]; valid: {', '.join(SCENE_KEYS)}{suggest(key, SCENE_KEYS)}")
-    model = head.get("model", "winch")
-    if not isinstance(model, str) or model not in models():
-        found.add(f"unknown model {model!r}; valid models: {', '.join(models())}{suggest(str(model), models())}")
-    name = head.get("name")
-    if name is not None and not isinstance(name, str):
-        found.add(f"[scene] name must be text, got {name!r}")
-    return name, model
-
-
-def _numerics(model: str, given: dict, found: Problems) -> dict:
-    specs = numerics_of(model)
-    out = {k: spec.default for k, spec in specs.items()}
-    for key, value in given.items():
-        if key not in specs:
-            valid = ", ".join(sorted(specs)) or "none"
-            found.add(misplaced(model, key, "[numerics]") or
-                      f"unknown numerics option {key!r} for model {model!r}; valid: {valid}{suggest(key, specs)}")
-            continue
-        with found.collect():
-            out[key] = specs[key].check(key, value)
-    return out
-
-
-def _parameters(model: Model, given: dict, bare: str, found: Problems, notes: list):
-    """SI values of the given parameters; checks (computed quantities given); unused ones."""
-    params, checks, unused, origin = {}, {}, {}, {}
-    quantities = model.universe
-    for key, value in given.items():
-        if key not in quantities:
-            found.add(misplaced(model.name, key, "[parameters]") or
-                      f"unknown parameter {key!r} for model {model.name!r}{suggest(key, quantities)}")
-            continue
-        q = quantities[key]
-        try:
-            si = q.to_si(value, bare)
-        except InputError as exc:
-            found.add(str(exc))
-            origin[key] = "scene (refused)"
-            continue
-        if key in model.outputs:
-            checks[key] = Check(si, _half_digit(q, value, si, bare), str(value))
-        elif key in model.parameters:
-            params[key], origin[key] = si, "scene"
-            note = q.unusual(si)
-            if note:
-                notes.append(note)
-        else:
-            owners = model.owners(key)
-            unused[key] = " or ".join(owners) or "no effect of this model"
-            notes.append(f"{key} is not used: it belongs to {unused[key]}")
-    return params, checks, unused, origin
-
-
-def _set_values(model: Model, values: dict, bare: str, origin_label: str, params: dict, origin: dict,
-                unused: dict, found: Problems, notes: list) -> None:
-    """Parameters set on top of the file (``--set``): they replace the file's values."""
-    for key, value in values.items():
-        problem = _settable(model, key, origin_label)
-        if problem and not (key in model.universe and key not in model.symbols):
-            found.add(problem)
-            continue
-        q = model.universe[key]
-        try:
-            si = q.to_si(value, bare)
-        except InputError as exc:
-            found.add(str(exc))
-            origin[key] = f"{origin_label} (refused)"
-            continue
-        if key not in model.parameters:
-            unused[key] = " or ".join(model.owners(key)) or "no effect of this model"
-            notes.append(f"{key} is not used: it belongs to {unused[key]}")
-            continue
-        params[key], origin[key] = si, origin_label
-        note = q.unusual(si)
-        if note:
-            notes.append(note)
-
-
-def _half_digit(q, value, si: float, bare: str) -> float:
-    """Half a unit of the last digit typed in ``value``, in SI (how precisely a check was given)."""
-    text = value if isinstance(value, str) else repr(value)
-    num, unit = split_value(text) if isinstance(value, str) else (float(value), "")
-    step = last_digit(text)
-    bigger = q.to_si(f"{num + step!r} {unit}".strip(), bare) if unit or q.dimensionless or bare == "si" else si
-    return 0.5 * abs(bigger - si)
-
-
-def _missing(model: Model, params: dict, origin: dict, optional: tuple, found: Problems):
-    defaults, absent, missing = {}, [], []
-    for name in model.parameters:
-        if name in params or name in origin:
-            continue
-        q = model.quantities[name]
-        if q.default is not None:
-            params[name], origin[name] = q.default, "default"
-            defaults[name] = q.default_note or f"default {q.show(q.default)}"
-        elif name in optional:
-            absent.append(name)
-        else:
-            missing.append(name)
-    for name in missing:
-        q = model.quantities[name]
-        example = f'"{_example(q)}{q.unit_text}"' if not q.dimensionless else _example(q)
-        found.add(f"missing parameter {name} ({q.description}), e.g. {name} = {example}")
-    return defaults, tuple(absent)
-
-
-def _example(q) -> str:
-    return f"{q.to_display(q.guess):.4g}"
 
 
 def _verify_checks(scene: Scene, found: Problems) -> Problems:
@@ -488,7 +322,7 @@ def _input_variants(model: Model, name: str) -> list[str]:
     """``effect = 'variant'`` choices under which ``name`` is a parameter instead of computed."""
     effect = model.defined_by[name]
     out = []
-    for variant, cls in effects_of(model.name)[effect].variants.items():
+    for variant in effects_of(model.name)[effect].variants:
         if variant == model.effects[effect]:
             continue
         trial = Model(model.name, {**model.effects, effect: variant}, model.options)

@@ -100,7 +100,7 @@ def parse_unit(text: str) -> tuple[float, tuple[int, ...]]:
     tokens, pos, text = [], 0, text.strip()
     while pos < len(text):
         m = _TOKEN.match(text, pos)
-        if not m or m.end() == pos:
+        if not m or m.end() == pos or m.lastgroup is None:
             raise UnitError(f"cannot read the unit {text!r} at {text[pos:]!r}")
         tokens.append((m.lastgroup, m.group(m.lastgroup)))
         pos = m.end()
@@ -234,17 +234,13 @@ def to_si(name: str, value, si_unit: str, display: str | None = None, bare: str 
     target_f, target_d = parse_unit(si_unit)
     shown = display if display not in (None, "1", "") else si_unit
     num = _number(value)
-    if num is None and isinstance(value, str):
-        text = value
-    elif num is None:
-        text = _pint_text(value)
+    text: str | None = None
+    unit = ""
+    if num is None:
+        text = value if isinstance(value, str) else _pint_text(value)
         if text is None:
             raise InputError(f"{name} = {value!r}: expected a number or a value with a unit "
                              f"(e.g. \"1 {shown}\"), got {type(value).__name__}")
-    else:
-        text = None
-    unit = ""
-    if text is not None:
         try:
             num, unit = split_value(text)
         except UnitError:
@@ -257,6 +253,10 @@ def to_si(name: str, value, si_unit: str, display: str | None = None, bare: str 
             raise InputError(f"{name}: {str(typed)[:40]}{'...' if len(str(typed)) > 40 else ''} is too large "
                              f"to be a number")
         raise InputError(f"{name}: value must be finite, got {typed!r}")
+    if unit and re.match(r"[\d.+-]", unit) and not re.match(r"1\s*/", unit):
+        example = _plain(num) if target_d == _ONE else f"{_plain(num)} {shown}"
+        raise InputError(f"{name} = {text!r} has a second number where its unit should be; write one number "
+                         f"{'' if target_d == _ONE else 'and its unit '}(e.g. \"{example}\")")
     if unit:
         try:
             f, d = parse_unit(unit)

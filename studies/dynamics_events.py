@@ -108,7 +108,7 @@ def measure(eps_list, dts, repeats) -> pd.DataFrame:
                          "err_length [-]": abs(ev[0]["distance"] - dist) / dist if found else math.nan,
                          "seconds": float(np.median(secs))})
     df = pd.DataFrame(rows)
-    for eps, d in df.groupby("eps [-]"):
+    for _, d in df.groupby("eps [-]"):
         base = d.loc[np.isclose(d["sim_dt [s]"], 0.02), "seconds"]
         df.loc[d.index, "time_ratio_to_dt_0.02 [-]"] = d["seconds"] / (float(base.iloc[0]) if len(base) else
                                                                        float(d["seconds"].median()))

@@ -1,7 +1,7 @@
 """A whole trip along a route of segments: where the rope force and the drive power peak, energy per trip.
 
 The built-in scene ``route_segments`` (three segments, 22°, 9°, 3° from the drive, the load of
-Krauze et al. 2025 Fig. 9): an upward and a downward trip (``ropemodel.trip``), the winding and
+Krauze et al. 2025 Fig. 9): an upward and a downward trip (``ropemodel.trips``), the winding and
 unwinding rope forces and the drive power against the load's position, with the paper's straight
 incline replaced by the "equivalent slope" of the same rise as a comparison (one segment, the same
 length and height): what the equivalent slope hides.
@@ -28,7 +28,8 @@ def equivalent_slope(scene):
     lengths = [v[f"L_{i}"] for i in range(1, 100) if f"L_{i}" in v]
     rise = sum(v[f"L_{i}"] * math.sin(v[f"alpha_{i}"]) for i in range(1, len(lengths) + 1))
     raw = dict(scene.raw)
-    raw["route"] = [{"length": f"{sum(lengths)!r} m", "inclination": f"{math.degrees(math.asin(rise / sum(lengths)))!r} deg"}]
+    raw["route"] = [{"length": f"{sum(lengths)!r} m",
+                     "inclination": f"{math.degrees(math.asin(rise / sum(lengths)))!r} deg"}]
     return rm.from_dict(raw, emit=False)
 
 
@@ -39,7 +40,7 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     import matplotlib.pyplot as plt
 
     import ropemodel as rm
-    from ropemodel.trip import trip
+    from ropemodel.trips import trip
 
     out = output_dir(__file__, out_dir)
     scene = rm.load_scene("route_segments")

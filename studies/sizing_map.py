@@ -61,7 +61,7 @@ def _plot(frame, loads, path):
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     import ropemodel as rm
-    from ropemodel.sensitivity import sobol_indices
+    from ropemodel.sensitivities import sobol_indices
     from optimisation.sweep import sizing_function, sizing_sweep
 
     out = output_dir(__file__, out_dir)

@@ -84,7 +84,7 @@ UNIT.update({k: ("-", 1.0) for k in ("mu_pl1", "mu_pl2")})
 UNIT.update({k: ("mm", 1e3) for k in ORDER if k.startswith("dF")})
 UNIT.update({k: ("kW", 1e-3) for k in ("N_p_up", "N_p_down")})
 def main(n_alpha, n_load, path, row_group, p):
-    a = np.radians(np.linspace(0.0, 45.0, n_alpha))
+    a = np.radians(np.linspace(5.0, 45.0, n_alpha))
     g = np.linspace(300e3, 500e3, n_load)
     A = np.repeat(a, n_load); G = np.tile(g, n_alpha)
     cols = {"alpha_u [deg]": np.degrees(A), "G_m [kN]": G * 1e-3}
@@ -117,7 +117,7 @@ def cli_vs_numpy(tmp: Path, n_alpha: int, n_load: int, repeat: int) -> dict:
     peer = tmp / "peer.py"
     peer.write_text(PEER)
     ours, theirs = tmp / "cli.parquet", tmp / "numpy.parquet"
-    cli_cmd = [sys.executable, "-c", CLI, "sweep", "example", "--vary", f"alpha_u=0deg:45deg:{n_alpha}",
+    cli_cmd = [sys.executable, "-c", CLI, "sweep", "example", "--vary", f"alpha_u=5deg:45deg:{n_alpha}",
                "--vary", f"G_m=300kN:500kN:{n_load}", "-o", str(ours), "--no-progress", "--restart"]
     np_cmd = [sys.executable, str(peer), str(n_alpha), str(n_load), str(theirs), str(ROW_GROUP), json.dumps(FIG9)]
     t_cli, t_np = [], []
@@ -163,7 +163,7 @@ def scaling(tmp: Path, sizes, repeat: int) -> list[dict]:
         t_rm, t_np = [], []
         for _ in range(repeat):
             t = time.perf_counter()
-            rm.sweep(scene, {"alpha_u": f"0deg:45deg:{n_alpha}", "G_m": f"300kN:500kN:{n_load}"},
+            rm.sweep(scene, {"alpha_u": f"5deg:45deg:{n_alpha}", "G_m": f"300kN:500kN:{n_load}"},
                      out=tmp / "s.parquet", collect=False, progress=False, restart=True)
             t_rm.append(time.perf_counter() - t)
             t = time.perf_counter()
@@ -194,13 +194,13 @@ import sys, time
 import ropemodel as rm
 n_alpha, n_load, path = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
 t = time.perf_counter()
-rm.sweep(rm.load_scene(), {"alpha_u": f"0deg:45deg:{n_alpha}", "G_m": f"300kN:500kN:{n_load}"}, out=path,
+rm.sweep(rm.load_scene(), {"alpha_u": f"5deg:45deg:{n_alpha}", "G_m": f"300kN:500kN:{n_load}"}, out=path,
          collect=False, progress=False, restart=True)
 print(peak_rss(), time.perf_counter() - t)
 '''
 
 BASELINE = PEAK + r'''
-import ropemodel as rm, ropemodel.sweep, pyarrow.parquet
+import ropemodel as rm, ropemodel.sweeps, pyarrow.parquet
 rm.sweep(rm.load_scene(), {"alpha_u": [0.1, 0.2]}, progress=False)
 print(peak_rss())
 '''
@@ -228,7 +228,7 @@ def _plot(scale, mem, path):
     fig, axes = plt.subplots(1, 2 if mem else 1, figsize=(10 if mem else 5.5, 4), squeeze=False)
     ax = axes[0][0]
     n = [r["points"] for r in scale]
-    ax.loglog(n, [r["ropemodel_s"] for r in scale], "o-", label="ropemodel.sweep → Parquet")
+    ax.loglog(n, [r["ropemodel_s"] for r in scale], "o-", label="ropemodel.sweeps → Parquet")
     ax.loglog(n, [r["numpy_s"] for r in scale], "s--", label="numpy by hand → Parquet")
     ax.set_xlabel("points")
     ax.set_ylabel("seconds (this machine)")

@@ -1,7 +1,7 @@
 """Tornado chart of the Fig. 9 example: which inputs move the rope forces, the stroke and the power.
 
 Local elasticities ∂ln y/∂ln p (automatic differentiation of the compiled
-model, :func:`ropemodel.sensitivity.elasticities`) of the winding and
+model, :func:`ropemodel.sensitivities.elasticities`) of the winding and
 unwinding rope forces, the tensioner stroke and the drive power, upward
 travel, at the Fig. 9 point of Krauze et al. (2025).  A second method checks
 them: each input is changed by ±10 % and the output recomputed; the
@@ -27,7 +27,7 @@ OUTPUTS = ["F_C_up", "F_S_up", "dF_up", "N_p_up"]
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     import ropemodel as rm
-    from ropemodel.sensitivity import elasticities, table, tornado
+    from ropemodel.sensitivities import elasticities, table, tornado
 
     out = output_dir(__file__, out_dir)
     scene = rm.load_scene()

@@ -38,6 +38,10 @@ def test_recovers_mu_and_EA_within_two_standard_errors(scene):
         assert abs(res.estimates[k] - v) < 2 * res.standard_errors[k], (k, res.estimates[k], res.standard_errors[k])
     # the estimated noise is the one put in (chi-square with 39 dof: within 30 % at this size)
     assert math.sqrt(res.rss / (res.n_points - 2)) == pytest.approx(NOISE, rel=0.3)
+    # the README's example, to the digits it shows: mu = 0.2577 +- 0.0061, EA = 49 915 +- 71 N
+    assert (res.estimates["mu"], res.standard_errors["mu"]) == (pytest.approx(0.2577, abs=1e-4),
+                                                                pytest.approx(0.0061, abs=1e-4))
+    assert (res.estimates["EA"], res.standard_errors["EA"]) == (pytest.approx(49915, abs=1), pytest.approx(71, abs=1))
 
 
 def test_recovers_the_preload_too(scene):

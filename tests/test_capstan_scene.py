@@ -218,7 +218,8 @@ def test_property_trends_with_self_consistent_rotation(scene, F, f, mu, a0, Fp):
     tiny change of the wraps, found to move K by ~1e-5 either way); the rotation falls with F_p and EA."""
     base = {**scene.parameters, "F_T": F, "mu": mu, "alpha_0": a0, "F_p": Fp}
     for variant in ("continuous", "li"):
-        sc = rm.from_dict({"scene": {"model": "capstan"}, "effects": {"stiffness": variant}, "parameters": base}, bare="si")
+        sc = rm.from_dict({"scene": {"model": "capstan"}, "effects": {"stiffness": variant}, "parameters": base},
+                          bare="si")
         prob = rm.Problem(sc)
         cols = {k: np.array([base[k]] * 5) for k in ("L", "R", "F_p", "EA")}
         for i, k in enumerate(("L", "R", "F_p", "EA"), start=1):

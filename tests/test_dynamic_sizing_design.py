@@ -107,7 +107,7 @@ def test_sweep_of_the_dynamic_optimum(tmp_path, capsys):
 def test_report_section_shows_the_dynamic_design_and_the_manoeuvres(tmp_path, design):
     """A scene with ``[numerics] sizing = "dynamic"``: the report's "dynamic sizing" section prints the
     dynamic and static optima and each simulated manoeuvre's peak F_C, as the sizing computed them."""
-    from ropemodel.report import build, load
+    from ropemodel.reports import build, load
 
     path = write_scene(tmp_path)
     path.write_text(path.read_text().replace("[numerics]", '[numerics]\nsizing = "dynamic"'))

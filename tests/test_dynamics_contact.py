@@ -3,7 +3,7 @@
 Truths: the rigid drum's transient (limit of a stiff contact, D → 0), closed-form natural
 frequencies of springs in series with the contact spring (Li et al. eq. (12) typed here from the
 paper), the static model (unchanged by the effect), and the continuity of the tight side's
-stiffness at the slip zone's saturation (MODELS.md §3).
+stiffness at the slip zone's saturation (docs/physics.md §5).
 """
 
 from __future__ import annotations
@@ -111,8 +111,8 @@ def test_contact_is_built_only_when_asked_and_leaves_static_results_alone():
 
     base, cap = scene(), scene(effects=CAPSTAN, params={"D": "2.5 m"})
     assert "D" not in base.parameters and cap.parameters["D"] == 2.5
-    assert [str(e.residual) for e in cap.built.equations] == [str(e.residual) for e in
-                                                            Model("winch", {**cap.effects, "dynamics": "none"}).equations]
+    static = Model("winch", {**cap.effects, "dynamics": "none"})
+    assert [str(e.residual) for e in cap.built.equations] == [str(e.residual) for e in static.equations]
     r_base, r_cap = rm.run(base), rm.run(cap)
     for k in ("F_C_up", "F_C_down", "F_S_up", "F_S_down", "dF_up"):
         assert r_cap[k] == r_base[k]

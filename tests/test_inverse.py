@@ -29,10 +29,12 @@ def test_round_trip(fig9, given, find):
 
 
 def test_heaviest_load_for_1000mm_stroke(fig9):
-    """Closed form: dF_up = q_lw (F_C_up + F_S_up + F_nwl) is linear in G_m."""
+    """Closed form: dF_up = q_lw (F_C_up + F_S_up + F_nwl) (eq. (19)-(23)) with eq. (12)-(13) written out,
+    F_C_up + F_S_up = F_nwl + G_m (sin α + μ_pm cos α) + 2 q_l L_u sin α (the ropes' resistances cancel),
+    is linear in G_m."""
     p = fig9.parameters
     a = p["alpha_u"]
-    rest = rm.run(fig9)["dF_up"] - p["q_lw"] * p["G_m"] * (math.sin(a) + p["mu_pm"] * math.cos(a))
+    rest = p["q_lw"] * (2 * p["F_nwl"] + 2 * p["q_l"] * p["L_u"] * math.sin(a))
     G_max = (1.0 - rest) / (p["q_lw"] * (math.sin(a) + p["mu_pm"] * math.cos(a)))
     assert rm.solve(fig9, {"dF_up": "1000 mm"}, ["G_m"])["G_m"] == pytest.approx(G_max, rel=1e-12)
 

@@ -17,7 +17,27 @@ LONG = [
     (["size", "winch_sizing_fig9"], "rope, pretension and stroke"),
     (["sensitivity", "example", "--sobol", "G_m=300kN:500kN", "--sobol", "alpha_u=10deg:20deg",
       "--samples", "64", "--outputs", "F_C_up"], "computing the Sobol indices"),
+    (["simulate", "winch_start"], "building the transient"),
+    (["trip", "route_segments"], "trip of"),
+    (["identify", "capstan_li_experiment", "{tmp}/data.csv"], "identifying mu, EA"),
+    (["report", "example", "-o", "{tmp}/report.html"], "report of"),
 ]
+#: commands that show a bar over their work (the units it counts)
+BARS = [
+    (["simulate", "winch_start"], "/60.0 s"),
+    (["sweep", "example", "--vary", "alpha_u=5deg:45deg:400", "--vary", "G_m=300kN:500kN:500", "-o",
+      "{tmp}/sweep.parquet"], "pt/s"),
+]
+
+
+def _argv(argv, tmp):
+    if any("{tmp}/data.csv" in a for a in argv):   # identification data: a curve of the scene's own drive
+        import ropemodel as rm
+        from ropemodel.capstan.curves import load_curve
+
+        curve = load_curve(rm.load_scene("capstan_li_experiment"), 50.0, 10, 5.0)
+        curve[["F_T [N]", "delta_alpha [rad]"]].to_csv(tmp / "data.csv", index=False)
+    return [a.replace("{tmp}", str(tmp)) for a in argv]
 
 
 def _run_with_terminal(argv, env=None):
@@ -46,10 +66,17 @@ def _run_with_terminal(argv, env=None):
 
 
 @pytest.mark.parametrize("argv, text", LONG)
-def test_progress_on_a_terminal(argv, text):
-    code, shown, out = _run_with_terminal(argv)
+def test_progress_on_a_terminal(argv, text, tmp_path):
+    code, shown, out = _run_with_terminal(_argv(argv, tmp_path))
     assert code == 0 and text in shown and " s)" in shown      # the status line with its elapsed time
     assert text not in out                                      # never mixed into the results
+
+
+@pytest.mark.parametrize("argv, text", BARS)
+def test_a_bar_over_the_work(argv, text, tmp_path):
+    code, shown, out = _run_with_terminal(_argv(argv, tmp_path))
+    assert code == 0 and text in shown and "100%" in shown
+    assert "100%" not in out
 
 
 @pytest.mark.parametrize("argv, text", LONG[:1])

@@ -10,7 +10,6 @@ the sign of each margin for pass/fail.
 from __future__ import annotations
 
 import base64
-import sys
 import functools
 import re
 from html.parser import HTMLParser
@@ -28,10 +27,10 @@ from test_krauze2025 import FIG9
 SCENES = ("example", "winch_sizing_fig9", "winch_start", "sheave_hajduk_fig5", "capstan_li_experiment")
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def page_of(name: str) -> str:
     """The report page of a built-in scene (built once per test session)."""
-    from ropemodel.report import build, load
+    from ropemodel.reports import build, load
 
     report = build(load(name))
     assert report.incomplete == [], report.incomplete
@@ -194,7 +193,7 @@ def test_catalogue_rope_properties_are_marked_as_derived():
 def test_a_sizing_scene_without_a_design_is_reported_at_the_recommended_design(tmp_path):
     from importlib import resources
 
-    from ropemodel.report import build, load
+    from ropemodel.reports import build, load
 
     toml = resources.files("ropemodel.data").joinpath("winch_sizing_fig9.toml").read_text()
     toml = re.sub(r'^(d|F_nwl|stroke) = .*$', "", toml, flags=re.M)
@@ -276,12 +275,12 @@ def test_the_page_refers_to_nothing_outside_itself(name):
 # --------------------------------------------------------------------------- text and formulas
 
 def test_formulas_are_typeset_and_text_is_escaped(tmp_path):
-    from ropemodel.report.page import typeset
+    from ropemodel.reports.page import typeset
 
     assert str(typeset("F_C = 0.5 F_nwl")) == "F<sub>C</sub> = 0.5 F<sub>nwl</sub>"
     assert str(typeset("traction = e^(μ_d α_d)")) == "traction = e<sup>μ<sub>d</sub> α<sub>d</sub></sup>"
     assert str(typeset("a < b & <script>")) == "a &lt; b &amp; &lt;script&gt;"
-    from ropemodel.report import build, load
+    from ropemodel.reports import build, load
 
     f = tmp_path / "s.toml"
     f.write_text('[scene]\nname = "<b>bold</b> & <script>x</script>"\n[parameters]\nL_u = "1150 m"\nL_ul = "500 m"\n'
@@ -313,8 +312,8 @@ def test_every_equation_has_a_formula():
 
 @pytest.fixture
 def registry():
-    from ropemodel.report import SECTIONS
-    from ropemodel.report.registry import sections
+    from ropemodel.reports import SECTIONS
+    from ropemodel.reports.registry import sections
 
     sections()
     before = list(SECTIONS)
@@ -323,7 +322,7 @@ def registry():
 
 
 def test_a_registered_section_appears_when_it_applies(registry):
-    from ropemodel.report import build, load, section
+    from ropemodel.reports import build, load, section
 
     @section("demo", "Demo section", when=lambda ctx: ctx.scene.model == "sheave")
     def demo(ctx):
@@ -338,7 +337,7 @@ def test_a_registered_section_appears_when_it_applies(registry):
 
 
 def test_a_section_that_cannot_be_computed_says_why(registry, tmp_path, capsys, monkeypatch):
-    from ropemodel.report import section
+    from ropemodel.reports import section
 
     @section("broken", "Broken", when=lambda ctx: True)
     def broken(ctx):
@@ -372,33 +371,44 @@ inclination = "10 deg"
 """
 
 
-def test_the_documented_way_to_add_the_trip_section_works(registry, tmp_path, monkeypatch):
-    """The example of ropemodel.report's docstring, run as written, against a stand-in ropemodel.trip with
-    the history columns the trip will have: the section shows on a route of segments, and only there."""
+def test_the_documented_way_to_add_a_section_works(registry, tmp_path):
+    """The example of ropemodel.reports's docstring, run as written: the energy section shows on a route of
+    segments, with the energy of the trips the page's trip section reports, and only there."""
     import textwrap
-    import types
 
-    import numpy as np
-    import pandas as pd
+    import ropemodel.reports
+    from ropemodel.reports import build, load
+    from ropemodel.trips import prepare, trip
 
-    import ropemodel.report
-    from ropemodel.report import build, load
-
-    code = textwrap.dedent(ropemodel.report.__doc__.split("trip.py``::\n", 1)[1].split("\nand its name", 1)[0])
-    t = np.linspace(0.0, 480.0, 200)
-
-    class Run:
-        history = pd.DataFrame({"t [s]": t, "x_m [m]": 2.4 * t, "v [m/s]": np.minimum(t / 5, 2.5),
-                                "F_C [N]": 1.9e5 + 0 * t, "F_S [N]": 3.1e4 + 0 * t, "P [W]": 4.0e5 + 0 * t})
-        summary = {"E_trip [J]": 1.9e8}
-
-    stand_in = types.ModuleType("ropemodel.trip")
-    stand_in.trip = lambda scene: Run()
-    monkeypatch.setitem(sys.modules, "ropemodel.trip", stand_in)
-    exec(compile(code, "trip.py", "exec"), {})
+    code = textwrap.dedent(ropemodel.reports.__doc__.split("energy.py``::\n", 1)[1].split("\nand its name", 1)[0])
+    exec(compile(code, "energy.py", "exec"), {})
     scene = tmp_path / "route.toml"
-    scene.write_text(ROUTE)
+    scene.write_text(ROUTE.replace("[[route]]", 'v_pj = "2.5 m/s"\nt_ramp = "5 s"\n[[route]]', 1))
     report = build(load(scene))
-    assert report.incomplete == [] and report.shown[-1] == "trip"
-    assert "E_trip [J]" in report.html and network_references(report.html) == []
-    assert "trip" not in build(load("example")).shown
+    assert report.incomplete == [] and report.shown[-1] == "energy" and "trip" in report.shown
+    energy = Page(report.html).tables[-1]["rows"]
+    for row in energy[1:]:
+        direct = trip(prepare(load(scene).point), row[0]).summary["E_trip"] / 3.6e6
+        assert float(row[1]) == pytest.approx(direct, abs=5e-4)
+    assert network_references(report.html) == []
+    assert "energy" not in build(load("example")).shown
+
+
+def test_the_trip_section_of_the_papers_incline():
+    """trip_fig9: the largest winding-rope force of the upward trip is the paper's F_C_up (190.95 kN, Fig. 9)
+    plus the start's rigid-body inertia (G_m + q_l L_u)/g · v_pj/t_ramp, written out here; one trip picture
+    each way."""
+    html = page_of("trip_fig9")
+    head, *body = next(t["rows"] for t in Page(html).tables if t["rows"][0][:2] == ["quantity", "upward"])
+    rows = {r[0]: dict(zip(head, r)) for r in body}
+    inertia = (467e3 + 80.0 * 1150.0) / 9.80665 * (2.5 / 5.0)
+    assert float(rows["largest winding-rope force F_C"]["upward"]) == pytest.approx((190.95e3 + inertia) / 1e3,
+                                                                                      abs=0.01)
+    assert 'alt="trip up"' in html and 'alt="trip down"' in html
+    assert "trip" not in build_shown("example")
+
+
+def build_shown(name):
+    from ropemodel.reports import build, load
+
+    return build(load(name)).shown

@@ -69,12 +69,12 @@ def test_cli_without_the_report_extra_names_it(tmp_path, capsys, monkeypatch):
 
 def test_only_the_command_imports_the_report_package():
     root = Path(__file__).resolve().parents[1]
-    imports = re.compile(r"^\s*(?:from ropemodel\.report\b|import ropemodel\.report\b"
-                         r"|from ropemodel import .*\breport\b)", re.M)
+    imports = re.compile(r"^\s*(?:from ropemodel\.reports\b|import ropemodel\.reports\b"
+                         r"|from ropemodel import .*\breports\b)", re.M)
     users = [p.relative_to(root).as_posix() for d in ("ropemodel", "optimisation", "studies") for p in
              (root / d).rglob("*.py") if imports.search(p.read_text(encoding="utf-8"))]
-    assert {u for u in users if not u.startswith("ropemodel/report/")} == {"ropemodel/cli/report.py"}
-    inside = "".join(p.read_text() for p in (root / "ropemodel/report").rglob("*.py"))
+    assert {u for u in users if not u.startswith("ropemodel/reports/")} == {"ropemodel/cli/report.py"}
+    inside = "".join(p.read_text() for p in (root / "ropemodel/reports").rglob("*.py"))
     assert not re.search(r"^\s*(?:from|import) ropemodel\.cli\b", inside, re.M)
 
 
@@ -98,7 +98,7 @@ def test_cli_an_infeasible_sizing_is_reported_with_its_conflict(tmp_path, capsys
 def test_unused_parameters_and_warnings_are_on_the_page(tmp_path):
     from importlib import resources
 
-    from ropemodel.report import build, load
+    from ropemodel.reports import build, load
 
     text = resources.files("ropemodel.data").joinpath("krauze2025_fig9.toml").read_text()
     scene = tmp_path / "s.toml"
@@ -136,8 +136,8 @@ def test_cli_a_failing_browser_is_one_line_and_leaves_no_file(tmp_path, capsys, 
 def test_a_browser_that_hangs_is_ended_with_its_helpers(tmp_path, monkeypatch):
     import time
 
-    from ropemodel.report import browser
-    from ropemodel.sweep.files import OutputError
+    from ropemodel.reports import browser
+    from ropemodel.sweeps.files import OutputError
 
     pids = tmp_path / "pids"
     bin_dir = _fake_browser(tmp_path, f"sleep 60 & echo $! > {pids}; sleep 60")

@@ -34,7 +34,7 @@ def chromium() -> str:
 
 
 def screenshot(html: Path, png: Path, width: int = 1000, height: int = 1400) -> np.ndarray:
-    """Chromium's screenshot of the page (written here, independently of ropemodel.report.browser),
+    """Chromium's screenshot of the page (written here, independently of ropemodel.reports.browser),
     as an RGB array in [0, 1]."""
     import matplotlib.image as mpimg
 

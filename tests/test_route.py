@@ -93,8 +93,10 @@ def test_four_segments_load_on_each_by_hand(x):
     ([{"length": "400 m", "inclination": "-95 deg"}], {}, r"alpha_1 = -95 deg is outside the valid range"),
     ([{"length": "400 m", "inclination": "5 deg"}], {"x_m": "500 m"}, r"x_m = 500 m is beyond the route.*L_u = 400 m"),
     ([{"length": "400 m", "inclination": "5 deg"}], {"L_u": "400 m"}, r"L_u is the sum of the \[\[route\]\] segments"),
-    ([{"length": "400", "inclination": "5 deg"}], {}, r'\[\[route\]\] segment 1: length = 400 has no unit; write e.g. "400 m"'),
-    ([{"lenght": "400 m", "inclination": "5 deg"}], {}, r"(?s)unknown key 'lenght'.*did you mean 'length'.*segment 1 has no length"),
+    ([{"length": "400", "inclination": "5 deg"}], {},
+     r'\[\[route\]\] segment 1: length = 400 has no unit; write e.g. "400 m"'),
+    ([{"lenght": "400 m", "inclination": "5 deg"}], {},
+     r"(?s)unknown key 'lenght'.*did you mean 'length'.*segment 1 has no length"),
 ])
 def test_bad_routes_are_refused(route, params, message):
     data = {"effects": {"route": "segments"}, "parameters": {**BASE, "x_m": "100 m", **params}}
@@ -116,7 +118,7 @@ def test_route_parameters_sweep_and_differentiate():
     df = rm.sweep(scene, vary={"alpha_2": ["5 deg", "9 deg", "12 deg"]}, outputs=["F_C_up"], si=True)
     hand = [_two(math.radians(a)) for a in (5, 9, 12)]
     np.testing.assert_allclose(df["F_C_up [N]"], hand, rtol=1e-12)
-    e = rm.sensitivity.elasticities(scene, outputs=["F_C_up"], parameters=["alpha_2"])
+    e = rm.elasticities(scene, outputs=["F_C_up"], parameters=["alpha_2"])
     a = math.radians(9)
     dF = (467e3 * (math.cos(a) - 0.05 * math.sin(a)) + 80 * 650 * (math.cos(a) - 0.05 * math.sin(a)))
     assert float(e["elasticity"].iloc[0]) == pytest.approx(dF * a / _two(a), rel=1e-10)
@@ -130,7 +132,8 @@ def _two(a2):
 
 
 def test_run_worst_puts_the_load_where_F_C_up_is_largest(capsys):
-    """--worst: the segment of the largest F_C_up, by hand (MODELS.md §4: the load term G_m (sin α_j + μ_pm cos α_j))."""
+    """--worst: the segment of the largest F_C_up, by hand (docs/physics.md §4: the load term
+    G_m (sin α_j + μ_pm cos α_j))."""
     from ropemodel.cli import main
 
     assert main(["run", "route_segments", "--worst", "--json"]) == 0

@@ -74,7 +74,8 @@ def _parts(d, j, acc, direction, segments=SEGMENTS):
     weight = sum(q * Li * math.sin(ai) for Li, ai in zip(L, al))
     s = weight - sgn * (P["mu_pl"] * sum(q * Li * math.cos(ai) for Li, ai in zip(L, al)) + q * L_u / G * acc)
     c = (weight + P["G_m"] * math.sin(al[j])
-         + sgn * (P["mu_pm"] * P["G_m"] * math.cos(al[j]) + sum(m * q * Li * math.cos(ai) for m, Li, ai in zip(mu, L, al))
+         + sgn * (P["mu_pm"] * P["G_m"] * math.cos(al[j])
+                  + sum(m * q * Li * math.cos(ai) for m, Li, ai in zip(mu, L, al))
                   + (P["G_m"] + q * L_u) / G * acc))
     return s, c
 

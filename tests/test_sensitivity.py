@@ -8,7 +8,7 @@ import pytest
 
 import ropemodel as rm
 from ropemodel.cli import main as cli
-from ropemodel.sensitivity import elasticities, table
+from ropemodel.sensitivities import elasticities, table
 
 SCENES = sorted(p.name for p in resources.files("ropemodel.data").iterdir() if p.name.endswith(".toml")
                 and p.name != "ropes.toml")

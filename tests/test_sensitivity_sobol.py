@@ -8,7 +8,7 @@ import pytest
 
 import ropemodel as rm
 from ropemodel.cli import main as cli
-from ropemodel.sensitivity import sobol, sobol_indices
+from ropemodel.sensitivities import sobol, sobol_indices
 
 pytest.importorskip("SALib")
 

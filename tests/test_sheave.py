@@ -14,7 +14,6 @@ import ropemodel as rm
 from ropemodel.cli import main as cli_main
 from ropemodel.errors import InputError
 from ropemodel.sheave import distribution
-from ropemodel.papers import hajduk1992 as hj
 
 FIG5 = str(resources.files("ropemodel.data").joinpath("sheave_hajduk_fig5.toml"))
 THIRION = str(resources.files("ropemodel.data").joinpath("sheave_thirion.toml"))
@@ -79,14 +78,18 @@ def test_anisotropic_scene_against_lambert_w():
 
 
 def test_physical_lining_data_by_hand():
-    p = {"R": "1 m", "a": "30 mm", "h": "20 mm", "E": "50 MPa", "G": "17 MPa", "eta_R": "0.5 MPa*s",
+    """Hajduk eq. (6) and (1) by hand at R = 1.5 m (R² and R differ there), then eq. (19) by Lambert W:
+    ln s + q s (1 − e^{−α/k}) = μα gives s = W(c e^{μα})/c with c = q (1 − e^{−α/k})."""
+    p = {"R": "1.5 m", "a": "30 mm", "h": "20 mm", "E": "50 MPa", "G": "17 MPa", "eta_R": "0.5 MPa*s",
          "eta_T": "0.17 MPa*s"}
     r = rm.run(sheave("voigt_physical", **p))
-    assert r["Q_R"] == pytest.approx(0.02 / (5e7 * 1.0**2 * 0.03), rel=1e-14)
-    assert r["Q_T"] == pytest.approx(0.2 / (1.7e7 * 1.0 * 0.03), rel=1e-14)
-    assert r["lambda_R"] == pytest.approx(0.01) and r["lambda_T"] == pytest.approx(0.01)
-    iso = hj.tension_ratio(0.2, 2 * math.pi, (r["Q_R"] + r["Q_T"]) * 1e4, 0.01 * math.pi)
-    assert r["S_ratio"] == pytest.approx(iso, rel=1e-13)
+    Q_R, Q_T = 0.02 / (5e7 * 1.5**2 * 0.03), 0.2 / (1.7e7 * 1.5 * 0.03)
+    assert r["Q_R"] == pytest.approx(Q_R, rel=1e-14)
+    assert r["Q_T"] == pytest.approx(Q_T, rel=1e-14)
+    assert r["lambda_R"] == pytest.approx(0.01, rel=1e-14) and r["lambda_T"] == pytest.approx(0.01, rel=1e-14)
+    a, k = 2 * math.pi, 0.01 * math.pi
+    c = (Q_R + Q_T) * 1e4 * -math.expm1(-a / k)
+    assert r["S_ratio"] == pytest.approx(lambertw(c * math.exp(0.2 * a)).real / c, rel=1e-13)
 
 
 def test_rigid_scene_is_euler_eytelwein():

@@ -10,7 +10,7 @@ def test_dynamic_factor_study_fast(tmp_path):
     df = load_study("dynamic_factor").main(tmp_path, fast=True)
     assert (tmp_path / "dynamic_factor.csv").exists() and (tmp_path / "dynamic_factor.png").exists()
     assert (tmp_path / "dynamic_start.png").exists()
-    for case, d in df.groupby("case"):
+    for _, d in df.groupby("case"):
         d = d.sort_values("t_ramp [s]")
         # the peak falls as the ramp gets longer, and never below the inextensible rope's value
         assert d["dynamic_factor [-]"].iloc[0] > d["dynamic_factor [-]"].iloc[-1]

@@ -24,9 +24,15 @@ def test_discrete_design_fast(tmp_path):
     summary = load_study("discrete_design").main(tmp_path, fast=True)
     df = pd.read_csv(tmp_path / "discrete_design.csv")
     assert len(df) == summary["scenes"] >= 1
-    # the next size up is a catalogue size >= the continuous optimum
+    # the next size up is a catalogue size >= the continuous optimum, and a second method (bonmin's one
+    # mixed-integer solve) finds the same design where both finish
+    from ropemodel.papers import en12385
+
     found = df[df["next_up_found"]]
+    assert found["d_next_up"].isin(en12385.diameters()).all()
     assert (found["d_next_up"] >= found["d_continuous"] - 1e-12).all()
+    both = df[df["next_up_found"] & df["bonmin_found"]]
+    assert len(both) >= 1 and both["same_design"].all()
     assert (tmp_path / "discrete_design.png").stat().st_size > 0
 
 

@@ -25,7 +25,7 @@ def test_sweep_performance_fast(tmp_path):
     head = res["cli_vs_numpy"]
     # the numpy peer written by hand from docs/physics.md §1 agrees with the CLI's file
     assert head["max_rel_diff"] < 1e-12
-    assert head["ratio"] > 0 and (tmp_path / "sweep_performance.png").exists()
+    assert (tmp_path / "sweep_performance.png").stat().st_size > 5000
     assert len(pd.read_csv(tmp_path / "scaling.csv")) == 2
 
 

@@ -7,7 +7,7 @@ import pytest
 
 import ropemodel as rm
 from ropemodel.cli import main as cli
-from ropemodel.sweep import parse_axis
+from ropemodel.sweeps import parse_axis
 
 
 def f_c_up_closed_form(alpha, G_m, s):
@@ -33,7 +33,7 @@ def test_grid_is_the_product_and_matches_closed_form(fig9, backend):
 
 def test_spot_check_parquet_against_direct_solves(fig9, tmp_path):
     out = tmp_path / "s.parquet"
-    rm.sweep(fig9, vary={"alpha_u": "1deg:44deg:200", "L_u": "500m:2000m:50"}, out=out, chunk_size=3000,
+    rm.sweep(fig9, vary={"alpha_u": "4deg:44deg:200", "L_u": "500m:2000m:50"}, out=out, chunk_size=3000,
              collect=False)
     df = pd.read_parquet(out)
     assert len(df) == 10000 and not (tmp_path / "s.parquet.parts").exists()
@@ -47,9 +47,10 @@ def test_spot_check_parquet_against_direct_solves(fig9, tmp_path):
 
 
 def test_chunk_size_and_backend_do_not_change_results(fig9):
-    vary = {"alpha_u": np.linspace(-0.3, 0.6, 37), "mu_pm": (0.01, 0.2, 5)}
-    a = rm.sweep(fig9, vary, chunk_size=1000, backend="casadi")
-    b = rm.sweep(fig9, vary, chunk_size=7, backend="compiled", threads=2)
+    vary = {"alpha_u": np.linspace(-0.3, 0.6, 37), "mu_pm": (0.01, 0.2, 5)}  # slack ropes below ~0.1 rad
+    a = rm.sweep(fig9, vary, chunk_size=1000, backend="casadi", errors="mark")
+    b = rm.sweep(fig9, vary, chunk_size=7, backend="compiled", threads=2, errors="mark")
+    assert 0 < a["solved"].sum() < len(a)
     pd.testing.assert_frame_equal(a, b, check_exact=False, rtol=1e-14, atol=1e-12)
 
 
@@ -72,9 +73,9 @@ def test_si_columns(fig9):
 
 
 def test_csv_and_parquet_hold_the_same_numbers(fig9, tmp_path):
-    vary = {"alpha_u": "0deg:30deg:101", "F_nwl": "10kN:50kN:3"}
-    rm.sweep(fig9, vary, out=tmp_path / "a.csv", collect=False, chunk_size=50)
-    rm.sweep(fig9, vary, out=tmp_path / "a.parquet", collect=False, chunk_size=50)
+    vary = {"alpha_u": "0deg:30deg:101", "F_nwl": "10kN:50kN:3"}  # slack ropes below ~3 deg
+    rm.sweep(fig9, vary, out=tmp_path / "a.csv", collect=False, chunk_size=50, errors="mark")
+    rm.sweep(fig9, vary, out=tmp_path / "a.parquet", collect=False, chunk_size=50, errors="mark")
     pd.testing.assert_frame_equal(pd.read_csv(tmp_path / "a.csv"), pd.read_parquet(tmp_path / "a.parquet"),
                                   check_exact=True, check_dtype=False)
 
@@ -123,12 +124,12 @@ def test_parse_axis_units(fig9):
 
 def test_cli_sweep_csv(tmp_path, capsys):
     out = tmp_path / "cli.csv"
-    code = cli(["sweep", "example", "--vary", "alpha_u=0deg:45deg:4", "--vary", "G_m=300kN,467kN",
+    code = cli(["sweep", "example", "--vary", "alpha_u=5deg:45deg:4", "--vary", "G_m=300kN,467kN",
                 "--outputs", "F_C_up,dF_up", "-o", str(out), "--no-progress"])
     assert code == 0
     df = pd.read_csv(out)
     assert list(df.columns) == ["alpha_u [deg]", "G_m [kN]", "F_C_up [kN]", "dF_up [mm]"]
-    api = rm.sweep(rm.load_scene(), {"alpha_u": "0deg:45deg:4", "G_m": "300kN,467kN"}, ["F_C_up", "dF_up"])
+    api = rm.sweep(rm.load_scene(), {"alpha_u": "5deg:45deg:4", "G_m": "300kN,467kN"}, ["F_C_up", "dF_up"])
     pd.testing.assert_frame_equal(df, api, check_exact=True, check_dtype=False)
 
 
@@ -206,3 +207,42 @@ def test_constants_are_not_cached_with_the_compiled_function(fig9, backend):
         np.testing.assert_allclose(df["F_C_up [N]"], f_c_up_closed_form(alpha, G_m, fig9), rtol=1e-13)
         out = rm.Problem(fig9).evaluate({"alpha_u": alpha, "G_m": G_m})
         np.testing.assert_allclose(out["F_C_up"], f_c_up_closed_form(alpha, G_m, fig9), rtol=1e-13)
+
+
+def test_a_slack_rope_is_no_result(fig9):
+    """Horizontal route (closed form, docs/physics.md §1): F_C_down = F_nwl/2 − μ_pm G_m − μ_pl q_l L_u and
+    F_S_up = F_nwl/2 − μ_pl q_l L_u.  Where one is <= 0 that rope would have to push: the point has no
+    result (NaN, solved False, the reason named), never a negative force."""
+    p = fig9.parameters
+    f_nwl = np.linspace(0.0, 120e3, 25)
+    c_down = 0.5 * f_nwl - p["mu_pm"] * p["G_m"] - p["mu_pl"] * p["q_l"] * p["L_u"]
+    s_up = 0.5 * f_nwl - p["mu_pl"] * p["q_l"] * p["L_u"]
+    df = rm.sweep(fig9.with_values({"alpha_u": 0.0}), {"F_nwl": f_nwl}, ["F_C_down", "F_S_up"], si=True,
+                  errors="mark")
+    taut = (c_down > 0) & (s_up > 0)
+    assert 0 < taut.sum() < len(f_nwl)
+    assert df["solved"].tolist() == taut.tolist()
+    np.testing.assert_allclose(df["F_C_down [N]"][taut], c_down[taut], rtol=1e-13)
+    assert df["F_C_down [N]"][~taut].isna().all() and df["F_S_up [N]"][~taut].isna().all()
+    assert set(df["invalid"][~taut]) <= {
+        "outside the model: F_S_up <= 0: the unwinding rope is slack (upward travel)",
+        "outside the model: F_C_down <= 0: the winding rope is slack (downward travel)"}
+    assert df["invalid"][taut].isna().all()
+    with pytest.raises(rm.SolveError, match=r"point 0 \(F_nwl = 0, SI\): outside the model: F_S_up <= 0"):
+        rm.sweep(fig9.with_values({"alpha_u": 0.0}), {"F_nwl": f_nwl}, ["F_C_down", "F_S_up"])
+    # hauling up only: the slack rope of lowering does not spoil F_C_up (the winding rope pulls up)
+    up = rm.sweep(fig9.with_values({"alpha_u": 0.0}), {"F_nwl": f_nwl[s_up > 0]}, ["F_C_up"], errors="mark")
+    assert up["solved"].all()
+
+
+def test_a_sweeps_own_marked_output_is_a_points_file(fig9, tmp_path):
+    from ropemodel.sweeps import read_points
+
+    out = tmp_path / "marked.csv"
+    first = rm.sweep(fig9, {"alpha_u": "0 deg:8 deg:5"}, ["F_C_down"], errors="mark", out=out)
+    p, alpha = fig9.parameters, np.radians(np.linspace(0, 8, 5))
+    c_down = (0.5 * p["F_nwl"] + (p["G_m"] + p["q_l"] * p["L_u"]) * np.sin(alpha)   # eq. (13), lowering
+              - (p["mu_pm"] * p["G_m"] + p["mu_pl"] * p["q_l"] * p["L_u"]) * np.cos(alpha))
+    assert first["solved"].tolist() == (c_down > 0).tolist() and 0 < (c_down > 0).sum() < 5
+    again = rm.sweep(fig9, points=read_points(out), outputs=["F_C_down"], errors="mark")
+    pd.testing.assert_frame_equal(first, again)

@@ -8,7 +8,7 @@ import pytest
 
 import ropemodel as rm
 
-VARY = {"alpha_u": "0deg:40deg:30", "L_u": "500m:2000m:20"}
+VARY = {"alpha_u": "4deg:40deg:30", "L_u": "500m:2000m:20"}
 
 
 @pytest.fixture(scope="module")

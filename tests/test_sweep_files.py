@@ -19,16 +19,16 @@ import pandas as pd
 import pytest
 
 import ropemodel as rm
-import ropemodel.sweep.files as files
-import ropemodel.sweep.runner as runner
-import ropemodel.sweep.store as store
+import ropemodel.sweeps.files as files
+import ropemodel.sweeps.schedule as schedule
+import ropemodel.sweeps.store as store
 from ropemodel.cli import main as cli
-from ropemodel.sweep.files import available_memory
+from ropemodel.sweeps.files import available_memory
 
 ROOT = Path(__file__).resolve().parents[1]
-VARY = {"alpha_u": "0deg:40deg:60", "G_m": "200kN:600kN:25"}
+VARY = {"alpha_u": "4deg:40deg:60", "G_m": "200kN:600kN:25"}
 OUTPUTS = ["F_C_up", "dF_up"]
-ARGS = ["sweep", "example", "--vary", "alpha_u=0deg:40deg:60", "--vary", "G_m=200kN:600kN:25",
+ARGS = ["sweep", "example", "--vary", "alpha_u=4deg:40deg:60", "--vary", "G_m=200kN:600kN:25",
         "--outputs", "F_C_up,dF_up", "--chunk-size", "100", "--no-progress"]  # 1500 points, 15 chunks
 
 
@@ -61,15 +61,16 @@ def no_compute(monkeypatch):
     def refuse(*args):
         raise AssertionError("a chunk was computed")
 
-    monkeypatch.setattr(runner, "run_chunk", refuse)
+    monkeypatch.setattr(schedule, "run_chunk", refuse)
 
 
 @pytest.fixture
 def count_chunks(monkeypatch):
     """The first point of every chunk computed."""
     calls = []
-    real = runner.run_chunk
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    real = schedule.run_chunk
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     return calls
 
 
@@ -168,10 +169,10 @@ def test_unwritable_outputs_are_refused_before_work(tmp_path, capsys, no_compute
 
 
 @pytest.mark.parametrize("vary, words", [  # the size and the limit named; nothing allocated for them
-    (["alpha_u=0deg:40deg:100000000000"], r"100000000000 points on one axis; at most 100000000"),
-    (["alpha_u=0deg:40deg:100000", "G_m=200kN:600kN:1000000"],
+    (["alpha_u=4deg:40deg:100000000000"], r"100000000000 points on one axis; at most 100000000"),
+    (["alpha_u=4deg:40deg:100000", "G_m=200kN:600kN:1000000"],
      r"the grid has 1e\+11 points \(100000 x 1000000\); at most 1e\+10 points per sweep"),
-    (["alpha_u=0deg:40deg:100000", "G_m=200kN:600kN:100000"],
+    (["alpha_u=4deg:40deg:100000", "G_m=200kN:600kN:100000"],
      r"10,000,000,000 points x 4 columns need at least 298\.0 GiB of disk for the sweep's parts beside "
      r".*big\.parquet; [\d,.]+ GiB is free there"),
 ])
@@ -190,7 +191,7 @@ def test_results_beyond_memory_are_refused_with_collect(no_compute):
     if mem is None:
         pytest.skip("available memory unknown here")
     n = 2 * int(mem // (8 * 3))  # 3 columns of 8 bytes: twice what memory holds (it moves while tests run)
-    axis = {"alpha_u": f"0deg:40deg:{n // 1000 + 1}", "G_m": "200kN:600kN:1000"}
+    axis = {"alpha_u": f"4deg:40deg:{n // 1000 + 1}", "G_m": "200kN:600kN:1000"}
     with pytest.raises(rm.InputError, match=r"collect=True keeps every result in memory: [\d,]+ points x 3 columns"):
         rm.sweep(rm.load_scene(), axis, ["F_C_up"])
 
@@ -220,8 +221,9 @@ def test_disk_full_at_the_end_keeps_the_parts_and_resumes(tmp_path, capsys, monk
         suffix == ".csv") + [whole.name] * (suffix != ".csv") + [out.name + ".parts"])
     monkeypatch.undo()
     calls = []
-    real = runner.run_chunk
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    real = schedule.run_chunk
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0 and calls == []
     assert out.read_bytes() == whole.read_bytes()
 
@@ -302,20 +304,21 @@ def test_ctrl_c_keeps_the_finished_chunks_and_resumes(tmp_path, capsys, monkeypa
     whole = tmp_path / f"whole{suffix}"
     assert cli(ARGS + ["-o", str(whole)]) == 0
     out = tmp_path / f"cut{suffix}"
-    real = runner.run_chunk
+    real = schedule.run_chunk
 
     def ctrl_c(job, start, inputs):
         if start == 500:
             raise KeyboardInterrupt
         return real(job, start, inputs)
 
-    monkeypatch.setattr(runner, "run_chunk", ctrl_c)
+    monkeypatch.setattr(schedule, "run_chunk", ctrl_c)
     assert cli(ARGS + ["-o", str(out)]) == 130
     err = capsys.readouterr().err
     assert err == "interrupted: 500 of 1500 points done; rerun the same command to resume\n"
     assert not out.exists() and len(list(tmp_path.glob(f"cut{suffix}.parts/part-*.arrow"))) == 5
     calls = []
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0
     assert calls == list(range(500, 1500, 100))
     assert out.read_bytes() == whole.read_bytes()
@@ -327,7 +330,7 @@ def test_sigint_to_a_sweep_process(tmp_path):
     import time
 
     out = tmp_path / "big.parquet"
-    args = ["sweep", "example", "--vary", "alpha_u=0deg:40deg:1000", "--vary", "G_m=200kN:600kN:1000",
+    args = ["sweep", "example", "--vary", "alpha_u=4deg:40deg:1000", "--vary", "G_m=200kN:600kN:1000",
             "--outputs", "F_C_up", "--backend", "casadi", "--chunk-size", "10000", "-o", str(out)]
     proc = _start(args, text=True)
     parts = tmp_path / "big.parquet.parts"
@@ -352,9 +355,10 @@ def test_rerun_of_a_finished_sweep_says_complete(tmp_path, capsys, monkeypatch, 
     assert capsys.readouterr().out == f"wrote 1500 points x 4 columns to {out}\n"
     first = out.read_bytes()
     stamp = out.stat().st_mtime_ns
-    real = runner.run_chunk
+    real = schedule.run_chunk
     calls = []
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0 and calls == []
     assert capsys.readouterr().out == f"already complete: {out} (1500 points)\n"
     assert cli(ARGS + ["-o", str(out), "--json"]) == 0 and calls == []
@@ -385,9 +389,10 @@ def test_an_edited_csv_is_not_taken_as_complete(tmp_path, capsys, monkeypatch, r
     assert cli(ARGS + ["-o", str(out)]) == 0
     first = out.read_bytes()
     out.write_bytes(first.replace(b"\n", b"\n0,", 1))  # one value changed, same size or not
-    real = runner.run_chunk
+    real = schedule.run_chunk
     calls = []
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     assert cli(ARGS + ["-o", str(out)]) == 0 and len(calls) == 15
     assert out.read_bytes() == first
     assert capsys.readouterr().out.endswith(f"wrote 1500 points x 4 columns to {out}\n")

@@ -10,12 +10,12 @@ import pandas as pd
 import pytest
 
 import ropemodel as rm
-import ropemodel.sweep.runner as runner
+import ropemodel.sweeps.schedule as schedule
 from ropemodel.cli import main as cli
-from ropemodel.sweep.store import KILL_HOOK
+from ropemodel.sweeps.store import KILL_HOOK
 
 ROOT = Path(__file__).resolve().parents[1]
-ARGS = ["sweep", "example", "--vary", "alpha_u=0deg:40deg:60", "--vary", "G_m=200kN:600kN:25",
+ARGS = ["sweep", "example", "--vary", "alpha_u=4deg:40deg:60", "--vary", "G_m=200kN:600kN:25",
         "--chunk-size", "100", "--no-progress"]  # 1500 points, 15 chunks
 
 
@@ -42,10 +42,11 @@ def test_killed_sweep_resumes_to_the_same_file(tmp_path, suffix, monkeypatch):
 
     # resume in-process to count the chunks computed: only the 11 missing ones
     calls = []
-    real = runner.run_chunk
-    monkeypatch.setattr(runner, "run_chunk", lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
+    real = schedule.run_chunk
+    monkeypatch.setattr(schedule, "run_chunk",
+                        lambda job, start, inputs: calls.append(start) or real(job, start, inputs))
     scene = rm.load_scene()
-    rm.sweep(scene, {"alpha_u": "0deg:40deg:60", "G_m": "200kN:600kN:25"}, out=cut, chunk_size=100,
+    rm.sweep(scene, {"alpha_u": "4deg:40deg:60", "G_m": "200kN:600kN:25"}, out=cut, chunk_size=100,
              collect=False, progress=False)
     assert sorted(calls) == list(range(400, 1500, 100))
     assert cut.read_bytes() == whole.read_bytes()
@@ -60,7 +61,7 @@ def test_resume_refuses_other_settings(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr("os.kill", lambda pid, sig: (_ for _ in ()).throw(KeyboardInterrupt()))
     assert cli(ARGS + ["-o", str(out)]) == 130  # stopped (here by an interrupt) after 2 chunks
     monkeypatch.delenv(KILL_HOOK)
-    other = ["sweep", "example", "--vary", "alpha_u=0deg:40deg:61", "--chunk-size", "100", "-o", str(out)]
+    other = ["sweep", "example", "--vary", "alpha_u=4deg:40deg:61", "--chunk-size", "100", "-o", str(out)]
     assert cli(other) == 2
     err = capsys.readouterr().err
     assert "unfinished sweep with other settings" in err and "points" in err

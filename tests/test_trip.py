@@ -18,7 +18,7 @@ import pytest
 import ropemodel as rm
 from ropemodel.cli import main
 from ropemodel.dynamics import simulate
-from ropemodel.trip import prepare, trip
+from ropemodel.trips import prepare, trip
 
 G = 9.80665
 SEGMENTS = [(400.0, 22.0, 0.06), (650.0, 9.0, None), (300.0, 3.0, None)]   # route_segments.toml

@@ -1,8 +1,8 @@
 """Winch drum traction (effect ``lining``): no-slip check and least pretension.
 
 Truth: hand calculations. With F_S = c_S F_nwl + a and F_C = c_C F_nwl + b
-(eq. (12)-(13) are affine in F_nwl; the coefficients are read from two forward
-runs), the rigid no-slip limit (c_S F_nwl + a)·e^{μα} = n·(c_C F_nwl + b) gives
+(eq. (12)-(13) written out below: c_S = c_C = 1/2), the rigid no-slip limit
+(c_S F_nwl + a)·e^{μα} = n·(c_C F_nwl + b) gives
 F_nwl = (n b − a e^{μα}) / (c_S e^{μα} − n c_C).
 """
 
@@ -28,12 +28,16 @@ def winch(lining="rigid", **params):
 
 
 def affine_parts(scene, d):
-    """(c_S, a, c_C, b) with F_S = c_S F_nwl + a, F_C = c_C F_nwl + b, from two forward runs."""
-    r0 = rm.run(scene.with_values({"F_nwl": 0.0}))
-    r1 = rm.run(scene.with_values({"F_nwl": 1000.0}))
-    c_S = (r1[f"F_S_{d}"] - r0[f"F_S_{d}"]) / 1000.0
-    c_C = (r1[f"F_C_{d}"] - r0[f"F_C_{d}"]) / 1000.0
-    return c_S, r0[f"F_S_{d}"], c_C, r0[f"F_C_{d}"]
+    """(c_S, a, c_C, b) with F_S = c_S F_nwl + a, F_C = c_C F_nwl + b: Krauze et al. (2025) eq. (12)-(13),
+    case 1 (one μ_pl), written out.  Upward (s = +1): F_S = F_nwl/2 + q_l L_u sin α − μ_pl q_l L_u cos α,
+    F_C = F_nwl/2 + (G_m + q_l L_u) sin α + μ_pm G_m cos α + μ_pl q_l L_u cos α; downward: s = −1."""
+    p = scene.parameters
+    s = 1.0 if d == "up" else -1.0
+    sin, cos = math.sin(p["alpha_u"]), math.cos(p["alpha_u"])
+    rope = p["q_l"] * p["L_u"]
+    a = rope * sin - s * p["mu_pl"] * rope * cos
+    b = (p["G_m"] + rope) * sin + s * (p["mu_pm"] * p["G_m"] + p["mu_pl"] * rope) * cos
+    return 0.5, a, 0.5, b
 
 
 def least_pretension(c_S, a, c_C, b, t, n):

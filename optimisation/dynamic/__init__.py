@@ -19,5 +19,6 @@ Layout:
 
 from optimisation.dynamic.design import DynamicDesign, size_dynamic
 from optimisation.dynamic.problem import DynamicSizingProblem
+from optimisation.dynamic.ramp import RampAnswer, shortest_ramp
 
-__all__ = ["DynamicDesign", "DynamicSizingProblem", "size_dynamic"]
+__all__ = ["DynamicDesign", "DynamicSizingProblem", "RampAnswer", "shortest_ramp", "size_dynamic"]

@@ -12,7 +12,9 @@ the static sizing rounds; each design simulated through its four manoeuvres
 
 from __future__ import annotations
 
+import os
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -27,6 +29,7 @@ from optimisation.infeasibility import diagnose
 from optimisation.problem import VARIABLES, SizingProblem
 from ropemodel.errors import SolveError
 from ropemodel.papers import en12385 as ropes
+from ropemodel.scene import Scene
 
 
 @dataclass
@@ -114,14 +117,20 @@ def continuous_optimum(problem, static_xs, record: Refinement | None = None):
     return problem, sol, None
 
 
-def size_dynamic(scene, with_sensitivities: bool = False, progress=None) -> DynamicDesign:
-    """Size the winch of ``scene`` through its start-up and braking in both directions.
+def size_dynamic(scene: Scene | str | os.PathLike, with_sensitivities: bool = False,
+                 progress: Callable[[str], None] | None = None) -> DynamicDesign:
+    """Size the winch of ``scene`` through its start-up and braking in both directions
+    (``ropemodel size --dynamic``): the lightest catalogue rope, then the least pretension, then the least
+    stroke such that every design check of Krauze et al. (2025) holds at every instant of four simulated
+    manoeuvres (start and stop, up and down), each returned design verified by the hybrid simulator.
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or Path
         A winch sizing scene (catalogue rope) with a transient: ``dynamics = "start"`` or ``"stop"`` with
-        its ramp, rope model, tensioner and drum friction; the four manoeuvres are made from it.
+        its ramp ``t_ramp`` [s], duration ``t_end`` [s], rope model, tensioner and drum friction; the four
+        manoeuvres are made from it. A TOML file or built-in name is read by
+        :func:`optimisation.problem.load_sizing`.
     with_sensitivities : bool
         Also compute ∂x*/∂p of the continuous optimum (:mod:`optimisation.dynamic.sensitivity`).
     progress : callable, optional
@@ -130,8 +139,33 @@ def size_dynamic(scene, with_sensitivities: bool = False, progress=None) -> Dyna
     Returns
     -------
     DynamicDesign
-        ``feasible`` with the catalogue design, or the reason no design exists.
+        As :func:`optimisation.design.size`'s :class:`~optimisation.design.Design` (``design``,
+        ``continuous``: d [m], F_nwl [N], stroke [m]; ``active``; ``margins``), plus ``static`` (the static
+        optimum, SI), ``manoeuvres`` (per manoeuvre: where the load is, peaks F_C_max [N], F_S_min [N],
+        take_up_max [m], dynamic factor [-], each check's least margin and its instant [s]) and
+        ``seconds``. When no design exists: ``feasible`` is False, ``message`` and ``diagnosis`` name the
+        conflicting checks with their manoeuvre and instant, and what alone would make a design exist.
+
+    Raises
+    ------
+    InputError
+        The scene cannot be sized dynamically (no transient, a rope without a catalogue, bad values).
+    SolveError
+        A design the hybrid simulator does not confirm (never returned as a result).
+
+    Examples
+    --------
+    A minute or more of work (four manoeuvres integrated inside IPOPT), so not run as a doctest; the
+    test scene of ``tests/_dynamic_scene.py``::
+
+        design = size_dynamic("my_winch.toml")
+        design.design["d"], design.continuous["d"], design.static["d"]    # m: catalogue, dynamic, static
+        [m["peaks"]["F_C_max"] for m in design.manoeuvres]                 # N, each manoeuvre simulated
     """
+    if not isinstance(scene, Scene):
+        from optimisation.problem import load_sizing
+
+        scene = load_sizing(scene, emit=False)
     say = progress or (lambda text: None)
     problem = DynamicSizingProblem(scene)
     design = DynamicDesign(problem.scene, False, units=dict(problem.units))
@@ -170,6 +204,8 @@ def size_dynamic(scene, with_sensitivities: bool = False, progress=None) -> Dyna
 
 def _catalogue(problem, sol, design: DynamicDesign, say) -> DynamicDesign:
     """The next catalogue size up with F_nwl and stroke re-optimised (and rounded up), verified."""
+    if design.continuous is None:
+        raise ValueError("the catalogue design needs the continuous optimum")
     d_star = design.continuous["d"]
     for dk in [d for d in ropes.diameters() if d >= d_star - 1e-9]:
         x0 = np.array([dk / problem.x_scale[0], *sol.xs[1:]])

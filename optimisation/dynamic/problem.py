@@ -132,6 +132,6 @@ class DynamicSizingProblem(SizingProblem):
                            ["x", "p", "lam_f", "lam_g"], ["hess"])
         return {"hess_lag": hess, "ipopt.mu_init": MU_INIT}
 
-    def refined(self, grids) -> "DynamicSizingProblem":
+    def refined(self, grids) -> DynamicSizingProblem:
         """The same problem on other grids (the manoeuvres' smooth modes re-used)."""
         return DynamicSizingProblem(self.scene, grids, self.paths)

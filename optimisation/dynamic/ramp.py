@@ -18,6 +18,7 @@ grid) and verified by the hybrid simulator; a ramp the simulator does not confir
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 
 import casadi as ca
@@ -29,14 +30,16 @@ from optimisation.dynamic.start import DT_DENSE
 from optimisation.dynamic.verify import verify
 from optimisation.problem import VARIABLES
 from ropemodel.errors import InputError, SolveError
+from ropemodel.scene import Scene
 
 #: the scene's ramp parameter
 RAMP = "t_ramp"
 #: shortest ramp scanned [s], and the number of scanned ramps
 T_LOW = 0.2
 SCAN = 16
-OPTS = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
-        "ipopt.hessian_approximation": "limited-memory", "ipopt.constr_viol_tol": 1e-9, "ipopt.max_iter": 200, "show_eval_warnings": False}
+OPTS: dict = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
+              "ipopt.hessian_approximation": "limited-memory", "ipopt.constr_viol_tol": 1e-9,
+              "ipopt.max_iter": 200, "show_eval_warnings": False}
 MAX_ROUNDS = 6
 
 
@@ -82,8 +85,44 @@ def least_margin(problem, xs, p) -> tuple[float, str]:
     return least
 
 
-def shortest_ramp(scene) -> RampAnswer:
-    """The shortest ``t_ramp`` [s] that keeps the scene's design safe through the four manoeuvres."""
+def shortest_ramp(scene: Scene | str | os.PathLike) -> RampAnswer:
+    """The shortest ``t_ramp`` [s] that keeps the scene's design safe through the four manoeuvres
+    (``ropemodel size --dynamic --find t_ramp``).
+
+    Parameters
+    ----------
+    scene : Scene or str or Path
+        A winch sizing scene with a transient (as for :func:`optimisation.dynamic.size_dynamic`) that gives
+        the design to keep: ``d`` [m], ``F_nwl`` [N] and ``stroke`` [m]. A TOML file or built-in name is
+        read by :func:`optimisation.problem.load_sizing`.
+
+    Returns
+    -------
+    RampAnswer
+        ``t_ramp`` [s]; ``active``: the check, manoeuvre and instant that a shorter ramp would break;
+        ``scan``: the scanned ramps [s] and their least scaled margins; ``verdicts``: the hybrid
+        simulator's judgement of the four manoeuvres at the answer; ``to_dict()``: the ``--json`` output.
+
+    Raises
+    ------
+    InputError
+        The scene gives no design, or its transient has no ramp time.
+    SolveError
+        No ramp up to ``t_end`` keeps the design safe, the design is safe at the shortest ramp scanned
+        (0.2 s), or the simulator does not confirm the answer.
+
+    Examples
+    --------
+    Tens of seconds of work, so not run as a doctest (``tests/test_dynamic_sizing.py`` checks the answer on
+    both sides)::
+
+        answer = shortest_ramp("my_winch.toml")     # d, F_nwl and stroke given in the scene
+        answer.t_ramp, answer.active                # s; e.g. ['slip_margin_fwd @ upward start, t = 3.1 s']
+    """
+    if not isinstance(scene, Scene):
+        from optimisation.problem import load_sizing
+
+        scene = load_sizing(scene, emit=False)
     x_si = _design(scene)
     problem = DynamicSizingProblem(scene)
     if RAMP not in problem.params:
@@ -133,7 +172,8 @@ def _nlp(problem, xs, lo: float, hi: float, start: float):
     t = ca.MX.sym(RAMP)
     p = ca.vertcat(*[t if j == i else problem.p0[j] for j in range(len(problem.params))])
     g = problem.g_function(ca.DM(xs), p)
-    solver = ca.nlpsol("shortest_ramp", "ipopt", {"x": t, "f": t, "g": g}, OPTS)
+    nlp: dict = {"x": t, "f": t, "g": g}
+    solver = ca.nlpsol("shortest_ramp", "ipopt", nlp, OPTS)
     r = solver(x0=start, lbx=lo, ubx=hi, lbg=0.0, ubg=np.inf)
     value = float(r["x"])
     gv = np.asarray(r["g"]).ravel()

@@ -100,7 +100,9 @@ class Path:
         symbolic = isinstance(pp, ca.MX)
         t0s, t1s = self.sm.bounds(pp)
         x = self.sm.x0(pp)
-        times, cols, states = [], {}, []
+        times: list = []
+        cols: dict[str, list] = {}
+        states: list = []
         for k, (piece, tau) in enumerate(zip(self.sm.pieces, grid)):
             tau = np.asarray(tau, float)
             t0, t1 = t0s[k], t1s[k]
@@ -115,10 +117,11 @@ class Path:
             states.append(X)
             x = X[:, -1]
         result = {k: ca.horzcat(*v) for k, v in cols.items()}
-        times, states = ca.horzcat(*times), ca.horzcat(*states)
+        all_times, all_states = ca.horzcat(*times), ca.horzcat(*states)
         if symbolic:
-            return times, result, states
-        return (np.asarray(times).ravel(), {k: np.asarray(v) for k, v in result.items()}, np.asarray(states))
+            return all_times, result, all_states
+        return (np.asarray(all_times).ravel(), {k: np.asarray(v) for k, v in result.items()},
+                np.asarray(all_states))
 
     # ------------------------------------------------------------------ exact minima between samples
     def step(self, k: int) -> ca.Function:

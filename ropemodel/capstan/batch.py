@@ -1,20 +1,24 @@
 """The capstan's rotation δ(F_T) at many points: error-controlled, compiled to C where a compiler works.
 
 :func:`rotation_batch` evaluates :func:`ropemodel.numerics.capstan_rotation.rotation_function`
-with the array evaluator :func:`ropemodel.core.evaluate.evaluate_columns` (CasADi code
-generation, system C compiler, cached; CasADi's virtual machine without a compiler).
+with the project's array evaluator (:class:`ropemodel.core.evaluate.Job`: CasADi code generation,
+system C compiler, cached; CasADi's virtual machine without a compiler).  The Job of each setting
+is kept, so a call costs only its points (no re-hashing of the Function).
 """
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
-from ropemodel.core.evaluate import compiler, evaluate_columns
+from ropemodel.core.evaluate import Job, compiler
 from ropemodel.errors import InputError, SolveError
 from ropemodel.numerics.capstan_rotation import ARGS, RTOL, STEPS, rotation_function
 
-#: points per call of the compiled map (padding the last block costs little)
-BLOCK = 64
+#: points per call of the compiled map (the last block is padded with copies of a point, each a whole
+#: integration: small blocks waste little)
+BLOCK = 16
 #: below this many points "auto" stays on the virtual machine
 COMPILE_MIN = 64
 
@@ -35,9 +39,8 @@ def rotation_batch(F_T, mu, EA, R, L, alpha_0, F_p, variant="li", steps=STEPS, s
     n = max(cols[0].size, 1)
     if backend == "auto":
         backend = "compiled" if n >= COMPILE_MIN and compiler() else "casadi"
-    columns = {name: np.resize(c.ravel(), n) for name, c in zip(ARGS, cols)}
-    out = evaluate_columns(rotation_function(variant, steps, float(sharpness), float(rtol)), columns, {},
-                           threads=int(threads), backend=backend, block=BLOCK)
+    columns = {name: np.ascontiguousarray(np.resize(c.ravel(), n)) for name, c in zip(ARGS, cols)}
+    out = _job(variant, int(steps), float(sharpness), float(rtol), backend, int(threads))(columns)
     delta, err = out["delta"].reshape(shape), out["error"].reshape(shape)
     bad = ~np.isfinite(delta)
     if bad.any():
@@ -51,3 +54,9 @@ def rotation_batch(F_T, mu, EA, R, L, alpha_0, F_p, variant="li", steps=STEPS, s
         raise InputError(f"the load unwraps the slack side (alpha_2 <= 0) at {int(unwrapped.sum())} of {n} points "
                          f"(first: F_T = {columns['F_T'][i]:.6g} N): the model no longer applies there")
     return (delta, err) if with_error else delta
+
+
+@lru_cache(maxsize=32)
+def _job(variant, steps, sharpness, rtol, backend, threads) -> Job:
+    return Job(rotation_function(variant, steps, sharpness, rtol), list(ARGS), {}, backend=backend, threads=threads,
+               block=BLOCK)

@@ -2,35 +2,82 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import pandas as pd
 
 from ropemodel.numerics.capstan_rotation import RTOL, STEPS, check_wrap
 from ropemodel.errors import InputError, SolveError
 from ropemodel.problem import Problem
+from ropemodel.sweeps.files import check_size
+from ropemodel.sweeps.points import MAX_AXIS
 from ropemodel.units import label, to_si
+
+if TYPE_CHECKING:
+    from ropemodel.scene import Scene
 
 #: columns of a load curve, in this order (the load first)
 CURVE_OUTPUTS = ("T", "K", "K_ti", "K_sl", "delta", "delta_alpha", "alpha_1", "alpha_2", "theta_s1", "theta_s2",
                  "regime", "delta_error")
 
 
-def load_curve(scene, F_max, n: int = 201, F_min=0.0, display: bool = False) -> pd.DataFrame:
-    """The scene's outputs at ``n`` loads F_T evenly spaced from ``F_min`` to ``F_max``.
+def load_curve(scene: Scene, F_max: float | str, n: int = 201, F_min: float | str = 0.0,
+               display: bool = False) -> pd.DataFrame:
+    """Load curve of a capstan cable drive: its outputs at ``n`` loads F_T from ``F_min`` to ``F_max``
+    (Li et al., piecewise stiffness; ``ropemodel curve``).
 
-    scene: a capstan :class:`~ropemodel.scene.Scene` (either load variant); F_max, F_min:
-    loads F_T [N] (numbers in SI or strings with units, e.g. ``"100 N"``); n ≥ 2.
-    Returns a DataFrame whose column labels carry units: ``"F_T [N]"``, ``"K [N/m]"``,
-    ``"delta_alpha [rad]"``, ... in SI, or in the quantities' display units
-    (``"K [N/mm]"``, ``"delta_alpha [deg]"``) with ``display=True``.
-    Raises :class:`InputError` if a load would unwrap the slack side (α2 ≤ 0).
+    Parameters
+    ----------
+    scene : Scene
+        A capstan scene (either ``load`` variant: a pull F_T or a torque T).
+    F_max, F_min : float or str
+        Highest and lowest load F_T [N] (SI numbers, or strings with units such as ``"100 N"``),
+        0 ≤ F_min < F_max.
+    n : int
+        Number of loads, 2 to 1e8, evenly spaced.
+    display : bool
+        Columns in the quantities' display units (``"K [N/mm]"``, ``"delta_alpha [deg]"``)
+        instead of SI.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per load; columns labelled with units: ``"F_T [N]"``, ``"T [N*m]"``, ``"K [N/m]"``
+        (equivalent stiffness), ``"K_ti [N/m]"``, ``"K_sl [N/m]"`` (tight and slack sides),
+        ``"delta [m]"``, ``"delta_alpha [rad]"``, ``"alpha_1 [rad]"``, ``"alpha_2 [rad]"``,
+        ``"theta_s1 [rad]"``, ``"theta_s2 [rad]"``, ``"regime [-]"`` (1 to 4), ``"delta_error [-]"``
+        (the rotation's estimated relative error).
+
+    Raises
+    ------
+    InputError
+        Not a capstan scene, a bad load range or ``n``, a load that would unwrap the slack side
+        (α2 ≤ 0).
+    SolveError
+        A load without a finite solution.
+
+    Examples
+    --------
+    The drive of Li et al.'s experiment: at no load the wrap sticks and each free side is a spring
+    EA/L = 50 kN / 0.36 m = 138.89 N/mm; at 100 N the slack side has let go (regime 4):
+
+    >>> import ropemodel as rm
+    >>> c = rm.load_curve(rm.load_scene("capstan_li_experiment"), "100 N", n=3, display=True)
+    >>> c[["F_T [N]", "K [N/mm]", "K_sl [N/mm]", "regime [-]"]].round(2)
+       F_T [N]  K [N/mm]  K_sl [N/mm]  regime [-]
+    0      0.0    277.78       138.89         1.0
+    1     50.0    197.55        98.85         3.0
+    2    100.0     98.57         0.00         4.0
     """
     if scene.model != "capstan":
         raise InputError(f"load curves are for capstan scenes; this scene's model is {scene.model!r}")
     F_max = to_si("F_max", F_max, "N", bare="si")   # numbers SI (Python); text carries its unit
     F_min = to_si("F_min", F_min, "N", bare="si")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
-        raise InputError(f"n = {n!r}: a load curve needs a whole number of points n >= 2")
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 2 <= n <= MAX_AXIS:
+        shown = f"{str(n)[:20]}..." if len(str(n)) > 20 else repr(n)
+        raise InputError(f"n = {shown}: a load curve needs a whole number of points 2 <= n <= {MAX_AXIS:.0e}")
+    check_size(int(n), len(CURVE_OUTPUTS) + 2, what="a load curve is kept in memory")
     if not 0.0 <= F_min < F_max:
         raise InputError(f"load range [{F_min:g}, {F_max:g}] N: need 0 <= F_min < F_max")
     F = np.linspace(F_min, F_max, int(n))
@@ -47,8 +94,8 @@ def load_curve(scene, F_max, n: int = 201, F_min=0.0, display: bool = False) -> 
     last = int(np.argmin(values["alpha_2"]))
     if values["alpha_2"][last] <= 0:
         check_wrap(F[last], values["delta"][last], p["mu"], p["EA"], p["R"], p["L"], p["alpha_0"], p["F_p"],
-                   scene.effects["stiffness"], scene.numerics.get("steps", STEPS), scene.numerics.get("sharpness", 30.0),
-                   scene.numerics.get("rtol", RTOL))
+                   scene.effects["stiffness"], scene.numerics.get("steps", STEPS),
+                   scene.numerics.get("sharpness", 30.0), scene.numerics.get("rtol", RTOL))
     q = scene.built.quantities
     data = {}
     for name in ("F_T",) + CURVE_OUTPUTS:

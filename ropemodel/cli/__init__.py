@@ -3,7 +3,8 @@
 Each module in this package defines one command: a ``NAME``, a ``HELP`` line,
 ``add_arguments(parser)`` and ``main(args) -> int``.  They are discovered at
 start-up, so a new command is a new module.  Errors become one line on stderr:
-bad input exits 2, a failed solve or an infeasible design exits 1.
+bad input exits 2, a failed solve or an infeasible design exits 1, Ctrl-C exits 130
+(:mod:`ropemodel.cli._interrupt`).
 """
 
 from __future__ import annotations
@@ -14,9 +15,9 @@ import pkgutil
 import sys
 import warnings
 
-from ropemodel.errors import InfeasibleError, InputError, RopeModelError, SolveError
+from ropemodel.errors import InputError, RopeModelError
 
-EXIT_OK, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
+EXIT_OK, EXIT_FAIL, EXIT_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 
 class _Parser(argparse.ArgumentParser):
@@ -64,7 +65,28 @@ def _warning(message, category, filename, lineno, file=None, line=None):
 
 def main(argv=None) -> int:
     """Entry point of the ``ropemodel`` console script."""
+    from ropemodel.cli._interrupt import Interrupts
+
     warnings.showwarning = _warning
+    guard = Interrupts()
+    try:
+        with guard:
+            code = _run(argv, guard)
+    except KeyboardInterrupt:
+        code = None
+    except Exception:
+        if not guard.seen:
+            raise
+        code = None   # a failure after Ctrl-C (e.g. an interrupted integrator) is the interrupt's doing
+    if code is None or guard.seen and code != EXIT_INTERRUPTED:
+        print("interrupted", file=sys.stderr)
+        code = EXIT_INTERRUPTED
+    return code
+
+
+def _run(argv, guard) -> int:
+    """The command's exit status; its errors as one line on stderr (none after Ctrl-C: the interrupt
+    says what happened)."""
     try:
         args = build_parser().parse_args(argv)
         if args.quiet:
@@ -74,18 +96,11 @@ def main(argv=None) -> int:
         if not getattr(args, "_main", None):
             raise InputError("no command given; try 'ropemodel run' or 'ropemodel --help'")
         return args._main(args)
-    except InputError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return EXIT_INPUT
-    except (SolveError, InfeasibleError) as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return EXIT_FAIL
     except RopeModelError as exc:
+        if guard.seen:
+            raise KeyboardInterrupt from None
         print(f"error: {exc}", file=sys.stderr)
-        return EXIT_FAIL
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
+        return EXIT_INPUT if isinstance(exc, InputError) else EXIT_FAIL
     except BrokenPipeError:  # output piped into e.g. `head`, which closed early
         sys.stderr.close()
         return EXIT_OK

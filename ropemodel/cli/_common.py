@@ -31,6 +31,20 @@ def assignments(items, option: str) -> dict[str, str]:
     return out
 
 
+def named(items, option: str, form: str) -> dict[str, str]:
+    """``NAME=SPEC`` of a repeated option (``--vary``, ``--sobol``) → {name: spec}; a name given
+    twice is refused.  form: what an item looks like, for the message (e.g. ``NAME=LOW:HIGH``)."""
+    out = {}
+    for item in items or []:
+        if "=" not in item:
+            raise InputError(f"{option} {item!r}: expected {form}")
+        name, spec = (s.strip() for s in item.split("=", 1))
+        if name in out:
+            raise InputError(f"{option} {name} given twice")
+        out[name] = spec
+    return out
+
+
 def add_scene_arguments(parser, optional: bool = True) -> None:
     if optional:
         parser.add_argument("scene", nargs="?", help="scene TOML file (default: the built-in Fig. 9 example)")

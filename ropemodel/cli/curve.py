@@ -17,22 +17,26 @@ def add_arguments(parser) -> None:
     parser.add_argument("--from", dest="start", default="0 N", metavar="F_MIN", help="smallest load (default 0 N)")
     parser.add_argument("-n", type=int, default=201, help="number of loads (default 201)")
     parser.add_argument("--display", action="store_true", help="display units (N/mm, deg) instead of SI")
-    parser.add_argument("-o", "--output", metavar="FILE.csv", help="write the curve as CSV instead of printing it")
+    parser.add_argument("-o", "--output", metavar="FILE.csv",
+                        help="write the curve to FILE.csv or FILE.parquet instead of printing it")
 
 
 def main(args) -> int:
-    from ropemodel.capstan.curves import load_curve
+    from contextlib import nullcontext
 
-    if args.json and args.output:
+    from ropemodel.capstan.curves import load_curve
+    from ropemodel.sweeps.files import OutputLock, check_output, write_frame
+
+    if args.json and args.output is not None:
         raise InputError("curve: give either --json or -o FILE, not both")
-    df = load_curve(scene_from_args(args), args.to, args.n, args.start, display=args.display)
-    if args.output:
-        try:
-            df.to_csv(args.output, index=False)
-        except OSError as exc:
-            raise InputError(f"cannot write {args.output}: {exc}") from None
-        print(f"wrote {len(df)} loads to {args.output}")
-    elif args.json:
+    out = check_output(args.output) if args.output is not None else None   # before any work
+    with OutputLock(out) if out is not None else nullcontext():
+        df = load_curve(scene_from_args(args), args.to, args.n, args.start, display=args.display)
+        if out is not None:
+            rows, _ = write_frame(df, out)
+            print(f"wrote {rows} loads to {out}")
+            return 0
+    if args.json:
         print(json.dumps(df.to_dict(orient="records"), indent=2, allow_nan=False))
     else:
         print(df.to_string(index=False))

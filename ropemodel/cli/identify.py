@@ -18,17 +18,24 @@ def add_arguments(parser) -> None:
     add_scene_arguments(parser, optional=False)
     parser.add_argument("data", help="CSV file with columns F_T (or T) and delta_alpha, units in brackets")
     parser.add_argument("--fit", default="mu,EA", help="parameters to fit, comma-separated (default mu,EA)")
-    parser.add_argument("--sigma", help="known noise of delta_alpha, e.g. 0.01deg (default: from the residuals)")
+    parser.add_argument("--sigma", help="known noise of delta_alpha, > 0 with its unit, e.g. 0.01deg "
+                                        "(default: from the residuals)")
 
 
 def main(args) -> int:
-    from ropemodel.capstan.identify import identify
+    from ropemodel.capstan.identify import CONVERGED, identify
 
+    sigma = to_si("--sigma", args.sigma, "rad", "deg") if args.sigma is not None else None
     scene = scene_from_args(args)
     fit = [n.strip() for n in args.fit.split(",") if n.strip()]
-    sigma = to_si("--sigma", args.sigma, "rad", "deg") if args.sigma else None
     with status(f"identifying {', '.join(fit)} from {args.data}"):
         res = identify(scene, args.data, fit, sigma=sigma)
+    if res.status not in CONVERGED:   # no estimates from a fit that did not converge
+        raise SolveError(f"identification did not converge: IPOPT {res.status} after {res.iterations} iterations; "
+                         f"no estimates are reported")
+    if not any(res.identifiable.values()):   # nothing identified: no estimate is a result
+        raise SolveError(f"the data determine none of {', '.join(fit)} ({res.messages[0]}); "
+                         f"no estimates are reported")
     if args.json:
         print(json.dumps(res.to_dict(), indent=2, allow_nan=False))
     else:
@@ -37,7 +44,5 @@ def main(args) -> int:
               f"after {res.iterations} iterations")
         for m in res.messages:
             print(f"warning: {m}")
-    if res.status not in ("Solve_Succeeded", "Solved_To_Acceptable_Level"):
-        raise SolveError(f"identification did not converge: {res.status}")
     return 0
 

@@ -3,7 +3,7 @@
 One self-contained HTML page (no network resource: styles inline, pictures as data URIs) with the
 scene and its file's SHA-256, the inputs and where each came from, the equations with their
 numbers, the results, every design check, the sizing, the transient, what matters most and the
-references (:mod:`ropemodel.report`).  ``--pdf``: the page printed by headless Chromium.
+references (:mod:`ropemodel.reports`).  ``--pdf``: the page printed by headless Chromium.
 
 Outputs are checked before any work, locked while written, written under a temporary name and
 renamed into place.  Exit 0: written; 1: written, but a section could not be computed (named on
@@ -38,7 +38,7 @@ def add_arguments(parser) -> None:
 
 
 def _outputs(args) -> tuple[Path | None, Path | None]:
-    from ropemodel.sweep.files import check_output
+    from ropemodel.sweeps.files import check_output
 
     if not args.output and not args.pdf:
         raise InputError("nothing to write: give -o FILE.html and/or --pdf FILE.pdf")
@@ -50,7 +50,7 @@ def _outputs(args) -> tuple[Path | None, Path | None]:
 
 
 def _write_html(path: Path, text: str) -> None:
-    from ropemodel.sweep.files import write_atomic
+    from ropemodel.sweeps.files import write_atomic
 
     def write(tmp):
         tmp.write_text(text, encoding="utf-8")
@@ -62,9 +62,9 @@ def _write_html(path: Path, text: str) -> None:
     write_atomic(path, write, check)
 
 
-def _write_pdf(path: Path, text: str, exe: str) -> None:
-    from ropemodel.report.browser import print_pdf
-    from ropemodel.sweep.files import write_atomic
+def _write_pdf(path: Path, text: str, exe: str | None) -> None:
+    from ropemodel.reports.browser import print_pdf
+    from ropemodel.sweeps.files import write_atomic
 
     def check(tmp):
         data = tmp.read_bytes()
@@ -78,10 +78,10 @@ def _write_pdf(path: Path, text: str, exe: str) -> None:
 
 
 def main(args) -> int:
-    from ropemodel.report import build, load
-    from ropemodel.report.browser import find
-    from ropemodel.report.build import requirements
-    from ropemodel.sweep.files import OutputError, OutputLock, cause
+    from ropemodel.reports import build, load
+    from ropemodel.reports.browser import find
+    from ropemodel.reports.build import requirements
+    from ropemodel.sweeps.files import OutputError, OutputLock, cause
 
     html, pdf = _outputs(args)
     exe = find() if pdf is not None else None
@@ -89,8 +89,8 @@ def main(args) -> int:
     ctx = load(args.scene, assignments(args.set, "--set"), method=args.discrete)
     warn(ctx.scene.warnings)
     with ExitStack() as locks:
-        for path in (p for p in (html, pdf) if p is not None):
-            locks.enter_context(OutputLock(path))
+        for locked in (p for p in (html, pdf) if p is not None):
+            locks.enter_context(OutputLock(locked))
         with status(f"report of {ctx.scene.name}: computing and drawing"):
             report = build(ctx)
         writers = ((html, lambda p: _write_html(p, report.html)), (pdf, lambda p: _write_pdf(p, report.html, exe)))

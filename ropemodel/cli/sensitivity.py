@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 import math
 
-from ropemodel.cli._common import add_scene_arguments, scene_from_args
+from ropemodel.cli._common import add_scene_arguments, named, scene_from_args
 from ropemodel.errors import InputError
 from ropemodel.progress import status
 
@@ -30,8 +30,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--sobol", action="append", metavar="NAME=LOW:HIGH", default=[],
                         help="a uniform range for Sobol indices, e.g. alpha_u=10deg:20deg (repeat per input)")
     parser.add_argument("--samples", type=int, default=1024,
-                        help="Sobol base samples N (power of two; N*(D+2) evaluations; default 1024)")
-    parser.add_argument("--seed", type=int, default=0, help="seed of the Sobol sequence scrambling")
+                        help="Sobol base samples N, a power of two >= 4 (N*(D+2) evaluations; default 1024)")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the Sobol sequence scrambling, 0 to 2**32 - 1")
     parser.add_argument("--sizing", action="store_true",
                         help="Sobol indices of the sizing optimum (d, F_nwl, stroke) instead of the outputs")
 
@@ -45,20 +45,21 @@ def _num(v):
 
 
 def main(args) -> int:
-    from ropemodel.sensitivity import elasticities, sobol, sobol_indices, table, tornado
-    from ropemodel.sensitivity.sobol import parse_range
+    from ropemodel.sensitivities import elasticities, sobol, sobol_indices, table, tornado
+    from ropemodel.sensitivities.plot import check_plot
+    from ropemodel.sensitivities.sobol import check_samples, check_seed, parse_range
+    from ropemodel.sweeps.files import OutputLock
 
+    ranges = named(args.sobol, "--sobol", "NAME=LOW:HIGH, e.g. alpha_u=10deg:20deg")
+    if ranges and args.plot is not None:
+        raise InputError("--plot draws elasticities; it does not combine with --sobol")
+    if ranges:
+        check_samples(args.samples, len(ranges))
+        check_seed(args.seed)
+    plot = check_plot(args.plot) if args.plot is not None else None   # before any work
     scene = scene_from_args(args)
     outputs = _names(args.outputs) or None
-    if args.sobol:
-        ranges = {}
-        for item in args.sobol:
-            if "=" not in item:
-                raise InputError(f"--sobol {item!r}: expected NAME=LOW:HIGH")
-            name, spec = (s.strip() for s in item.split("=", 1))
-            ranges[name] = spec
-        if args.plot:
-            raise InputError("--plot draws elasticities; it does not combine with --sobol")
+    if ranges:
         if args.sizing:
             from optimisation.sweep import sizing_function
 
@@ -79,8 +80,9 @@ def main(args) -> int:
     if args.sizing:
         raise InputError("--sizing needs --sobol ranges")
     frame = elasticities(scene, outputs=outputs, parameters=_names(args.parameters) or None)
-    if args.plot:
-        tornado(frame, outputs, path=args.plot, title=scene.name)
+    if plot is not None:
+        with OutputLock(plot):
+            tornado(frame, outputs, path=plot, title=scene.name)
     if args.json:
         print(json.dumps([{k: _num(v) for k, v in r.items()} for r in frame.to_dict("records")], indent=1,
                          allow_nan=False))

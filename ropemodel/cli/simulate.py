@@ -2,25 +2,11 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from ropemodel.cli._common import add_scene_arguments, scene_from_args
 from ropemodel.errors import InputError
 
 NAME = "simulate"
 HELP = "simulate the start-up or braking of a winch scene (dynamics = \"start\" or \"stop\")"
-
-
-def _csv(frame, path):
-    frame.to_csv(path, index=False)
-
-
-def _parquet(frame, path):
-    frame.to_parquet(path, index=False)
-
-
-#: file suffix → writer of the history
-WRITERS = {".csv": _csv, ".parquet": _parquet}
 
 
 def add_arguments(parser) -> None:
@@ -31,18 +17,14 @@ def add_arguments(parser) -> None:
 
 def main(args) -> int:
     from ropemodel.dynamics import simulate
+    from ropemodel.sweeps.files import OutputLock, check_output, write_frame
 
-    writer = None
-    if args.output:
-        suffix = Path(args.output).suffix.lower()
-        if suffix not in WRITERS:
-            raise InputError(f"-o {args.output}: unknown format {suffix or '(none)'}; use .csv or .parquet")
-        writer = WRITERS[suffix]
+    out = check_output(args.output) if args.output is not None else None   # checked before any work
     sim = simulate(scene_from_args(args))
-    if writer is not None:
-        try:
-            writer(sim.history, args.output)
-        except OSError as exc:
-            raise InputError(f"-o {args.output}: cannot write ({exc})") from None
+    if out is not None:
+        with OutputLock(out):
+            rows, _ = write_frame(sim.history, out)
+        if rows == 0:
+            raise InputError(f"{out}: nothing to write")
     print(sim.to_json() if args.json else sim.report())
     return 0

@@ -1,4 +1,5 @@
-"""``ropemodel size SCENE [--set NAME=VALUE ...] [--discrete next-size-up|bonmin] [--dynamic [--find t_ramp]] [--json]``.
+"""``ropemodel size SCENE [--set NAME=VALUE ...] [--discrete next-size-up|bonmin] [--dynamic [--find t_ramp]]
+[--json]``.
 
 Chooses the rope diameter d, the pretension F_nwl and the tensioner stroke (see the
 ``optimisation`` package): least rope mass per metre, then least pretension, then least

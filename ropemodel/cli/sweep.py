@@ -1,7 +1,7 @@
 """``ropemodel sweep SCENE --vary NAME=START:STOP:N ... -o FILE.csv|FILE.parquet``.
 
 The points are the product of the ``--vary`` grids (START and STOP may carry
-units: ``alpha_u=0deg:45deg:1000``; ``NAME=v1,v2,v3`` lists values), or the
+units: ``alpha_u=5deg:45deg:1000``; ``NAME=v1,v2,v3`` lists values), or the
 rows of ``--points FILE`` (CSV or Parquet; columns are names in SI or
 ``"name [unit]"`` labels).  The output is checked and locked before any work
 (a second writer of it is refused, exit 2), written in chunks, and appears only
@@ -13,8 +13,9 @@ from __future__ import annotations
 
 import json
 import sys
+from typing import cast
 
-from ropemodel.cli._common import add_scene_arguments, assignments, scene_from_args
+from ropemodel.cli._common import add_scene_arguments, assignments, named, scene_from_args
 from ropemodel.errors import InputError
 
 NAME = "sweep"
@@ -24,7 +25,7 @@ HELP = "evaluate a scene over grids or a table of points; write CSV or Parquet (
 def add_arguments(parser) -> None:
     add_scene_arguments(parser, optional=False)
     parser.add_argument("--vary", action="append", metavar="NAME=START:STOP:N", default=[],
-                        help="a grid axis, e.g. alpha_u=0deg:45deg:1000 or G_m=300kN,467kN; "
+                        help="a grid axis, e.g. alpha_u=5deg:45deg:1000 or G_m=300kN,467kN; "
                              "several --vary give their product")
     parser.add_argument("--points", metavar="FILE", help="CSV or Parquet table of points instead of --vary")
     parser.add_argument("--outputs", action="append", metavar="NAME[,NAME...]", default=[],
@@ -34,8 +35,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--find", action="append", metavar="NAME", default=[],
                         help="a parameter to solve for at every point, freed by a --given")
     parser.add_argument("-o", "--output", required=True, metavar="FILE", help="FILE.csv or FILE.parquet")
-    parser.add_argument("--chunk-size", type=int, default=65536, help="points per chunk (default 65536)")
-    parser.add_argument("--threads", type=int, default=None, help="threads (default: number of CPUs)")
+    parser.add_argument("--chunk-size", type=int, default=65536, help="points per chunk, 1 to 1e8 (default 65536)")
+    parser.add_argument("--threads", type=int, default=None,
+                        help="threads, a positive whole number (default: number of CPUs)")
     parser.add_argument("--backend", default="auto", choices=["auto", "casadi", "compiled"],
                         help="evaluation backend (default auto: compiled C if a compiler works)")
     parser.add_argument("--si", action="store_true", help="SI units in the columns (default: display units)")
@@ -60,18 +62,11 @@ def _names(items):
 
 def main(args) -> int:
     from ropemodel.progress import enabled
-    from ropemodel.sweep import read_points, sweep
-    from ropemodel.sweep.runner import SweepInterrupted
+    from ropemodel.sweeps import read_points, sweep
+    from ropemodel.sweeps.runner import SweepFile, SweepInterrupted
 
     scene = scene_from_args(args)
-    vary = {}
-    for item in args.vary:
-        if "=" not in item:
-            raise InputError(f"--vary {item!r}: expected NAME=START:STOP:N, e.g. alpha_u=0deg:45deg:1000")
-        name, spec = (s.strip() for s in item.split("=", 1))
-        if name in vary:
-            raise InputError(f"--vary {name} given twice")
-        vary[name] = spec
+    vary = named(args.vary, "--vary", "NAME=START:STOP:N, e.g. alpha_u=5deg:45deg:1000")
     points = read_points(args.points) if args.points else None
     if points is not None and vary:
         raise InputError("give either --vary grids or --points FILE, not both")
@@ -79,7 +74,7 @@ def main(args) -> int:
         raise InputError("--dynamic needs --sizing (a sweep of the dynamic sizing optimum)")
     if args.sizing:
         return _sizing(scene, vary, points, args)
-    given = {g.strip(): None for g in args.given if "=" not in g}
+    given: dict[str, str | None] = {g.strip(): None for g in args.given if "=" not in g}
     given.update(assignments([g for g in args.given if "=" in g], "--given"))
     try:
         written = sweep(scene, vary or None, _names(args.outputs) or None, points=points, given=given,
@@ -91,7 +86,8 @@ def main(args) -> int:
     except SweepInterrupted as exc:
         print(f"interrupted: {exc}", file=sys.stderr)
         return 130
-    _summary(written.path, args.json, written.rows, written.columns, written.status)
+    file = cast(SweepFile, written)             # collect=False: the output file, not a DataFrame
+    _summary(file.path, args.json, file.rows, file.columns, file.status)
     return 0
 
 
@@ -110,7 +106,7 @@ def _sizing(scene, vary, points, args) -> int:
     from optimisation.problem import prepare
     from optimisation.sweep import sizing_sweep
     from ropemodel.progress import enabled
-    from ropemodel.sweep.files import OutputLock, check_output, write_frame
+    from ropemodel.sweeps.files import OutputLock, check_output, write_frame
 
     if args.given or args.find or args.outputs:
         raise InputError("--sizing computes d, F_nwl and stroke; it takes no --given, --find or --outputs")

@@ -19,10 +19,10 @@ def add_arguments(parser) -> None:
 
 def main(args) -> int:
     from ropemodel.progress import status
-    from ropemodel.sweep.files import OutputLock, check_output, write_frame
-    from ropemodel.trip import prepare, trip
+    from ropemodel.sweeps.files import OutputLock, check_output, write_frame
+    from ropemodel.trips import prepare, trip
 
-    out = check_output(args.output) if args.output else None
+    out = check_output(args.output) if args.output is not None else None
     scene = prepare(scene_from_args(args, announce=False))
     warn(scene.warnings)
     with status(f"trip of {scene.name}"):

@@ -18,8 +18,8 @@ knowns and of the blocks before it:
 When no block is implicit and no call equation is used, the Function is expanded
 to SX (fastest for sweeps); otherwise common subexpressions of the MX graph are merged
 (``ca.cse``), so call equations that are outputs of one Function (e.g. a quantity and
-its error estimate, each wrapped ``always_inline``) evaluate that Function once.  The rootfinder is differentiable (implicit function
-theorem), so sensitivities of inverse solves come out of the same Function.
+its error estimate, each wrapped ``always_inline``) evaluate that Function once.  The rootfinder is
+differentiable (implicit function theorem), so sensitivities of inverse solves come out of the same Function.
 """
 
 from __future__ import annotations
@@ -112,18 +112,18 @@ def _newton(model, block, res: ca.Function, deps, guesses, b) -> ca.Function:
     n = len(block.unknowns)
     z = ca.MX.sym("z", n)
     p = ca.MX.sym("p", len(deps))
-    x_of_z, z0, scale = [], [], []
+    x_parts, z0, scale = [], [], []
     for k, u in enumerate(block.unknowns):
         q = model.quantities[u]
         g = guesses.get(u, q.guess)
         scale.append(max(1.0, abs(g)))
         if q.positive:
-            x_of_z.append(ca.exp(z[k]))
+            x_parts.append(ca.exp(z[k]))
             z0.append(math.log(g) if g > 0 else 0.0)
         else:
-            x_of_z.append(z[k])
+            x_parts.append(z[k])
             z0.append(g)
-    x_of_z = ca.vertcat(*x_of_z)
+    x_of_z = ca.vertcat(*x_parts)
     g_res = ca.Function(f"res{b}", [z, p], [res(x_of_z, p) / ca.DM(scale)])
     rf = ca.rootfinder(f"newton{b}", "newton", g_res, NEWTON_OPTIONS)
     x_fun = ca.Function(f"x_of_z{b}", [z], [x_of_z])

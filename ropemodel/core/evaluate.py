@@ -70,7 +70,7 @@ class Job:
 
     @cached_property
     def key(self) -> str:
-        h = hashlib.sha256(self.function.serialize().encode())
+        h = hashlib.sha256(_digest(self.function).encode())
         h.update(repr((self.varied, sorted(self.constants), self.backend, self.threads, self.block)).encode())
         return h.hexdigest()
 
@@ -83,6 +83,26 @@ class Job:
 _EVALUATORS: dict[str, object] = {}
 MAX_EVALUATORS = 64
 _LOCK = threading.Lock()
+#: id(Function) → (Function, digest of its serialisation): serialising costs ~1 ms a call for an
+#: integrator; the Function is kept alive here, so its id cannot be reused while it is cached
+_DIGESTS: dict[int, tuple] = {}
+#: (id(Function), input order, outputs) → (Function, reordered Function), for evaluate_columns
+_REORDERED: dict[tuple, tuple] = {}
+
+
+def _remember(cache: dict, key, value):
+    with _LOCK:
+        if len(cache) >= MAX_EVALUATORS:
+            del cache[next(iter(cache))]
+        cache[key] = value
+    return value
+
+
+def _digest(function: ca.Function) -> str:
+    hit = _DIGESTS.get(id(function))
+    if hit is not None and hit[0] is function:
+        return hit[1]
+    return _remember(_DIGESTS, id(function), (function, hashlib.sha256(function.serialize().encode()).hexdigest()))[1]
 
 
 def evaluator(job: Job):
@@ -269,7 +289,10 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     missing = [k for k in function.name_in() if k not in order]
     if missing:
         raise InputError(f"no value for {', '.join(missing)}")
-    fun = reordered(function, order)
+    hit = _REORDERED.get((id(function), tuple(order)))
+    if hit is None or hit[0] is not function:
+        hit = _remember(_REORDERED, (id(function), tuple(order)), (function, reordered(function, order)))
+    fun = hit[1]
     job = Job(fun, list(columns), constants, backend=backend, threads=threads, block=block)
     out = {o: np.empty(n) for o in fun.name_out()}
     for s in range(0, n, chunk):

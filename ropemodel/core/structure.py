@@ -58,8 +58,8 @@ def incidence(model, unknowns) -> Incidence:
     x = ca.vertcat(*[model.symbols[u] for u in unknowns])
     J = ca.jacobian(res, x).sparsity()
     rows, cols = J.get_triplet()
-    by_row = [[] for _ in range(J.size1())]
-    by_col = [[] for _ in range(J.size2())]
+    by_row: list[list[int]] = [[] for _ in range(J.size1())]
+    by_col: list[list[int]] = [[] for _ in range(J.size2())]
     for i, j in zip(rows, cols):
         by_row[i].append(j)
         by_col[j].append(i)
@@ -160,7 +160,8 @@ def _message(model, unknowns, knowns, n_eq, n_x, under, over_eq, over_x):
         names = sorted(unknowns[j] for j in under)
         found = [n for n in names if n in model.parameters]
         shown = found or names
-        more = f" (and {len(names) - len(found)} quantities computed from them)" if found and len(names) > len(found) else ""
+        more = (f" (and {len(names) - len(found)} quantities computed from them)"
+                if found and len(names) > len(found) else "")
         parts.append(f"under-determined (no equation pins them): {', '.join(shown)}{more}"
                      " — give another --given value or --find fewer")
     if over_eq:

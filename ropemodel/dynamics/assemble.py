@@ -21,7 +21,8 @@ from ropemodel.problem import run
 def chosen(scene) -> dict:
     """Effect → a fresh instance of the scene's variant (the registry's classes)."""
     specs, options = effects_of(scene.model), scene.built.options
-    return {effect: specs[effect].variants[variant](options, scene.effects) for effect, variant in scene.effects.items()}
+    return {effect: specs[effect].variants[variant](options, scene.effects)
+            for effect, variant in scene.effects.items()}
 
 
 def transient_parts(scene, submodels: dict) -> list[TransientSubmodel]:

@@ -34,10 +34,10 @@ class SwitchState:
     banded: np.ndarray
 
     @classmethod
-    def at_start(cls, g: np.ndarray) -> "SwitchState":
+    def at_start(cls, g: np.ndarray) -> SwitchState:
         return cls(g > ARM_TOL, g >= -ARM_TOL)
 
-    def arm(self, more: np.ndarray) -> "SwitchState":
+    def arm(self, more: np.ndarray) -> SwitchState:
         return SwitchState(self.armed | more, self.banded)
 
     def band(self) -> np.ndarray:
@@ -58,10 +58,10 @@ class Detection(NamedTuple):
 
 
 class Crossing(NamedTuple):
-    """A located event: time after the interval's start, index of the switching function."""
+    """A located event: time after the interval's start, index ``switch`` of the switching function."""
 
     s: float
-    index: int
+    switch: int
 
 
 def hermite_min(g0, g1, d0, d1):

@@ -44,10 +44,10 @@ class Simulation:
     def finish(self, events):
         t = np.concatenate(self._t)
         names = self.system.functions(0, self._modes[0]).out_names
-        O = dict(zip(names, np.concatenate(self._o, axis=1)))
-        O["E [J]"] = O["E [J]"] - O["E [J]"][0]
-        O["energy_residual [J]"] = O["W_drum [J]"] - O["E [J]"] - O["D [J]"]
-        columns = {"t [s]": t, **O}
+        out = dict(zip(names, np.concatenate(self._o, axis=1)))
+        out["E [J]"] = out["E [J]"] - out["E [J]"][0]
+        out["energy_residual [J]"] = out["W_drum [J]"] - out["E [J]"] - out["D [J]"]
+        columns = {"t [s]": t, **out}
         for p in self.system.parts:
             if p.column:
                 columns[p.column] = [m[p.effect] for m in self._modes]
@@ -107,7 +107,8 @@ class Simulation:
         for p in self.system.parts:
             lines += p.report(s)
         masses = ", ".join(f"{k} {v:.6g} kg" for k, v in s["moving_masses"].items())
-        lines += [f"  moving masses: {masses}", f"  energy balance residual {s['energy_residual']:.2e} of the drum's work"]
+        lines += [f"  moving masses: {masses}",
+                  f"  energy balance residual {s['energy_residual']:.2e} of the drum's work"]
         return "\n".join(lines + [line for p in self.system.parts for line in p.ending(s)])
 
 

@@ -70,7 +70,8 @@ class HybridIntegrator:
 
     def __init__(self, system: TransientSystem, rtol: float, dt: float, integrator: str, atol: float = 1e-9):
         self.system, self.phases, self.dt, self.integrator = system, system.phases, dt, integrator
-        self.opts = {"reltol": rtol, "abstol": atol, "max_num_steps": 200000}
+        # SUNDIALS's own messages stay off the C-level stderr: a failure is reported in the user's terms
+        self.opts = {"reltol": rtol, "abstol": atol, "max_num_steps": 200000, "disable_internal_warnings": True}
         self._compiled: dict = {}
 
     def mode(self, k: int, mode) -> _Compiled:
@@ -139,7 +140,7 @@ class HybridIntegrator:
             x = self._step(m, x_a, t_a, best.s) if best.s > 0 else x_a
             t = t_a + best.s
             self._record(m, np.array([t]), x[:, None], on_record, mode)
-            return self.system.transition(k, mode, best.index, x, t), t
+            return self.system.transition(k, mode, best.switch, x, t), t
 
     def _detect(self, m: _Compiled, state: SwitchState, x, t, X, times):
         """(first flagged :class:`~ropemodel.dynamics.detect.Detection` or None, switching functions on the
@@ -170,7 +171,7 @@ class HybridIntegrator:
 
             band = 0.0 if hit.state.armed[i] else ARM_TOL
 
-            def f(s, i=i):
+            def f(s, band=band):
                 return g_i(s) + band
 
             hi = h_j

@@ -24,8 +24,9 @@ phases' ends, each branch finite everywhere); ``pieces`` gives each phase's own 
 to and past its ends), which an integrator restarted at the phases' ends (``bounds``) needs: the
 hybrid simulator does the same, and an integrator stepping over a step of the drive's acceleration
 loses order there.  ``out`` also gives every element tension ``T`` of the rope loop (its least,
-``T_min``, is a minimum: not smooth where two tensions cross; ``T >= 0`` element by element is).  Parameters that fix the structure (route geometry,
-the load's position: each variant's ``structural`` names) must stay numbers.
+``T_min``, is a minimum: not smooth where two tensions cross; ``T >= 0`` element by element is).
+Parameters that fix the structure (route geometry, the load's position: each variant's ``structural``
+names) must stay numbers.
 """
 
 from __future__ import annotations
@@ -74,8 +75,8 @@ class SmoothMode(NamedTuple):
     layout: Layout
     t_end: float
     phase_ends: tuple
-    pieces: tuple = ()
-    bounds: ca.Function | None = None
+    pieces: tuple
+    bounds: ca.Function
 
 
 def smooth_mode(scene, params) -> SmoothMode:

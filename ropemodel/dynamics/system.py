@@ -15,6 +15,7 @@ This module names no variant: what a variant does is asked of it.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -36,7 +37,7 @@ class Event:
 
     t: float
     name: str
-    mode: Mode
+    mode: Mode | None                       # None after a terminal event
     state: np.ndarray = field(repr=False)
     values: dict = field(repr=False, default_factory=dict)
 
@@ -200,7 +201,7 @@ class TransientSystem:
     def _fire(self, k: int, mode: Mode, i: int, x, t: float):
         fns = self.functions(k, mode)
         switch = fns.switches[i]
-        if switch.terminal:
+        if switch.target is None:               # terminal
             return x, mode, Event(float(t), switch.name, None, np.array(x, float), self.values(k, mode, x, t))
         x = np.array(fns.resets[i](x, t)).ravel()
         mode = mode.replace(switch.effect, switch.target)
@@ -212,7 +213,8 @@ class Initial:
     values), with states the variants pin (e.g. the take-up on an end stop of the stroke)."""
 
     def __init__(self, system: TransientSystem):
-        self.system, self.pins = system, {}
+        self.system = system
+        self.pins: dict[str, Any] = {}          # state name -> value (float, or SX when symbolic)
 
     def pin(self, ref, value) -> None:
         self.pins[ref] = value

@@ -26,7 +26,8 @@ the effects that share a quantity.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, ClassVar
+from typing import ClassVar
+from collections.abc import Callable
 
 import casadi as ca
 
@@ -51,7 +52,7 @@ class Equation:
     formula: str = ""
 
     @classmethod
-    def from_call(cls, defines: str, fun: ca.Function, args, source: str, formula: str = "") -> "Equation":
+    def from_call(cls, defines: str, fun: ca.Function, args, source: str, formula: str = "") -> Equation:
         """``defines = fun(*args)``: ``fun`` takes one scalar per name in ``args`` and returns one scalar.
 
         The compiled solver calls ``fun`` directly when it solves for ``defines``,
@@ -67,7 +68,7 @@ class Equation:
         """Every quantity the equation involves."""
         if self.call is not None:
             return [self.defines, *self.call[1]]
-        return [s.name() for s in ca.symvar(self.residual)]
+        return [s.name() for s in ca.symvar(self.residual)] if self.residual is not None else [self.defines]
 
 
 class Symbols(dict):
@@ -89,6 +90,8 @@ class Submodel:
     description: ClassVar[str] = ""
     citations: ClassVar[tuple[str, ...]] = ()
     quantities: ClassVar[tuple[Quantity, ...]] = ()
+    #: the quantities :meth:`invalid_mask` reads (a sweep computes them even when not asked for)
+    invalid_needs: ClassVar[tuple[str, ...]] = ()
 
     def __init__(self, options: dict | None = None, effects: dict | None = None):
         #: the scene's ``[numerics]`` (and structural options such as the route's segments)
@@ -118,9 +121,14 @@ class Submodel:
         """
         return []
 
-    def invalid_mask(self, values: dict) -> dict[str, "object"]:
-        """Vectorised :meth:`invalid` for sweeps: reason → boolean array over the points of ``values``."""
+    def invalid_mask(self, values: dict) -> dict[str, object]:
+        """Vectorised :meth:`invalid` for sweeps: reason → boolean array over the points of ``values``
+        (only the names of :meth:`invalid_needs_for` are in ``values``)."""
         return {}
+
+    def invalid_needs_for(self, outputs) -> tuple[str, ...]:
+        """The quantities whose values decide whether ``outputs`` are valid (default: ``invalid_needs``)."""
+        return self.invalid_needs
 
     def frames(self, values: dict[str, float], scene) -> dict:
         """Extra tables (title → pandas DataFrame with units in its columns) for a solved point."""
@@ -264,6 +272,17 @@ def choice(*allowed):
         if value not in allowed:
             raise InputError(f"numerics {key} = {value!r} is not one of {', '.join(map(repr, allowed))}"
                              f"{suggest(str(value), [str(a) for a in allowed])}")
+        return value
+
+    return check
+
+
+def whole_number(low: int, high: int):
+    """A ``check`` for :func:`define_numerics` accepting a whole number in [low, high] (not 2.5, not true)."""
+
+    def check(key, value):
+        if isinstance(value, bool) or not isinstance(value, int) or not (low <= value <= high):
+            raise InputError(f"numerics {key} = {value!r} must be a whole number in [{low}, {high}]")
         return value
 
     return check

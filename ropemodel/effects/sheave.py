@@ -42,49 +42,48 @@ limit k = λω → 0, handled exactly (see :mod:`ropemodel.papers.hajduk1992`).
 from __future__ import annotations
 
 import math
+import warnings
+from typing import ClassVar
 
 import casadi as ca
 import numpy as np
 
 from ropemodel.effects.base import (Equation, Submodel, choice, define_effect, define_numerics,
-                                    positive_number, register)
+                                    positive_number, register, whole_number)
 from ropemodel.errors import InputError, SolveError
 from ropemodel.numerics.hajduk_integrators import DEFAULT, INTEGRATORS, log_ratio_function, segment_function
 from ropemodel.papers import friction as fr
 from ropemodel.papers import hajduk1992 as hj
-from ropemodel.quantity import Quantity
+from ropemodel.quantity import Quantity, non_negative, positive
 
 MODEL = "sheave"
 SRC = "Hajduk 1992"
 
-_pos = dict(low=0.0, low_open=True, positive=True)
-_nonneg = dict(low=0.0)
 
-S_0 = Quantity("S_0", "N", "tension of the rope entering the arc (slack side)", "kN", guess=1e4, **_pos)
-MU = Quantity("mu", "1", "friction coefficient of the rope on the lining (low-pressure limit with "
-              "friction = thirion)", warn_high=1.0, guess=0.2, **_pos)
-ALPHA = Quantity("alpha", "rad", "wrap angle (arc of contact)", "deg", warn_high=10 * math.pi, guess=math.pi,
-                 **_pos)
-OMEGA = Quantity("omega", "rad/s", "angular speed of the sheave (0: the slow-sheave limit)", guess=1.0, **_nonneg)
+S_0 = positive("S_0", "N", "tension of the rope entering the arc (slack side)", "kN", guess=1e4)
+MU = positive("mu", "1", "friction coefficient of the rope on the lining (low-pressure limit with "
+              "friction = thirion)", warn_high=1.0, guess=0.2)
+ALPHA = positive("alpha", "rad", "wrap angle (arc of contact)", "deg", warn_high=10 * math.pi, guess=math.pi)
+OMEGA = non_negative("omega", "rad/s", "angular speed of the sheave (0: the slow-sheave limit)", guess=1.0)
 # guesses: starting points of Newton when an inverse question makes these unknowns of an implicit block
 S_OUT = Quantity("S", "N", "tension of the rope leaving the arc", "kN", equation=f"{SRC}, eq. (19)",
                  low=0.0, low_open=True, positive=True, guess=2e4)
-S_RATIO = Quantity("S_ratio", "1", "tension ratio S/S_0 over the arc", equation="S/S_0", guess=2.0, **_pos)
+S_RATIO = positive("S_ratio", "1", "tension ratio S/S_0 over the arc", equation="S/S_0", guess=2.0)
 S_ERROR = Quantity("S_error", "1", "estimated relative error of S (method ode: the integrator's estimate, at most "
                    "rtol; closed: the next Newton step plus rounding)",
                    equation=f"{SRC}, eq. (19) (closed) or eq. (5)-(6) integrated (ode)", low=0.0, guess=1e-9)
-C_MU = Quantity("c_mu", "1/N", "pressure sensitivity of friction, mu(S) = mu/(1 + c_mu S) (0: constant)",
-                equation="1/(p_c R a)", guess=3e-5, **_nonneg)
-R_SHEAVE = Quantity("R", "m", "sheave radius to the rope centre", "mm", guess=1.0, **_pos)
-A_WIDTH = Quantity("a", "m", "width of the lining in contact with the rope", "mm", guess=0.03, **_pos)
+C_MU = non_negative("c_mu", "1/N", "pressure sensitivity of friction, mu(S) = mu/(1 + c_mu S) (0: constant)",
+                equation="1/(p_c R a)", guess=3e-5)
+R_SHEAVE = positive("R", "m", "sheave radius to the rope centre", "mm", guess=1.0)
+A_WIDTH = positive("a", "m", "width of the lining in contact with the rope", "mm", guess=0.03)
 
 
 def _compliance(name, what):
-    return Quantity(name, "1/N", f"{what} compliance of the lining", guess=1e-5, **_nonneg)
+    return non_negative(name, "1/N", f"{what} compliance of the lining", guess=1e-5)
 
 
 def _retardation(name, what):
-    return Quantity(name, "s", f"{what} retardation time of the lining (eta/modulus)", guess=0.01, **_nonneg)
+    return non_negative(name, "s", f"{what} retardation time of the lining (eta/modulus)", guess=0.01)
 
 
 define_effect(MODEL, "lining", "voigt", "the sheave's lining: Voigt bodies (visco-elastic) or rigid")
@@ -95,8 +94,7 @@ define_numerics(MODEL, "integrator", DEFAULT, "ODE integrator (each error-contro
 define_numerics(MODEL, "rtol", 1e-7, "relative error of S the ODE must meet", positive_number(1e-12, 1e-2))
 define_numerics(MODEL, "state", "log", "ODE state: log (ln S, stretched angle) or invariant",
                 choice("log", "invariant"))
-define_numerics(MODEL, "points", 37, "angles in the distribution table",
-                lambda key, value: int(positive_number(1.0, 10000)(key, value)))
+define_numerics(MODEL, "points", 37, "angles in the distribution table", whole_number(2, 10000))
 
 
 class _Lining(Submodel):
@@ -106,7 +104,7 @@ class _Lining(Submodel):
     ``data(S_0, omega, *args)`` → (Q_R, k_R, Q_T, k_T) as expressions (SX, MX or float).
     """
 
-    citations = ("hajduk1992",)
+    citations: ClassVar[tuple[str, ...]] = ("hajduk1992",)
     args: tuple[str, ...] = ()
     #: the equations as a person reads them (reports): the closed form, eq. (19), and the ODE, eq. (5)-(6)
     closed_formula = "ln(S/S_0) + S [Q_R (1 − e^(−α/(λ_R ω))) + Q_T (1 − e^(−α/(λ_T ω)))] = μ α"
@@ -253,9 +251,9 @@ class AnisotropicVoigtLining(_Lining):
     """Voigt lining with separate radial and tangential bodies: Hajduk (1992) eq. (5), (19) generalised."""
 
     description = "anisotropic Voigt lining: Q_R, Q_T, lambda_R, lambda_T"
-    quantities = (S_0, MU, ALPHA, OMEGA, _compliance("Q_R", "radial"), _compliance("Q_T", "tangential"),
-                  _retardation("lambda_R", "radial"), _retardation("lambda_T", "tangential"), S_OUT, S_RATIO,
-                  S_ERROR)
+    quantities: ClassVar[tuple[Quantity, ...]] = (
+        S_0, MU, ALPHA, OMEGA, _compliance("Q_R", "radial"), _compliance("Q_T", "tangential"),
+        _retardation("lambda_R", "radial"), _retardation("lambda_T", "tangential"), S_OUT, S_RATIO, S_ERROR)
     args = ("Q_R", "Q_T", "lambda_R", "lambda_T")
 
     def data(self, S_0, omega, Q_R, Q_T, lam_R, lam_T):
@@ -270,11 +268,11 @@ class PhysicalVoigtLining(AnisotropicVoigtLining):
     description = "Voigt lining from thickness, moduli, viscosities and the contact geometry"
     quantities = (
         *AnisotropicVoigtLining.quantities[:4], R_SHEAVE, A_WIDTH,
-        Quantity("h", "m", "thickness of the lining", "mm", guess=0.02, **_pos),
-        Quantity("E", "Pa", "Young's modulus of the lining", "MPa", guess=5e7, **_pos),
-        Quantity("G", "Pa", "shear modulus of the lining", "MPa", guess=2e7, **_pos),
-        Quantity("eta_R", "Pa*s", "viscosity of the lining in compression", "MPa*s", guess=1e5, **_nonneg),
-        Quantity("eta_T", "Pa*s", "viscosity of the lining in shear", "MPa*s", guess=1e5, **_nonneg),
+        positive("h", "m", "thickness of the lining", "mm", guess=0.02),
+        positive("E", "Pa", "Young's modulus of the lining", "MPa", guess=5e7),
+        positive("G", "Pa", "shear modulus of the lining", "MPa", guess=2e7),
+        non_negative("eta_R", "Pa*s", "viscosity of the lining in compression", "MPa*s", guess=1e5),
+        non_negative("eta_T", "Pa*s", "viscosity of the lining in shear", "MPa*s", guess=1e5),
         *AnisotropicVoigtLining.quantities[4:8],   # computed here (eq. (1), (6)): the same quantities
         S_OUT, S_RATIO, S_ERROR,
     )
@@ -295,7 +293,8 @@ class PhysicalVoigtLining(AnisotropicVoigtLining):
         v = values
         return {**v, "Q_R": hj.radial_compliance(v["h"], v["E"], v["R"], v["a"]),
                 "Q_T": hj.tangential_compliance(v["mu"], v["G"], v["R"], v["a"]),
-                "lambda_R": hj.retardation_time(v["eta_R"], v["E"]), "lambda_T": hj.retardation_time(v["eta_T"], v["G"])}
+                "lambda_R": hj.retardation_time(v["eta_R"], v["E"]),
+                "lambda_T": hj.retardation_time(v["eta_T"], v["G"])}
 
 
 @register(MODEL, "friction", "constant")
@@ -328,8 +327,7 @@ class ThirionFriction(Submodel):
     description = "friction falling with contact pressure (Thirion's law)"
     citations = ("thirion1946",)
     quantities = (C_MU, R_SHEAVE, A_WIDTH,
-                  Quantity("p_c", "Pa", "pressure at which friction halves (Thirion's law)", "MPa", guess=1e6,
-                           **_pos))
+                  positive("p_c", "Pa", "pressure at which friction halves (Thirion's law)", "MPa", guess=1e6))
 
     def equations(self, v):
         # multiplied out: linear in c_mu and in p_c, R, a, so either direction is explicit
@@ -356,11 +354,11 @@ def distribution_frame(values: dict, scene, points: int | None = None):
     o = scene.numerics
     if o.get("method", "closed") == "ode":
         seg = segment_function(o.get("integrator", DEFAULT), o.get("state", "log"), float(o.get("rtol", 1e-7)))
-        y = [0.0]
+        ys = [0.0]
         for a0, a1 in zip(alpha[:-1], alpha[1:]):
-            y.append(float(seg(y_a=y[-1], alpha_a=a0, alpha_b=a1, mu=values["mu"], q_R=q_R, k_R=k_R, q_T=q_T,
-                               k_T=k_T, beta=values.get("c_mu", 0.0) * values["S_0"])["y_b"]))
-        y = np.array(y)
+            ys.append(float(seg(y_a=ys[-1], alpha_a=a0, alpha_b=a1, mu=values["mu"], q_R=q_R, k_R=k_R, q_T=q_T,
+                                k_T=k_T, beta=values.get("c_mu", 0.0) * values["S_0"])["y_b"]))
+        y = np.array(ys)
         if not np.all(np.isfinite(y)):
             raise SolveError("the lining ODE could not meet its tolerance along the arc; loosen [numerics] rtol")
     else:
@@ -368,5 +366,13 @@ def distribution_frame(values: dict, scene, points: int | None = None):
     s = np.exp(y)
     import pandas as pd
 
-    return pd.DataFrame({"alpha [deg]": np.degrees(alpha), "S [kN]": values["S_0"] * s / 1e3, "S/S_0 [-]": s,
-                         "e^(mu alpha) [-]": np.exp(values["mu"] * alpha)})
+    frame = {"alpha [deg]": np.degrees(alpha), "S [kN]": values["S_0"] * s / 1e3, "S/S_0 [-]": s}
+    with np.errstate(over="ignore"):
+        euler = np.exp(values["mu"] * alpha)   # the rigid-lining reference (Euler-Eytelwein)
+    if np.all(np.isfinite(euler)):
+        frame["e^(mu alpha) [-]"] = euler
+    else:   # no inf in a result: the reference column is left out, and said so
+        warnings.warn(f"the reference column e^(mu alpha) is left out: at mu alpha = "
+                      f"{values['mu'] * values['alpha']:.4g} it exceeds the largest number a float holds", UserWarning,
+                      stacklevel=2)
+    return pd.DataFrame(frame)

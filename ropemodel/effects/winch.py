@@ -115,11 +115,22 @@ class HaulageForces(Submodel):
             eqs.append(Equation(f"F_S_{d}", v[f"F_S_{d}"] - kr.unwinding_rope_force(v["F_nwl"], v["G_ls"], T_S, sign),
                                 "eq. (12)" + (" + inertia" if rigid else ""),
                                 formula=f"F_S = 0.5 F_nwl + G_ls {pm} T_ls" + (extra_S if rigid else "")))
-            eqs.append(Equation(f"F_C_{d}", v[f"F_C_{d}"] - kr.winding_rope_force(v["F_nwl"], v["G_lmC"], T_C, 0.0, sign),
+            eqs.append(Equation(f"F_C_{d}",
+                                v[f"F_C_{d}"] - kr.winding_rope_force(v["F_nwl"], v["G_lmC"], T_C, 0.0, sign),
                                 "eq. (13)" + (" + inertia" if rigid else ""),
                                 formula=f"F_C = 0.5 F_nwl + G_lmC {'+' if d == 'up' else '−'} (T_m + T_l)"
                                 + (extra_C if rigid else "")))
         return eqs
+
+    invalid_needs = _FORCES
+
+    def invalid_needs_for(self, outputs):
+        """The forces of the directions of ``outputs`` when each belongs to one (``F_C_up``, ``dF_up``:
+        a slack rope lowering does not spoil hauling up), else all four."""
+        directions = {o.rsplit("_", 1)[-1] for o in outputs}
+        if not directions <= set(_TRAVEL):
+            return _FORCES
+        return tuple(f for f in _FORCES if f.rsplit("_", 1)[-1] in directions)
 
     def invalid_mask(self, values):
         """A rope force <= 0: the rope would have to push, so it is slack (the model no longer holds)."""
@@ -156,7 +167,7 @@ class SteadyMotion(Submodel):
 class RigidInertia(Submodel):
     """A haulage speeding up at ``a_h`` in its direction of travel (negative: slowing down), the rope
     inextensible: the winding side gains (G_m + q_l L_u)/g·a_h, the unwinding side loses q_l L_u/g·a_h
-    (:mod:`ropemodel.papers.route`).  The trip (:mod:`ropemodel.trip`) and sizing through the ramps use it."""
+    (:mod:`ropemodel.papers.route`).  The trip (:mod:`ropemodel.trips`) and sizing through the ramps use it."""
 
     description = "rigid-body inertia of the load and both rope sides at acceleration a_h"
     citations = ("krauze2025",)

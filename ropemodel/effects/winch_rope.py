@@ -15,19 +15,21 @@
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 from ropemodel.papers import en12385 as ropes
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.effects.winch import MODEL, Q
+from ropemodel.quantity import Quantity, positive
 
-_pos = dict(low=0.0, low_open=True, positive=True)
 SRC = "EN 12385-4"
 
 define_effect(MODEL, "rope", "given", "the rope: q_l, q_lw given (paper) or from a catalogue construction and d")
 
 
-D_ROPE = Q("d", "m", "nominal rope diameter", "mm", guess=0.03, high=0.5, warn_low=0.008, warn_high=0.06,
-           usual_source="the diameters of ropemodel/data/ropes.toml (EN 12385-4 classes)", **_pos)
-F_MIN = Q("F_min", "N", "minimum breaking force of the rope", "kN", guess=1e6, **_pos)
+D_ROPE = positive("d", "m", "nominal rope diameter", "mm", guess=0.03, high=0.5, warn_low=0.008, warn_high=0.06,
+                  usual_source="the diameters of ropemodel/data/ropes.toml (EN 12385-4 classes)")
+F_MIN = positive("F_min", "N", "minimum breaking force of the rope", "kN", guess=1e6)
 
 FACTORS = (
     Q("rope_K", "1", "minimum breaking force factor K of the rope class", low=0.0, high=1.0, low_open=True,
@@ -58,7 +60,7 @@ class RopeCatalogue(Submodel):
 
     description = "q_l, q_lw, F_min, A_m, m_l from d and the construction (EN 12385-4)"
     citations = ("krauze2025", "en12385_4")
-    quantities = (
+    quantities: ClassVar[tuple[Quantity, ...]] = (
         D_ROPE,
         F_MIN,
         *FACTORS,

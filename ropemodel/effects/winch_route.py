@@ -32,7 +32,8 @@ INPUTS = (
         Q("L_ul", "m", "distance of point A from the guiding sheave K_K", "m", guess=500.0, **NONNEGATIVE),
         Q("alpha_u", "rad", "inclination of the route", "deg", low=-math.pi / 2, high=math.pi / 2,
           low_open=True, high_open=True, guess=0.3,
-          **usual(-math.pi / 4, math.pi / 4, f"{SRC}, introduction: rope winches serve workings inclined up to 45 deg")),
+          **usual(-math.pi / 4, math.pi / 4,
+                  f"{SRC}, introduction: rope winches serve workings inclined up to 45 deg")),
         Q("mu_pm", "1", "coefficient of resistance of the load", guess=0.05,
           **usual(0.005, 0.2, f"{JUDGEMENT} (0.05): mine cars roll at about 0.01, a sliding load up to 0.2"),
           **COEFFICIENT),
@@ -73,19 +74,25 @@ class StraightRoute(Submodel):
     def equations(self, v):
         a = v["alpha_u"]
         eqs = [
-            Equation("G_ml", v["G_ml"] - kr.load_weight_along_incline(v["G_m"], a), "eq. (1)", formula="G_ml = G_m sin α_u"),
-            Equation("G_l1", v["G_l1"] - kr.rope_weight_along_incline(v["q_l"], v["L_u"] - v["L_ul"], a), "eq. (3)", formula="G_l1 = q_l (L_u − L_ul) sin α_u"),
-            Equation("G_l2", v["G_l2"] - kr.rope_weight_along_incline(v["q_l"], v["L_ul"], a), "eq. (4)", formula="G_l2 = q_l L_ul sin α_u"),
+            Equation("G_ml", v["G_ml"] - kr.load_weight_along_incline(v["G_m"], a), "eq. (1)",
+                     formula="G_ml = G_m sin α_u"),
+            Equation("G_l1", v["G_l1"] - kr.rope_weight_along_incline(v["q_l"], v["L_u"] - v["L_ul"], a), "eq. (3)",
+                     formula="G_l1 = q_l (L_u − L_ul) sin α_u"),
+            Equation("G_l2", v["G_l2"] - kr.rope_weight_along_incline(v["q_l"], v["L_ul"], a), "eq. (4)",
+                     formula="G_l2 = q_l L_ul sin α_u"),
             Equation("G_l", v["G_l"] - (v["G_l1"] + v["G_l2"]), "eq. (2)", formula="G_l = G_l1 + G_l2"),
             Equation("G_mo", v["G_mo"] - kr.load_weight_normal(v["G_m"], a), "eq. (5)", formula="G_mo = G_m cos α_u"),
-            Equation("G_ls", v["G_ls"] - kr.rope_weight_along_incline(v["q_l"], v["L_u"], a), "eq. (6)", formula="G_ls = q_l L_u sin α_u"),
-            Equation("T_m", v["T_m"] - kr.load_resistance(v["mu_pm"], v["G_m"], a), "eq. (7)", formula="T_m = μ_pm G_m cos α_u"),
+            Equation("G_ls", v["G_ls"] - kr.rope_weight_along_incline(v["q_l"], v["L_u"], a), "eq. (6)",
+                     formula="G_ls = q_l L_u sin α_u"),
+            Equation("T_m", v["T_m"] - kr.load_resistance(v["mu_pm"], v["G_m"], a), "eq. (7)",
+                     formula="T_m = μ_pm G_m cos α_u"),
             Equation("T_l1", v["T_l1"] - kr.rope_resistance(v["mu_pl1"], v["q_l"], v["L_u"] - v["L_ul"], a),
                      "eq. (8)", formula="T_l1 = μ_pl1 q_l (L_u − L_ul) cos α_u"),
             Equation("T_l2", v["T_l2"] - kr.rope_resistance(v["mu_pl2"], v["q_l"], v["L_ul"], a), "eq. (9)",
                      formula="T_l2 = μ_pl2 q_l L_ul cos α_u"),
             Equation("T_l", v["T_l"] - (v["T_l1"] + v["T_l2"]), "eq. (10)", formula="T_l = T_l1 + T_l2"),
-            Equation("T_ls", v["T_ls"] - kr.rope_resistance(v["mu_pl"], v["q_l"], v["L_u"], a), "eq. (11)", formula="T_ls = μ_pl q_l L_u cos α_u"),
+            Equation("T_ls", v["T_ls"] - kr.rope_resistance(v["mu_pl"], v["q_l"], v["L_u"], a), "eq. (11)",
+                     formula="T_ls = μ_pl q_l L_u cos α_u"),
         ]
         return eqs
 

@@ -50,6 +50,10 @@ A = (
 B = (35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0.0)
 E = tuple(b - bh for b, bh in zip(B, (5179 / 57600, 0.0, 7571 / 16695, 393 / 640, -92097 / 339200,
                                           187 / 2100, 1 / 40)))
+#: continuous extension of order 4 (Hairer, Nørsett & Wanner, §II.6, the coefficients of DOPRI5's
+#: ``contd5``): y(θ) = y0 + θ(r1 + (1 − θ)(r2 + θ(r3 + (1 − θ) r4))) with r4 = h·Σ DENSE_i k_i
+DENSE = (-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799, -10690763975 / 1880347072,
+         701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423)
 #: first trial step (a fraction of [0, 1]); the controller adapts it from the first step on
 H0 = 0.02
 #: largest growth of the step from one step to the next
@@ -57,6 +61,52 @@ GROW = 1.5
 #: rounding allowance per step, in units of (1 + |x|)
 ULPS = 8 * 2.0**-52
 STATE = ("t", "x", "h", "err", "steps")
+
+
+def stages(f, t, x, h, p, k1=None):
+    """The seven stage derivatives k_i = f(t + c_i h, x + h Σ a_ij k_j, p) of one Dormand–Prince step
+    (``k1`` = f(t, x, p) if already known)."""
+    k = [] if k1 is None else [k1]
+    for i in range(len(k), 7):
+        xi = x + h * sum((a * kj for a, kj in zip(A[i], k) if a != 0.0), ca.SX(0))
+        k.append(f(t + C[i] * h, xi, p))
+    return k
+
+
+def combine(weights, k, h):
+    """h Σ w_i k_i (skipping zero weights)."""
+    return h * sum((w * kj for w, kj in zip(weights, k) if w != 0.0), ca.SX(0))
+
+
+def dense(theta, h, x0, x1, k):
+    """The continuous extension (:data:`DENSE`) at θ ∈ [0, 1] of a step x0 → x1 and its θ-derivative."""
+    r1 = x1 - x0
+    r2 = h * k[0] - r1
+    r3 = r1 - h * k[6] - r2
+    r4 = combine(DENSE, k, h)
+    inner = r3 + (1 - theta) * r4                       # r3 + (1 − θ) r4
+    mid = r2 + theta * inner                            # r2 + θ(...)
+    outer = r1 + (1 - theta) * mid
+    d_mid = inner - theta * r4
+    d_outer = -mid + (1 - theta) * d_mid
+    return x0 + theta * outer, outer + theta * d_outer
+
+
+def until_done(body: ca.Function, inner: int, outer: int, name: str) -> ca.Function:
+    """``body`` (z, p) → z' repeated ``inner·outer`` times, skipping the rest once z[0] ≥ p[-1] (done).
+
+    Two nested loops (``mapaccum``) of conditionals (``Function.if_else``): once done, each further
+    outer iteration skips a whole block of ``inner`` steps, so a long maximum costs little.
+    """
+    z, p = ca.MX.sym("z", body.size1_in(0)), ca.MX.sym("p", body.size1_in(1))
+    idle = ca.Function(f"{name}_idle", [z, p], [z])
+    step = ca.Function(f"{name}_body", [z, p], [ca.Function.if_else(f"{name}_one", body, idle)(z[0] < p[-1], z, p)])
+    block = step.mapaccum(f"{name}_block", inner, [0], [0])
+    blk = ca.Function(f"{name}_blk", [z, p], [block(z, p)[:, -1]])
+    run = ca.Function.if_else(f"{name}_outer", blk, idle)
+    outer_body = ca.Function(f"{name}_outer_body", [z, p], [run(z[0] < p[-1], z, p)])
+    loop = outer_body.mapaccum(f"{name}_loop", outer, [0], [0])
+    return ca.Function(name, [z, p], [loop(z, p)[:, -1]], ["z0", "p"], ["zf"])
 
 
 def _dopri_step(f: ca.Function, n_p: int) -> ca.Function:
@@ -68,7 +118,7 @@ def _dopri_step(f: ca.Function, n_p: int) -> ca.Function:
     rest = 1.0 - t
     last = h >= rest
     he = ca.if_else(last, rest, h)
-    k = []
+    k: list[ca.SX] = []
     for i in range(7):
         xi = x + he * sum((a * kj for a, kj in zip(A[i], k) if a != 0.0), ca.SX(0))
         k.append(f(xi, t + C[i] * he, p))

@@ -21,12 +21,12 @@ numpy arrays and CasADi symbols.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from collections.abc import Callable
 
 import casadi as ca
 import numpy as np
 
-from ropemodel._math import expm1, if_else, log1p
+from ropemodel._math import expm1, fmax, if_else, log1p
 from ropemodel.papers import li_capstan as li
 
 #: regime numbers reported by the scenes (see :func:`regime_number`)
@@ -75,14 +75,43 @@ def _crisp(continuous: bool):
     return parts
 
 
+def smooth_weights(F, F_p, mu, alpha_1, alpha_2, sharpness=30.0):
+    """The smooth law's weights (tight, slack, unloaded) σ(s·z) of the switching functions z
+    (:func:`switching_functions`); sharpness s [-]."""
+    return tuple(logistic(sharpness * z) for z in switching_functions(F, F_p, mu, alpha_1, alpha_2))
+
+
 def _smooth_parts(F, F_p, mu, EA, R, L, alpha_1, alpha_2, sharpness=30.0):
-    zt, zs, zu = switching_functions(F, F_p, mu, alpha_1, alpha_2)
-    wt, ws, wu = (logistic(sharpness * z) for z in (zt, zs, zu))
+    wt, ws, wu = smooth_weights(F, F_p, mu, alpha_1, alpha_2, sharpness)
     k_ti = ((1 - wt) * li.tight_side_stiffness_slipping(F, F_p, mu, EA, R, L)
             + wt * li.tight_side_stiffness_saturated(mu, EA, R, L, alpha_1))
     k_sl = (1 - wu) * ((1 - ws) * li.slack_side_stiffness_slipping(F, F_p, mu, EA, R, L)
                        + ws * li.slack_side_stiffness_saturated(mu, EA, R, L, alpha_2))
     return k_ti, k_sl
+
+
+def inverse_stiffness(x, mu, EA, R, L, alpha_1, alpha_2, weights, continuous=False):
+    """1/K = 1/(K_ti + K_sl) [m/N] of eq. (23)-(26) at the load ratio x = F/F_p ∈ [0, 1] or beyond,
+    finite (with finite derivatives) everywhere, also at F = 0 with L = 0 where K is infinite.
+
+    ``weights`` (w_t, w_s, w_u) ∈ [0, 1]: how saturated the tight side is, how saturated the
+    slack side, how unloaded (0 or 1 for the crisp laws: a regime; logistic for ``smooth``).
+    K_ti = (1 − w_t)/c + w_t k_ts and K_sl = (1 − w_u)((1 − w_s) k_ss' + w_s k_ss), with
+    c = 1/K_ti,slipping = (2Rx + μL(1 + x))/(μEA(1 + x)) (eq. 24 with 12, 22; finite at x = 0),
+    k_ts, k_ss the saturated parts (eq. 24 with 15; eq. 25 with 21, or its continuous alternative)
+    and k_ss' the slack slip-zone part (eq. 25 with 18), entering only as c·k_ss' =
+    (1 + 2Lx/(2Rx/μ + L(1 − x)))(1 − x)/(1 + x) (0 for x ≥ 1).  Then 1/K = c/(c·K).
+    mu [-], EA [N], R [m], L [m] ≥ 0, alpha_1, alpha_2 [rad] > 0; continuous: see :data:`LAWS`.
+    """
+    wt, ws, wu = weights
+    a = 2.0 * R / mu
+    c = (a * x + L * (1.0 + x)) / (EA * (1.0 + x))
+    q = fmax(1.0 - x, 0.0)
+    c_kss = (1.0 + 2.0 * L * x / fmax(a * x + L * q, 1e-250)) * q / (1.0 + x)
+    k_ts = li.tight_side_stiffness_saturated(mu, EA, R, L, alpha_1)
+    k_ss = li.slack_side_stiffness_saturated(mu, EA, R, L, alpha_2, continuous)
+    cK = (1.0 - wt) + wt * k_ts * c + (1.0 - wu) * ((1.0 - ws) * c_kss + ws * k_ss * c)
+    return c / fmax(cK, 1e-250)
 
 
 @dataclass(frozen=True)

@@ -79,12 +79,28 @@ def minimum_breaking_force(K, d, R_r):
 
     K [-] minimum breaking force factor of the rope class; d [m] nominal diameter;
     R_r [Pa] rope grade (1570e6 … 2160e6 in EN 12385-4).
+
+    Examples
+    --------
+    A 42 mm 6x19 IWRC rope of grade 1770 (K = 0.356), 1111.5 kN (makers list 1110 kN):
+
+    >>> K = construction("6x19-IWRC").K
+    >>> round(minimum_breaking_force(K, 0.042, 1770e6) / 1e3, 1)
+    1111.5
     """
     return K * d**2 * R_r
 
 
 def rope_mass_per_metre(W, d):
-    """Nominal length mass m_l = W·d² [kg/m] (EN 12385-4).  W [kg/m³] (catalogue kg/(100 m·mm²) × 1e4); d [m]."""
+    """Nominal length mass m_l = W·d² [kg/m] (EN 12385-4).  W [kg/m³] (catalogue kg/(100 m·mm²) × 1e4); d [m].
+
+    Examples
+    --------
+    The same rope, W = 0.400 kg/(100 m·mm²) = 4000 kg/m³ (makers list 7.06 kg/m):
+
+    >>> round(rope_mass_per_metre(0.400e4, 0.042), 3)
+    7.056
+    """
     return W * d**2
 
 

@@ -202,6 +202,17 @@ def tension_ratio(mu, alpha, q, k):
     ln s + q s (1 − e^{−α/k}) = μα, with q = Q S_0 = (Q_R + Q_T) S_0 [-] >= 0 and
     k = λω [rad] >= 0.  q = 0 gives Euler–Eytelwein, e^{μα} (eq. (8)).
     mu [-] > 0; alpha [rad] >= 0.
+
+    Examples
+    --------
+    Fig. 5's setting μ = 0.2, q = 0.1, λω = 0.01π at α = π (docs/physics.md §3 lists the
+    reference values, computed independently), and the rigid lining q = 0:
+
+    >>> import math
+    >>> round(tension_ratio(0.2, math.pi, 0.1, 0.01 * math.pi), 6)
+    1.597677
+    >>> tension_ratio(0.2, math.pi, 0.0, 1.0) == math.exp(0.2 * math.pi)
+    True
     """
     return exp(log_tension_ratio(mu, alpha, q, k))
 

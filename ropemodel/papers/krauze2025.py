@@ -95,7 +95,8 @@ def rope_weight_along_incline(q_l, length, alpha_u):
 
     >>> import math
     >>> a = math.radians(16)
-    >>> round(rope_weight_along_incline(80.0, 650.0, a) / 1e3, 2), round(rope_weight_along_incline(80.0, 1150.0, a) / 1e3, 2)
+    >>> (round(rope_weight_along_incline(80.0, 650.0, a) / 1e3, 2),
+    ...  round(rope_weight_along_incline(80.0, 1150.0, a) / 1e3, 2))
     (14.33, 25.36)
     """
     return q_l * length * sin(alpha_u)
@@ -183,7 +184,8 @@ def unwinding_rope_force(F_nwl, G_ls, T_ls, direction):
     --------
     Fig. 9 (G_ls = 25.3586 kN, T_ls = 4.4218 kN): F_S = 30.94 kN up and 39.78 kN down.
 
-    >>> round(unwinding_rope_force(20e3, 25358.6, 4421.8, UP) / 1e3, 2), round(unwinding_rope_force(20e3, 25358.6, 4421.8, DOWN) / 1e3, 2)
+    >>> (round(unwinding_rope_force(20e3, 25358.6, 4421.8, UP) / 1e3, 2),
+    ...  round(unwinding_rope_force(20e3, 25358.6, 4421.8, DOWN) / 1e3, 2))
     (30.94, 39.78)
     """
     return 0.5 * F_nwl + G_ls - direction * T_ls

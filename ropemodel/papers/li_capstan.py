@@ -225,6 +225,19 @@ def drive_stiffness(F_T, F_p, mu, EA, R, L, alpha_1, alpha_2, continuous=False):
 
     F_T [N] ≥ 0; F_p [N] > 0; mu [-] > 0; EA [N] > 0; R [m] > 0; L [m] ≥ 0 (> 0 at F_T = 0);
     alpha_1, alpha_2 [rad] > 0 the wraps at this load.  K(0) = 2EA/L.
+
+    Examples
+    --------
+    The experiment of the paper (μ = 0.25, EA = 50 kN, R = 75 mm, L = 360 mm, wraps 64°): unloaded,
+    both free spans in parallel, 2EA/L; fully saturated (regime 3 of eq. (26)) at F_T = F_p − 1 N:
+
+    >>> import math
+    >>> a = math.radians(64)
+    >>> round(drive_stiffness(0.0, 60.0, 0.25, 5e4, 0.075, 0.36, a, a), 2)
+    277777.78
+    >>> k3 = 2 * 0.25 * 5e4 / (2 * 0.075 * (1 - math.exp(-0.25 * a)) + 0.25 * 0.36)
+    >>> math.isclose(drive_stiffness(59.0, 60.0, 0.25, 5e4, 0.075, 0.36, a, a), k3, rel_tol=1e-14)
+    True
     """
     return (tight_side_stiffness(F_T, F_p, mu, EA, R, L, alpha_1)
             + slack_side_stiffness(F_T, F_p, mu, EA, R, L, alpha_2, continuous))

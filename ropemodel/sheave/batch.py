@@ -53,8 +53,8 @@ def ode_log_ratio(mu, alpha, q_R, k_R, q_T=0.0, k_T=1.0, beta=0.0, plugin=DEFAUL
     f = log_ratio_function(plugin, state, float(rtol))
     columns = {name: np.resize(c.ravel(), n) for name, c in zip(RATIO_INPUTS, cols)}
     try:
-        out = evaluate_columns(f, columns, {}, threads=int(parallel), backend=pick_backend(backend, n, plugin in CODEGEN),
-                               block=BLOCK)
+        out = evaluate_columns(f, columns, {}, threads=int(parallel),
+                               backend=pick_backend(backend, n, plugin in CODEGEN), block=BLOCK)
     except RuntimeError as exc:  # a SUNDIALS run that failed outright
         raise SolveError(f"the lining ODE ({plugin}) failed: {str(exc).splitlines()[-1]}") from None
     y, err = out["y"].reshape(shape), out["err"].reshape(shape)

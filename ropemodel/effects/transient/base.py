@@ -96,13 +96,13 @@ class Mode:
     items: tuple[tuple[str, str], ...]
 
     @classmethod
-    def of(cls, modes: dict[str, str]) -> "Mode":
+    def of(cls, modes: dict[str, str]) -> Mode:
         return cls(tuple(modes.items()))
 
     def __getitem__(self, effect: str) -> str:
         return dict(self.items)[effect]
 
-    def replace(self, effect: str, mode: str) -> "Mode":
+    def replace(self, effect: str, mode: str) -> Mode:
         return Mode(tuple((e, mode if e == effect else m) for e, m in self.items))
 
     def __str__(self) -> str:
@@ -150,8 +150,9 @@ class Setup:
         structural choices and checks; options: the scene's ``[numerics]``; parts: effect → the chosen
         transient variant; submodels: effect → every chosen submodel (static ones too: the lining).
     The variants fill in, in assembly order: ``direction``/``travel`` (the travel), ``phases`` and
-    ``speed0`` (the profile: its phases and the drum's speed at t = 0), ``route`` and ``chain`` (the rope; the drum contact may replace the chain), and the
-    orchestrator ``f_scale``/``v_scale`` (force and speed scales of the switching functions).
+    ``speed0`` (the profile: its phases and the drum's speed at t = 0), ``route`` and ``chain`` (the rope;
+    the drum contact may replace the chain), and the orchestrator ``f_scale``/``v_scale`` (force and speed
+    scales of the switching functions).
     """
 
     values: dict
@@ -161,14 +162,14 @@ class Setup:
     submodels: dict
     direction: int = +1
     travel: str = "up"
-    phases: list | None = None
+    phases: list = field(default_factory=list)      # empty until the profile binds
     speed0: Any = 0.0
     route: Any = None
     chain: Any = None
     f_scale: float = 1.0
     v_scale: float = 1.0
 
-    def part(self, effect: str) -> "TransientSubmodel":
+    def part(self, effect: str) -> TransientSubmodel:
         return self.parts[effect]
 
     @property

@@ -19,10 +19,10 @@ take-up z (the rope at the sheave is at u + z/2 and the carriage adds z/2 of pat
 side), the winding span's first element none, and that element's rope mass at the sheave goes to its
 other node with its weight and resistance.  The carriage feels only the unwinding side's tension,
 2·T_S (the frictionless sheave carries the same tension on both tangent points, the load's pull is
-the winding rope's): at rest T_S = F_nwl/2 and the winding rope carries the load, as eq. (12)-(13).  Displacements ``u`` are along p (Eulerian nodes
-at fixed places on the route, the standard lumped model of conveyor and haulage ropes: over a
-transient of tens of seconds the load moves a small part of the route, so the spans' lengths are
-frozen at their initial values).
+the winding rope's): at rest T_S = F_nwl/2 and the winding rope carries the load, as eq. (12)-(13).
+Displacements ``u`` are along p (Eulerian nodes at fixed places on the route, the standard lumped
+model of conveyor and haulage ropes: over a transient of tens of seconds the load moves a small part
+of the route, so the spans' lengths are frozen at their initial values).
 
 Moving masses: the load G_m/g and the rope q_l ℓ/g of every element, lumped half on each end node.
 Weights along the route and resistances come from the route (:mod:`.route`), the Coulomb resistances
@@ -123,7 +123,7 @@ def build_elastic(values: dict, route: Route, L_u: float, x_m: float, segments: 
     sheave = segments                       # S always has `segments` elements: its last node is the sheave
     parts = spans(L_u, x_m)
     load_at_sheave = all(name != "C2" for name, *_ in parts)
-    load, cur = (sheave if load_at_sheave else None), 0
+    load, cur = sheave, 0                   # the load sits at the sheave unless a span C2 leads to it
     for p, (name, s_a, s_b) in enumerate(parts):
         step = (s_b - s_a) / segments
         k = EA / abs(step)
@@ -133,7 +133,7 @@ def build_elastic(values: dict, route: Route, L_u: float, x_m: float, segments: 
             s0, s1 = sorted((s_a + j * step, s_a + (j + 1) * step))
             m, w, r = route.rope("unwinding" if name == "S" else "winding", s0, s1)
             w = w if step > 0 else -w                     # weight along +p
-            for node, other in ((cur, b), (b, cur)):
+            for node in (cur, b):
                 f = 0.5 if share == 0.0 else (0.0 if node == sheave else 1.0)    # sheave's loads: far node
                 fm = 0.5 if share < 1.0 else (0.0 if node == sheave else 1.0)
                 nodes.add(node, "S" if name == "S" else "C", fm * m, f * w, f * r)

@@ -19,11 +19,10 @@ from __future__ import annotations
 
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.transient.base import MODEL, State, Switch, TransientSubmodel, event_table
-from ropemodel.quantity import Quantity
+from ropemodel.quantity import positive
 
 define_effect(MODEL, "drive", "speed", "drive of the transient: prescribed speed ramp, or a torque-limited motor")
 
-_pos = dict(low=0.0, low_open=True, positive=True)
 DRIVE_EVENTS = ("torque_pos", "torque_neg", "on_profile")
 
 
@@ -82,10 +81,10 @@ class TorqueLimitedDrive(Drive):
     description = "motor force at the rim limited to F_drive_max; drum inertia m_drive"
     gathered = False
     quantities = (
-        Quantity("F_drive_max", "N", "largest force the motor gives at the drum rim (torque limit / radius)",
-                 "kN", guess=3e5, **_pos),
-        Quantity("m_drive", "kg", "inertia of drum, gearing and motor reduced to the drum rim (J/R^2)", "kg",
-                 guess=1e4, **_pos),
+        positive("F_drive_max", "N", "largest force the motor gives at the drum rim (torque limit / radius)",
+                 "kN", guess=3e5),
+        positive("m_drive", "kg", "inertia of drum, gearing and motor reduced to the drum rim (J/R^2)", "kg",
+                 guess=1e4),
     )
     SIGN = {"limited_pos": +1, "limited_neg": -1}
 

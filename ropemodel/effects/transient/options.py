@@ -18,7 +18,9 @@ def _int_check(low: int, high: int):
 
 define_numerics(MODEL, "segments", 8, "Kelvin-Voigt elements per rope span (rope_elasticity = segments)",
                 _int_check(1, 400))
-define_numerics(MODEL, "sim_rtol", 1e-8, "relative tolerance of the transient's integrator", positive_number(0.0, 1e-2))
+# below ~1e-13 a double cannot hold the requested accuracy (SUNDIALS: "too much accuracy requested")
+define_numerics(MODEL, "sim_rtol", 1e-8, "relative tolerance of the transient's integrator",
+                positive_number(1e-13, 1e-2))
 define_numerics(MODEL, "sim_dt", 0.02, "output step of the transient's history [s]", positive_number(0.0, 10.0))
 define_numerics(MODEL, "sim_integrator", "cvodes", "CasADi integrator of the transient (BDF: cvodes, idas)",
                 choice("cvodes", "idas"))

@@ -15,21 +15,21 @@ once a scene has a transient, and stay out of static scenes.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from typing import ClassVar
+from collections.abc import Callable
 
 from ropemodel._math import if_else
 from ropemodel.effects.base import Submodel, define_effect, register
 from ropemodel.effects.transient.base import MODEL, TransientSubmodel, gathered_parameters
 from ropemodel.errors import InputError
 from ropemodel.papers import route as rt
-from ropemodel.quantity import Quantity
+from ropemodel.quantity import Quantity, positive
 
 define_effect(MODEL, "dynamics", "none",
               "time-domain transient: none, start (drive ramps up), stop (ramps down) or a whole trip")
 
-_pos = dict(low=0.0, low_open=True, positive=True)
-T_RAMP = Quantity("t_ramp", "s", "duration of the drive's speed ramp", "s", guess=5.0, **_pos)
-T_END = Quantity("t_end", "s", "end of the simulated transient", "s", guess=60.0, **_pos)
+T_RAMP = positive("t_ramp", "s", "duration of the drive's speed ramp", "s", guess=5.0)
+T_END = positive("t_end", "s", "end of the simulated transient", "s", guess=60.0)
 
 
 @dataclass(frozen=True)
@@ -56,7 +56,7 @@ class Profile(TransientSubmodel):
     """A transient: the drum's surface speed as phases; ``initial_fraction``, ``final_fraction`` of v_pj."""
 
     citations = ("krauze2025",)
-    quantities = (T_RAMP, T_END)
+    quantities: ClassVar[tuple[Quantity, ...]] = (T_RAMP, T_END)
     reads = ("v_pj",)                    # declared by the static model's power and lining effects
     order = 2
     gathered = False
@@ -149,7 +149,7 @@ class Trip(Profile):
     (known times: the drum's speed is prescribed and the rope inextensible), and each phase carries the
     load's place, so its segment is constant within a phase.  Linear ramps and an inextensible rope only
     (an elastic rope's spans are frozen over a transient, and a trip moves the load along the whole
-    route): the transient version of :func:`ropemodel.trip.trip`, with which it agrees.
+    route): the transient version of :func:`ropemodel.trips.trip`, with which it agrees.
     """
 
     description = "a whole trip: ramp up, run, ramp down, the load along the whole route"

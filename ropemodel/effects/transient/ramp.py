@@ -14,7 +14,8 @@ A new shape is a new module with a :class:`RampShape` subclass (see CONTRIBUTING
 from __future__ import annotations
 
 import math
-from typing import Callable, NamedTuple
+from typing import NamedTuple
+from collections.abc import Callable
 
 from ropemodel._math import cos, sin
 from ropemodel.effects.base import define_effect, register

@@ -25,6 +25,8 @@ tangent points as functions of that acceleration (``F_C_at``, ``F_S_at``).  The 
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 import casadi as ca
 
 from ropemodel.effects.base import define_effect, register
@@ -46,7 +48,7 @@ class Rope(TransientSubmodel):
     """The lumped loop: node forces, tensions, forces at the drum's tangent points, the slack event."""
 
     citations = ("krauze2025",)
-    quantities = (V_EPS,)
+    quantities: ClassVar[tuple[Quantity, ...]] = (V_EPS,)
     order = 10
     structural = ("L_u", "L_ul", "x_m")
 

@@ -19,7 +19,7 @@ geometry (L_u, L_ul, and the places asked about) are numbers.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import NamedTuple, Protocol
+from typing import Any, NamedTuple, Protocol
 
 from ropemodel.effects.transient.base import G_N
 from ropemodel.papers import krauze2025 as kr
@@ -27,11 +27,12 @@ from ropemodel.papers import route as rt
 
 
 class Loads(NamedTuple):
-    """Mass [kg], weight component along +s (away from the drive) [N], resistance in motion [N]."""
+    """Mass [kg], weight component along +s (away from the drive) [N], resistance in motion [N].
+    Each a float, or a CasADi SX expression in the symbolic smooth mode."""
 
-    mass: object
-    weight: object
-    resistance: object
+    mass: Any
+    weight: Any
+    resistance: Any
 
 
 class Route(Protocol):

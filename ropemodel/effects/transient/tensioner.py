@@ -125,7 +125,8 @@ class ConstantForceTensioner(Tensioner):
         return {"stroke_used": float(h["take_up [m]"].max()),
                 "stroke": float(self.setup.numbers["stroke"]) if self.limited else None,
                 "stroke_unlimited": not self.limited,
-                "stroke_exhausted": any(e["event"] == "stroke_end" for e in events) or bool((h["tensioner"] == "at_end").any()),
+                "stroke_exhausted": (any(e["event"] == "stroke_end" for e in events)
+                                     or bool((h["tensioner"] == "at_end").any())),
                 "stroke_events": events}
 
     def report(self, s):

@@ -1,0 +1,57 @@
+"""The sections of a report: each a function ``ctx -> HTML fragment`` and a predicate saying when it applies.
+
+Sections are registered with :func:`section` when their module is imported; the modules are imported
+in the order of :data:`ropemodel.reports.sections.MODULES`, so the page shows the sections in that
+order (and, within a module, in the order they are defined).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from collections.abc import Callable
+
+
+def always(ctx) -> bool:
+    """The predicate of a section every report has."""
+    return True
+
+
+@dataclass(frozen=True)
+class Section:
+    """One section of the report.
+
+    name: a short identifier, also the fragment the table of contents links to (``#name``).
+    title: the heading shown on the page.
+    render: ``render(ctx) -> str``, the section's HTML (a fragment: no ``<html>``, no ``<section>``); text
+        from the scene must be escaped (the helpers of :mod:`ropemodel.reports.page` do).
+    applies: ``applies(ctx) -> bool``; a section whose predicate is false is left out of the page.
+    """
+
+    name: str
+    title: str
+    render: Callable
+    applies: Callable = always
+
+
+#: every registered section, in page order
+SECTIONS: list[Section] = []
+
+
+def section(name: str, title: str, when: Callable = always):
+    """Decorator: register ``render(ctx) -> HTML`` as the section ``name`` shown when ``when(ctx)`` holds."""
+
+    def deco(render: Callable) -> Callable:
+        if any(s.name == name for s in SECTIONS):
+            raise RuntimeError(f"report section {name!r} registered twice")
+        SECTIONS.append(Section(name, title, render, when))
+        return render
+
+    return deco
+
+
+def sections() -> list[Section]:
+    """Every registered section, in page order (their modules imported first)."""
+    from ropemodel.reports.sections import load_all
+
+    load_all()
+    return list(SECTIONS)

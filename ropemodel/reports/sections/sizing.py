@@ -1,0 +1,47 @@
+"""Section "sizing": the recommended rope, pretension and stroke, the active constraints, every check at
+the recommended design; or, when no design exists, which checks conflict and by how much."""
+
+from __future__ import annotations
+
+from ropemodel.reports import page
+from ropemodel.reports.registry import section
+from ropemodel.reports.sections.results import checks_html
+
+INTRO = """<p>The lightest catalogue rope, then the least pretension, then the least stroke, with every design check
+met in both directions of travel (<code>ropemodel size</code>; catalogue diameter by {{ method }}).</p>"""
+
+
+def design_text(design) -> str:
+    """``d = 38 mm, F_nwl = 43.6 kN, stroke = 4763 mm`` of a feasible design."""
+    q = design.scene.built.quantities
+    return ", ".join(f"{k} = {q[k].show(design.design[k])}" for k in ("d", "F_nwl", "stroke"))
+
+
+@section("sizing", "Sizing", when=lambda ctx: ctx.sizing)
+def sizing(ctx):
+    design = ctx.design
+    q = design.scene.built.quantities
+    html = page.fragment(INTRO, method=design.method)
+    if design.continuous:
+        rows = [[k, page.show(q[k], design.design[k]) if design.design else "-",
+                 page.show(q[k], design.continuous[k]), q[k].description] for k in ("d", "F_nwl", "stroke")]
+        html += page.table(["design variable", "recommended (catalogue)", "continuous optimum", "meaning"], rows,
+                           kinds=["name", "num", "num", ""], cls="design")
+    if not design.feasible:
+        html += page.verdict(False, "No design meets every check.")
+        return html + page.fragment("<pre>{{ m }}</pre>", m=design.message)
+    html += page.verdict(True, f"Design found: {design_text(design)}.")
+    html += page.fragment("<p>Rounded up to practical steps (F_nwl to 0.1 kN, the stroke to 1 mm where the checks "
+                          "allow); every check holds at the printed values.</p>")
+    html += page.fragment("<h3>Active constraints</h3><p>What fixes the design (at the recommended design):</p>"
+                          "<ul>{% for a in active %}<li><code>{{ a }}</code></li>{% endfor %}</ul>",
+                          active=design.active)
+    extra = [[k, page.show(q[k], v), q[k].description] for k, v in design.power.items()]
+    if design.least_drum is not None:
+        extra.append(["D_min", page.show(q["D"], design.least_drum),
+                      "no drum diameter given: the least drum, D_ratio_min d"])
+    if extra:
+        html += page.table(["quantity", "value", "meaning"], extra, kinds=["name", "num", ""])
+    html += page.fragment("<h3>Checks at the recommended design</h3>")
+    html += checks_html({k: v for k, v in design.margins.items() if k in q}, q)   # the static checks
+    return html + page.fragment('<p class="note">{{ m }}</p>', m=design.message)

@@ -1,0 +1,75 @@
+"""Section "trip": a whole trip up and down the route (``ropemodel trip``): forces, drive power and
+energy, exactly piece by piece (:mod:`ropemodel.trips`), with the route's profile when it has segments.
+
+Shown for a winch scene about trips (``dynamics = "trip"`` or a route of ``[[route]]`` segments) that
+gives the speed ``v_pj`` and the ramp time ``t_ramp``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ropemodel.reports import figures, page
+from ropemodel.reports.registry import section
+
+#: summary key → (label, unit shown, factor from SI)
+ROWS = {"t_trip": ("trip time", "s", 1.0), "F_C_max": ("largest winding-rope force F_C", "kN", 1e-3),
+        "F_S_min": ("least unwinding-rope force F_S", "kN", 1e-3), "P_max": ("largest drive power", "kW", 1e-3),
+        "P_rms": ("r.m.s. drive power (thermal rating)", "kW", 1e-3),
+        "E_trip": ("energy drawn per trip", "kWh", 1 / 3.6e6), "E_regen": ("energy the drive could return", "kWh",
+                                                                           1 / 3.6e6),
+        "stroke_needed": ("tensioner stroke needed, eq. (23)", "mm", 1e3)}
+#: history columns drawn, one panel per unit
+UNITS = ("m/s", "N", "W")
+
+
+def has_trip(ctx) -> bool:
+    e, given = ctx.scene.effects, {**ctx.scene.parameters, **ctx.scene.unused}   # a trip uses v_pj, t_ramp
+    return (ctx.scene.model == "winch" and (e.get("dynamics") == "trip" or e.get("route") == "segments")
+            and "v_pj" in given and "t_ramp" in given)
+
+
+@section("trip", "Trip", when=has_trip)
+def trip(ctx):
+    runs = ctx.trips
+    html = page.fragment("<p>A whole trip each way{{ at }}: the drive ramps to v_pj in t_ramp, runs, and "
+                         "ramps to rest; the forces add the ramps' rigid-body inertia to the paper's eq. (12)-(13) "
+                         "on the load's segment, and power and energy are integrated exactly.</p>",
+                         at=", at the recommended design" if ctx.at_design else "")
+    head = ["quantity", "upward", "downward", "unit"]
+    rows = [[label, *(f"{runs[d].summary[k] * f:.6g}" for d in ("up", "down")), unit]
+            for k, (label, unit, f) in ROWS.items()]
+    html += page.table(head, rows, kinds=["", "num", "num", ""])
+    profile = _profile(ctx)
+    if profile:
+        html += page.fragment('<figure><img src="{{ u }}" alt="route profile"><figcaption>The route from the drive '
+                              "(x = 0): height against distance, one straight line per segment.</figcaption></figure>",
+                              u=profile)
+    for d, run in runs.items():
+        uri = figures.panels(run.history, "t [s]", UNITS, title=f"{ctx.scene.name}: trip {d}")
+        if uri:
+            html += page.fragment('<figure><img src="{{ u }}" alt="trip {{ d }}"><figcaption>Trip {{ d }}: speed '
+                                  "(m/s), rope forces (kN) and drive power (kW) against time.</figcaption></figure>",
+                                  u=uri, d=d)
+    return html
+
+
+def _profile(ctx):
+    """The route's profile (height against distance from the drive) as an SVG URI; None for one incline."""
+    n = len(ctx.scene.route)
+    if not n:
+        return None
+    p = ctx.point.parameters
+    lengths = [p[f"L_{i + 1}"] for i in range(n)]
+    slopes = [p[f"alpha_{i + 1}"] for i in range(n)]
+    xs, hs = [0.0], [0.0]
+    for length, a in zip(lengths, slopes):
+        xs.append(xs[-1] + length * math.cos(a))
+        hs.append(hs[-1] - length * math.sin(a))   # the route falls away from the drive toward the return sheave
+    fig = figures.new_figure(figures.WIDTH, 2.2)
+    ax = fig.subplots()
+    ax.plot(xs, hs, "-o", lw=1.4, ms=3)
+    ax.set_xlabel("horizontal distance from the drive [m]")
+    ax.set_ylabel("height [m]")
+    ax.grid(True, lw=0.4, alpha=0.6)
+    return figures.svg_uri(fig)

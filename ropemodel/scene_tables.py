@@ -1,0 +1,228 @@
+"""Reading a scene's tables: each table of a scene file checked on its own, every problem collected in a
+:class:`~ropemodel.errors.Problems` (the scene itself, its cross-parameter rules and its checks
+against the model are :mod:`ropemodel.scene`'s).
+
+* :func:`read_head` — ``[scene]``: name and model; unknown tables;
+* :func:`read_numerics` — ``[numerics]``: options of the model's numerical methods;
+* :func:`read_route` and :func:`route_parameters` — ``[[route]]`` segments (issue "routes");
+* :func:`read_parameters` — ``[parameters]``: SI values, unit checks, values usual for the field,
+  computed quantities given as checks (:class:`Check`), valid parameters that are not used;
+* :func:`set_values` — values set on top of the file (``--set``, ``values=``);
+* :func:`fill_missing` — defaults, and what is missing named with an example value.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from ropemodel.core.model import Model
+from ropemodel.effects import effects_of, misplaced, models, numerics_of
+from ropemodel.errors import InputError, Problems, suggest
+from ropemodel.units import last_digit, split_value, to_si
+
+TABLES = ("scene", "effects", "parameters", "numerics", "route")
+#: keys of a ``[[route]]`` segment → the parameter each becomes (``{i}``: the segment's number from the drive)
+ROUTE_KEYS = {"length": "L_{i}", "inclination": "alpha_{i}", "mu_winding": "mu_w{i}"}
+SCENE_KEYS = ("name", "model", "description")
+
+@dataclass(frozen=True)
+class Check:
+    """A computed quantity given in a scene: the model must reproduce it to the digits typed."""
+
+    value: float       # SI
+    tolerance: float   # SI: half a unit of the last digit typed
+    text: str          # as typed
+
+
+def settable(model: Model, name: str, origin: str) -> str | None:
+    if name in model.parameters:
+        return None
+    option = "--set" if origin == "--set" else "with_values"
+    if name in effects_of(model.name):
+        return f"{name} is an effect: it cannot be set with {option}; choose its variant in the scene's [effects]"
+    if name in model.outputs:
+        return (f"{name} is computed by this scene ({model.quantities[name].equation or 'an output'}), not a "
+                f"parameter; use solve --given {name}=... --find <parameter>")
+    return model.name_problem(name)
+
+
+def options(numerics: dict, route: tuple, point_A: bool = False) -> dict:
+    """The model's options: the scene's numerics and the structure of its route (if it has one)."""
+    return {**numerics, "route": route, "point_A": point_A} if route else dict(numerics)
+
+
+def read_route(data: dict, effects: dict, given: dict, found: Problems):
+    """The ``[[route]]`` segments: (structure, {parameter name: value as typed, with the segment's label})."""
+    segments = data.get("route")
+    wanted = effects.get("route") == "segments"
+    if segments is None:
+        if wanted:
+            found.add('route = "segments" needs the segments: one [[route]] table each, listed from the drive, '
+                      'with length and inclination (e.g. length = "400 m", inclination = "22 deg")')
+        return (), {}
+    if not wanted:
+        found.add('[[route]] segments are given but the route effect is "straight": set [effects] route = "segments"')
+        return (), {}
+    if not isinstance(segments, list) or not segments or not all(isinstance(s, dict) for s in segments):
+        found.add("[[route]] must be a list of tables, one per segment (write [[route]] before each segment); "
+                  "an empty route has no segment")
+        return (), {}
+    if "L_u" in given:
+        found.add("L_u is the sum of the [[route]] segments' lengths: remove it from [parameters]")
+        given.pop("L_u")
+    values: dict[str, tuple[str | None, object]] = {}     # name -> (label, value)
+    for i, seg in enumerate(segments, start=1):
+        for key, value in seg.items():
+            if key not in ROUTE_KEYS:
+                found.add(f"[[route]] segment {i}: unknown key {key!r}; valid: {', '.join(ROUTE_KEYS)}"
+                          f"{suggest(key, ROUTE_KEYS)}")
+                continue
+            values[ROUTE_KEYS[key].format(i=i)] = (f"[[route]] segment {i}: {key}", value)
+        for key in ("length", "inclination"):
+            if key not in seg:
+                found.add(f"[[route]] segment {i} has no {key} (e.g. {key} = "
+                          f"{chr(34)}{'400 m' if key == 'length' else '10 deg'}{chr(34)})")
+                values[ROUTE_KEYS[key].format(i=i)] = (None, None)   # said: not "missing" again
+    return tuple("mu_winding" in seg for seg in segments), values
+
+
+def route_parameters(model: Model, values: dict, bare: str, params: dict, origin: dict, found: Problems) -> None:
+    for name, (label, value) in values.items():
+        if label is None:
+            origin[name] = "route (missing)"
+            continue
+        q = model.quantities[name]
+        try:
+            params[name] = to_si(label, value, q.unit, q.display_unit, bare)
+            origin[name] = "route"
+        except InputError as exc:
+            found.add(str(exc))
+            origin[name] = "route (refused)"
+
+
+def read_table(data: dict, key: str, found: Problems) -> dict:
+    value = data.get(key, {})
+    if not isinstance(value, dict):
+        found.add(f"[{key}] must be a table of NAME = VALUE lines, got {type(value).__name__}")
+        return {}
+    return value
+
+
+def read_head(data: dict, found: Problems):
+    for key in data:
+        if key not in TABLES:
+            found.add(f"unknown table [{key}]; valid tables: {', '.join(TABLES)}{suggest(key, TABLES)}")
+    head = read_table(data, "scene", found)
+    for key in head:
+        if key not in SCENE_KEYS:
+            found.add(f"unknown key {key!r} in [scene]; valid: {', '.join(SCENE_KEYS)}{suggest(key, SCENE_KEYS)}")
+    model = head.get("model", "winch")
+    if not isinstance(model, str) or model not in models():
+        found.add(f"unknown model {model!r}; valid models: {', '.join(models())}{suggest(str(model), models())}")
+    name = head.get("name")
+    if name is not None and not isinstance(name, str):
+        found.add(f"[scene] name must be text, got {name!r}")
+    return name, model
+
+
+def read_numerics(model: str, given: dict, found: Problems) -> dict:
+    specs = numerics_of(model)
+    out = {k: spec.default for k, spec in specs.items()}
+    for key, value in given.items():
+        if key not in specs:
+            valid = ", ".join(sorted(specs)) or "none"
+            found.add(misplaced(model, key, "[numerics]") or
+                      f"unknown numerics option {key!r} for model {model!r}; valid: {valid}{suggest(key, specs)}")
+            continue
+        with found.collect():
+            out[key] = specs[key].check(key, value)
+    return out
+
+
+def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes: list):
+    """SI values of the given parameters; checks (computed quantities given); unused ones."""
+    params, checks, unused, origin = {}, {}, {}, {}
+    quantities = model.universe
+    for key, value in given.items():
+        if key not in quantities:
+            found.add(misplaced(model.name, key, "[parameters]") or
+                      f"unknown parameter {key!r} for model {model.name!r}{suggest(key, quantities)}")
+            continue
+        q = quantities[key]
+        try:
+            si = q.to_si(value, bare)
+        except InputError as exc:
+            found.add(str(exc))
+            origin[key] = "scene (refused)"
+            continue
+        if key in model.outputs:
+            checks[key] = Check(si, half_digit(q, value, si, bare), str(value))
+        elif key in model.parameters:
+            params[key], origin[key] = si, "scene"
+            note = q.unusual(si)
+            if note:
+                notes.append(note)
+        else:
+            owners = model.owners(key)
+            unused[key] = " or ".join(owners) or "no effect of this model"
+            notes.append(f"{key} is not used: it belongs to {unused[key]}")
+    return params, checks, unused, origin
+
+
+def set_values(model: Model, values: Mapping, bare: str, origin_label: str, params: dict, origin: dict,
+                unused: dict, found: Problems, notes: list) -> None:
+    """Parameters set on top of the file (``--set``): they replace the file's values."""
+    for key, value in values.items():
+        problem = settable(model, key, origin_label)
+        if problem and not (key in model.universe and key not in model.symbols):
+            found.add(problem)
+            continue
+        q = model.universe[key]
+        try:
+            si = q.to_si(value, bare)
+        except InputError as exc:
+            found.add(str(exc))
+            origin[key] = f"{origin_label} (refused)"
+            continue
+        if key not in model.parameters:
+            unused[key] = " or ".join(model.owners(key)) or "no effect of this model"
+            notes.append(f"{key} is not used: it belongs to {unused[key]}")
+            continue
+        params[key], origin[key] = si, origin_label
+        note = q.unusual(si)
+        if note:
+            notes.append(note)
+
+
+def half_digit(q, value, si: float, bare: str) -> float:
+    """Half a unit of the last digit typed in ``value``, in SI (how precisely a check was given)."""
+    text = value if isinstance(value, str) else repr(value)
+    num, unit = split_value(text) if isinstance(value, str) else (float(value), "")
+    step = last_digit(text)
+    bigger = q.to_si(f"{num + step!r} {unit}".strip(), bare) if unit or q.dimensionless or bare == "si" else si
+    return 0.5 * abs(bigger - si)
+
+
+def fill_missing(model: Model, params: dict, origin: dict, optional: tuple, found: Problems):
+    defaults, absent, missing = {}, [], []
+    for name in model.parameters:
+        if name in params or name in origin:
+            continue
+        q = model.quantities[name]
+        if q.default is not None:
+            params[name], origin[name] = q.default, "default"
+            defaults[name] = q.default_note or f"default {q.show(q.default)}"
+        elif name in optional:
+            absent.append(name)
+        else:
+            missing.append(name)
+    for name in missing:
+        q = model.quantities[name]
+        shown = f'"{example_value(q)}{q.unit_text}"' if not q.dimensionless else example_value(q)
+        found.add(f"missing parameter {name} ({q.description}), e.g. {name} = {shown}")
+    return defaults, tuple(absent)
+
+
+def example_value(q) -> str:
+    return f"{q.to_display(q.guess):.4g}"

@@ -1,0 +1,72 @@
+"""House rules that a reviewer would otherwise check by eye (issue 14): no module imports another package's
+private names; modules stay short enough to read (about 400 lines) and functions short enough to follow
+(about 60 lines of body). The layer contract is import-linter's (``lint-imports``, run by .ci/run)."""
+
+import ast
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+LIBRARY = sorted(p for d in ("ropemodel", "optimisation") for p in (ROOT / d).rglob("*.py"))
+MAX_MODULE, MAX_FUNCTION = 400, 60
+
+
+def _module(path: Path) -> str:
+    return ".".join(path.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__")
+
+
+def _package(module: str, path: Path) -> str:
+    return module if path.name == "__init__.py" else module.rpartition(".")[0]
+
+
+def private_imports(path: Path) -> list[str]:
+    """``from other.package import _name`` (or ``import other._private``) in ``path``, other ≠ its package."""
+    module = _module(path)
+    own = _package(module, path)
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            target = node.module
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.Import):
+            target, names = "", [a.name for a in node.names]
+        else:
+            continue
+        for name in names:
+            full = f"{target}.{name}" if target else name
+            parts = full.split(".")
+            private = [i for i, part in enumerate(parts) if part.startswith("_") and not part.startswith("__")]
+            if not private:
+                continue
+            home = ".".join(parts[:private[0]])   # the package that owns the private name
+            if home != own and not own.startswith(home + ".") and home.split(".")[0] in ("ropemodel", "optimisation"):
+                found.append(f"{path.relative_to(ROOT)}:{node.lineno} imports {full}")
+            elif home.split(".")[0] not in ("ropemodel", "optimisation"):
+                found.append(f"{path.relative_to(ROOT)}:{node.lineno} imports {full} (a third party's private name)")
+    return found
+
+
+def test_the_checker_finds_a_private_import(tmp_path):
+    bad = ROOT / "ropemodel" / "cli" / "_probe_for_test.py"
+    try:
+        bad.write_text("from ropemodel.sweeps.files import _private\nfrom ropemodel.cli._common import warn\n")
+        assert private_imports(bad) == [f"{bad.relative_to(ROOT)}:1 imports ropemodel.sweeps.files._private"]
+    finally:
+        bad.unlink()
+
+
+def test_no_module_imports_another_packages_private_names():
+    assert [hit for p in LIBRARY for hit in private_imports(p)] == []
+
+
+@pytest.mark.parametrize("path", LIBRARY, ids=lambda p: str(p.relative_to(ROOT)))
+def test_modules_and_functions_stay_short(path):
+    text = path.read_text(encoding="utf-8")
+    assert len(text.splitlines()) <= MAX_MODULE
+    for node in ast.walk(ast.parse(text)):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            body = node.body
+            if len(body) > 1 and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
+                body = body[1:]   # the docstring does not count
+            assert node.end_lineno - body[0].lineno + 1 <= MAX_FUNCTION, f"{node.name} at line {node.lineno}"
