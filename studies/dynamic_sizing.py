@@ -122,6 +122,10 @@ def figure(df: pd.DataFrame):
             d = df[df["method"] == method].set_index(["route", "t_ramp [s]"]).loc[cases]
             x = np.arange(len(cases)) + (j - 1) * width
             bars = ax.bar(x, d[f"{v} vs dynamic [%]"], width, color=colors[method], label=method)
+            for xi, has in zip(x, d["design"].astype(bool)):
+                if not has:
+                    ax.text(xi, 0, "no design", rotation=90, ha="center", va="bottom", fontsize=6,
+                            color=colors[method])
             for bar, ok in zip(bars, d["ok"]):
                 if not ok:
                     bar.set_hatch("///")

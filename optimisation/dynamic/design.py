@@ -28,6 +28,7 @@ from optimisation.dynamic.verify import verify
 from optimisation.infeasibility import diagnose
 from optimisation.problem import VARIABLES, SizingProblem
 from ropemodel.errors import SolveError
+from ropemodel.numerics.held import held_solver_output
 from ropemodel.papers import en12385 as ropes
 from ropemodel.scene import Scene
 
@@ -94,7 +95,7 @@ def _static(scene):
     return static, sol, time.perf_counter() - t0
 
 
-def continuous_optimum(problem, static_xs, record: Refinement | None = None):
+def continuous_optimum(problem, static_xs, record: Refinement | None = None, say=None):
     """The continuous dynamic optimum from the static optimum ``static_xs`` (scaled): (problem on its refined
     grid, solution, None), or (problem, solution, the diagnosis) when no design exists.
 
@@ -107,7 +108,7 @@ def continuous_optimum(problem, static_xs, record: Refinement | None = None):
                                  others=fallback_starts(problem, static_xs))
     if sol.feasible:
         return problem, sol, None
-    diagnosis, x_least = diagnose_dynamic(problem, sol.xs)
+    diagnosis, x_least = diagnose_dynamic(problem, sol.xs, say)
     if not diagnosis.feasible:
         return problem, sol, diagnosis
     problem, sol = solve_refined(problem, x_least, record=record)
@@ -166,7 +167,11 @@ def size_dynamic(scene: Scene | str | os.PathLike, with_sensitivities: bool = Fa
         from optimisation.problem import load_sizing
 
         scene = load_sizing(scene, emit=False)
-    say = progress or (lambda text: None)
+    with held_solver_output():
+        return _size(scene, with_sensitivities, progress or (lambda text: None))
+
+
+def _size(scene: Scene, with_sensitivities: bool, say: Callable[[str], None]) -> DynamicDesign:
     problem = DynamicSizingProblem(scene)
     design = DynamicDesign(problem.scene, False, units=dict(problem.units))
     say("static optimum")
@@ -179,7 +184,7 @@ def size_dynamic(scene: Scene | str | os.PathLike, with_sensitivities: bool = Fa
     say("dynamic optimum (the four manoeuvres inside the NLP)")
     t0 = time.perf_counter()
     record = Refinement()
-    problem, sol, diagnosis = continuous_optimum(problem, ssol.xs, record)
+    problem, sol, diagnosis = continuous_optimum(problem, ssol.xs, record, say)
     design.refinement = record.to_dict()
     if diagnosis is not None:
         design.diagnosis = diagnosis

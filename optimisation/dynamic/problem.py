@@ -35,6 +35,11 @@ BACKOFF = 1e-4
 #: optimum; IPOPT's default 0.1 first pushes the stroke (objective weight 1e-3) ~1e4 m up and takes ~20
 #: iterations to come back (measured on the Fig. 9 scene: 39 iterations against 15)
 MU_INIT = 1e-5
+#: IPOPT's iteration limit on the dynamic NLP (each iteration integrates four manoeuvres with sensitivities,
+#: ~0.4 s on the test scene): measured 13-18 iterations to an optimum, 183 to "Infeasible_Problem_Detected"
+#: (the test scene with a 2 s ramp); a start that reaches the limit hands over to the next start and then to
+#: the least-violation problem (:mod:`optimisation.dynamic.diagnose`)
+MAX_ITER = 250
 #: parameters that stay numbers in the transient: its duration (the grid) and where the load is
 FIXED = ("t_end",)
 
@@ -130,7 +135,7 @@ class DynamicSizingProblem(SizingProblem):
         lagrangian = lam_f * self.f + ca.dot(lam_g[:n], self.g_static)
         hess = ca.Function("hess_lag", [self.xs, self.p, lam_f, lam_g], [ca.triu(ca.hessian(lagrangian, self.xs)[0])],
                            ["x", "p", "lam_f", "lam_g"], ["hess"])
-        return {"hess_lag": hess, "ipopt.mu_init": MU_INIT}
+        return {"hess_lag": hess, "ipopt.mu_init": MU_INIT, "ipopt.max_iter": MAX_ITER}
 
     def refined(self, grids) -> DynamicSizingProblem:
         """The same problem on other grids (the manoeuvres' smooth modes re-used)."""

@@ -30,6 +30,7 @@ from optimisation.dynamic.start import DT_DENSE
 from optimisation.dynamic.verify import verify
 from optimisation.problem import VARIABLES
 from ropemodel.errors import InputError, SolveError
+from ropemodel.numerics.held import held_solver_output
 from ropemodel.scene import Scene
 
 #: the scene's ramp parameter
@@ -123,6 +124,11 @@ def shortest_ramp(scene: Scene | str | os.PathLike) -> RampAnswer:
         from optimisation.problem import load_sizing
 
         scene = load_sizing(scene, emit=False)
+    with held_solver_output():
+        return _shortest(scene)
+
+
+def _shortest(scene: Scene) -> RampAnswer:
     x_si = _design(scene)
     problem = DynamicSizingProblem(scene)
     if RAMP not in problem.params:

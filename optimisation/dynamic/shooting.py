@@ -45,7 +45,8 @@ from ropemodel.dynamics import smooth_mode
 #: cvodes tolerances of the NLP's integration: relative, and absolute in the states' units (m, m/s, J)
 RTOL = 1e-10
 ATOL = 1e-11
-OPTS = {"reltol": RTOL, "abstol": ATOL, "max_num_steps": 100000, "show_eval_warnings": False}
+OPTS = {"reltol": RTOL, "abstol": ATOL, "max_num_steps": 100000, "show_eval_warnings": False,
+        "disable_internal_warnings": True}
 
 
 class Path:

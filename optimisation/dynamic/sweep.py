@@ -26,6 +26,7 @@ from optimisation.dynamic.verify import verify
 from optimisation.problem import SizingProblem
 from optimisation.sweep import sizing_frame, sizing_points
 from ropemodel.errors import InputError, SolveError
+from ropemodel.numerics.held import held_solver_output
 
 
 def dynamic_sizing_sweep(scene, vary=None, *, points=None, progress: bool | None = None) -> pd.DataFrame:
@@ -45,17 +46,18 @@ def dynamic_sizing_sweep(scene, vary=None, *, points=None, progress: bool | None
     iterations, seconds = np.zeros(pts.n, int), np.zeros(pts.n)
     prev = None
     bar = tqdm(total=pts.n, unit="opt", desc="dynamic sizing", disable=(not progress) if progress is not None else None)
-    for i in range(pts.n):
-        values = {k: float(chunk[k][i]) for k in pts.names}
-        p = problem.p_of(values)
-        start = prev if prev is not None else _first_start(problem, p)
-        if start is not None:
-            problem, sol = solve_refined(problem, start, p=p)
-            iterations[i], seconds[i] = sol.iterations, sol.seconds
-            if sol.feasible:
-                _confirm(problem, sol.xs, values)
-                x[i], feasible[i], prev = sol.xs, True, sol.xs
-        bar.update(1)
+    with held_solver_output():
+        for i in range(pts.n):
+            values = {k: float(chunk[k][i]) for k in pts.names}
+            p = problem.p_of(values)
+            start = prev if prev is not None else _first_start(problem, p)
+            if start is not None:
+                problem, sol = solve_refined(problem, start, p=p)
+                iterations[i], seconds[i] = sol.iterations, sol.seconds
+                if sol.feasible:
+                    _confirm(problem, sol.xs, values)
+                    x[i], feasible[i], prev = sol.xs, True, sol.xs
+            bar.update(1)
     bar.close()
     return sizing_frame(problem, q, chunk, x, feasible, iterations, seconds)
 

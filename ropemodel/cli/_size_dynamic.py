@@ -80,7 +80,8 @@ def main(scene, args, to_json) -> int:
         print(json.dumps(to_json(answer.to_dict()), indent=2, allow_nan=False) if args.json
               else ramp_text(scene, answer))
         return 0
-    with status(f"dynamic sizing {scene.name}: rope, pretension and stroke through four manoeuvres"):
-        design = size_dynamic(scene)
+    with status(f"dynamic sizing {scene.name}: rope, pretension and stroke through four manoeuvres") as line:
+        design = size_dynamic(scene, with_sensitivities=True,
+                              progress=lambda step: line.update(f"dynamic sizing {scene.name}: {step}"))
     print(json.dumps(to_json(design.to_dict()), indent=2, allow_nan=False) if args.json else design_text(design))
     return 0 if design.feasible else 1
