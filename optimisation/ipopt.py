@@ -74,11 +74,12 @@ _SOLVERS: dict[tuple[int, bool], tuple[SizingProblem, ca.Function]] = {}
 
 
 def solver(problem: SizingProblem, warm: bool = False) -> ca.Function:
-    """IPOPT on ``problem``'s NLP (built once per problem; ``warm``: with :data:`WARM_OPTIONS`)."""
+    """IPOPT on ``problem``'s NLP (built once per problem; ``warm``: with :data:`WARM_OPTIONS`; a problem's own
+    ``ipopt_options``, if it has any, last)."""
     key = (id(problem), warm)
     hit = _SOLVERS.get(key)
     if hit is None or hit[0] is not problem:
-        options = {**IPOPT_OPTIONS, **WARM_OPTIONS} if warm else IPOPT_OPTIONS
+        options = {**IPOPT_OPTIONS, **(WARM_OPTIONS if warm else {}), **getattr(problem, "ipopt_options", {})}
         hit = _SOLVERS[key] = (problem, ca.nlpsol("sizing_warm" if warm else "sizing", "ipopt", problem.nlp(),
                                                   options))
     return hit[1]
@@ -150,7 +151,7 @@ def _polish(problem, sol, p, lbx, ubx):
     if len(idx) + len(fixed) != 3:
         return
     jac_g, _ = _jac_functions(problem)
-    x = sol.xs.copy()
+    x, last = sol.xs.copy(), np.inf
     for _ in range(20):
         g, J = (np.asarray(a) for a in jac_g(x, p))
         r = np.concatenate([g.ravel()[idx], np.zeros(len(fixed))])
@@ -159,8 +160,11 @@ def _polish(problem, sol, p, lbx, ubx):
             return
         step = np.linalg.solve(A, -r)
         x = x + step
-        if np.max(np.abs(step)) < 1e-15 * max(1.0, np.max(np.abs(x))):
+        size = np.max(np.abs(step))
+        # converged, or at the noise floor of g (a step no longer halves: e.g. g through an integrator)
+        if size < 1e-15 * max(1.0, np.max(np.abs(x))) or size > 0.5 * last:
             break
+        last = size
     g = np.asarray(jac_g(x, p)[0]).ravel()
     if np.all(g > -1e-9) and np.all(x >= lbx - 1e-12) and np.all(x <= ubx + 1e-12):
         sol.xs, sol.g, sol.polished = x, g, True

@@ -63,7 +63,7 @@ def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, method: st
         raise InputError(f"method {method!r}: valid methods: {', '.join(METHODS)}")
     problem = SizingProblem(scene)
     q = scene.built.quantities
-    pts = _points(scene, problem, vary, points)
+    pts = sizing_points(scene, problem, vary, points)
     parts = []
     bar = tqdm(total=pts.n, unit="opt", desc="sizing", disable=(not progress) if progress is not None else None)
     fast = ActiveSetMap(problem, pts.names) if warm and method == "active-set" else None
@@ -75,12 +75,12 @@ def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, method: st
             x, feasible, iterations, seconds = res.x, res.feasible, res.iterations, res.seconds
         else:
             x, feasible, iterations, seconds, prev = _ipopt_points(problem, pts.names, chunk, warm, prev, bar)
-        parts.append(_frame(problem, q, chunk, x, feasible, iterations, seconds))
+        parts.append(sizing_frame(problem, q, chunk, x, feasible, iterations, seconds))
     bar.close()
     return pd.concat(parts, ignore_index=True)
 
 
-def _points(scene, problem, vary, points):
+def sizing_points(scene, problem, vary, points):
     """The checked points of a sizing sweep (a grid from ``vary`` or a table)."""
     inputs = {k: scene.built.quantities[k] for k in problem.params}
     if isinstance(vary, pd.DataFrame):
@@ -116,7 +116,7 @@ def _ipopt_points(problem, names, chunk, warm, prev, bar):
     return x, feasible, iterations, seconds, prev
 
 
-def _frame(problem, q, chunk, x, feasible, iterations, seconds) -> pd.DataFrame:
+def sizing_frame(problem, q, chunk, x, feasible, iterations, seconds) -> pd.DataFrame:
     """The sweep's columns for one chunk (scaled designs ``x``; NaN where there is none)."""
     cols = {label(k, q[k].display_unit): np.asarray(q[k].to_display(np.asarray(v, dtype=float)), dtype=float)
             for k, v in chunk.items()}

@@ -61,6 +61,7 @@ def _size() -> dict:
 class _Status:
     def __init__(self, text: str):
         self.text, self.start, self.stop = text, time.perf_counter(), threading.Event()
+        self.stream = sys.stderr    # the terminal, even while a solver's own output is held (redirected)
         self.thread = threading.Thread(target=self._run, daemon=True)
 
     def update(self, text: str) -> None:
@@ -73,8 +74,8 @@ class _Status:
     def _run(self):
         i = 0
         while not self.stop.wait(0.2):
-            sys.stderr.write(self._line(i))
-            sys.stderr.flush()
+            self.stream.write(self._line(i))
+            self.stream.flush()
             i += 1
 
 
@@ -93,13 +94,13 @@ def status(text: str, flag: bool | None = None):
         yield _Silent()
         return
     s = _Status(text)
-    sys.stderr.write(s._line(0))
-    sys.stderr.flush()
+    s.stream.write(s._line(0))
+    s.stream.flush()
     s.thread.start()
     try:
         yield s
     finally:
         s.stop.set()
         s.thread.join()
-        sys.stderr.write("\r\x1b[K")
-        sys.stderr.flush()
+        s.stream.write("\r\x1b[K")
+        s.stream.flush()

@@ -1,9 +1,12 @@
-"""``ropemodel size SCENE [--set NAME=VALUE ...] [--discrete next-size-up|bonmin] [--json]``.
+"""``ropemodel size SCENE [--set NAME=VALUE ...] [--discrete next-size-up|bonmin] [--dynamic [--find t_ramp]]
+[--json]``.
 
 Chooses the rope diameter d, the pretension F_nwl and the tensioner stroke (see the
 ``optimisation`` package): least rope mass per metre, then least pretension, then least
 stroke, with every design check met in both directions.  Exit 0 with a design, 1 when
 none exists (the report names the conflicting checks and by how much), 2 on bad input.
+``--dynamic`` (or ``[numerics] sizing = "dynamic"`` in the scene): through the start-up and braking of both
+directions (:mod:`ropemodel.cli._size_dynamic`).
 """
 
 from __future__ import annotations
@@ -12,6 +15,7 @@ import json
 import math
 
 from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn
+from ropemodel.errors import InputError
 from ropemodel.progress import status
 
 NAME = "size"
@@ -22,6 +26,11 @@ def add_arguments(parser) -> None:
     add_scene_arguments(parser, optional=False)
     parser.add_argument("--discrete", choices=("next-size-up", "bonmin"), default=None,
                         help="how to pick the catalogue diameter (default: next-size-up)")
+    parser.add_argument("--dynamic", action="store_true",
+                        help="size through start-up and braking in both directions (a scene with a transient); "
+                             "every design verified by simulation")
+    parser.add_argument("--find", metavar="NAME", default=None,
+                        help="with --dynamic: t_ramp, the shortest ramp that keeps the scene's design safe")
 
 
 def _num(v):
@@ -68,6 +77,12 @@ def main(args) -> int:
 
     scene = prepare(scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False))
     warn(scene.warnings)
+    if args.dynamic or scene.numerics.get("sizing") == "dynamic":
+        from ropemodel.cli import _size_dynamic
+
+        return _size_dynamic.main(scene, args, _num)
+    if args.find:
+        raise InputError("--find needs --dynamic (size --dynamic --find t_ramp)")
     with status(f"sizing {scene.name}: rope, pretension and stroke"):
         design = size(scene, method=args.discrete or DEFAULT_DISCRETE)
     if args.json:

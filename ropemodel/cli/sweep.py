@@ -49,6 +49,9 @@ def add_arguments(parser) -> None:
                         help="at every point, the sizing optimum (d, F_nwl, stroke) instead of the outputs; "
                              "each optimisation warm-starts from its neighbour (not resumable)")
     parser.add_argument("--cold", action="store_true", help="with --sizing: no warm start")
+    parser.add_argument("--dynamic", action="store_true",
+                        help="with --sizing: the dynamic optimum (every check through start and stop in both "
+                             "directions, each point verified by simulation; a scene with a transient)")
     parser.add_argument("--no-progress", action="store_true",
                         help="no progress bar, as --quiet (default: a bar on stderr when it is a terminal)")
 
@@ -67,6 +70,8 @@ def main(args) -> int:
     points = read_points(args.points) if args.points else None
     if points is not None and vary:
         raise InputError("give either --vary grids or --points FILE, not both")
+    if args.dynamic and not args.sizing:
+        raise InputError("--dynamic needs --sizing (a sweep of the dynamic sizing optimum)")
     if args.sizing:
         return _sizing(scene, vary, points, args)
     given: dict[str, str | None] = {g.strip(): None for g in args.given if "=" not in g}
@@ -98,6 +103,7 @@ def _summary(path, as_json: bool, rows: int, columns: list[str], status: str = "
 
 
 def _sizing(scene, vary, points, args) -> int:
+    from optimisation.problem import prepare
     from optimisation.sweep import sizing_sweep
     from ropemodel.progress import enabled
     from ropemodel.sweeps.files import OutputLock, check_output, write_frame
@@ -107,8 +113,14 @@ def _sizing(scene, vary, points, args) -> int:
     out = check_output(args.output)
     with OutputLock(out):
         try:
-            frame = sizing_sweep(scene, vary or None, points=points, warm=not args.cold,
-                                 progress=enabled(False if args.no_progress else None))
+            if args.dynamic:
+                from optimisation.dynamic.sweep import dynamic_sizing_sweep
+
+                frame = dynamic_sizing_sweep(prepare(scene), vary or None, points=points,
+                                             progress=enabled(False if args.no_progress else None))
+            else:
+                frame = sizing_sweep(scene, vary or None, points=points, warm=not args.cold,
+                                     progress=enabled(False if args.no_progress else None))
         except KeyboardInterrupt:
             print("interrupted: nothing written (a sizing sweep is not resumable)", file=sys.stderr)
             return 130

@@ -12,14 +12,21 @@ events of the other modes as path constraints: no slip (``slip_fwd`` ≥ 0), the
     sm = smooth_mode(scene, ["d", "F_nwl", "t_ramp"])
     x0 = sm.x0(sm.p0)                       # the equilibrium at the start, x0(p)
     xdot = sm.f(x0, 0.0, sm.p0)             # f(x, t, p) -> xdot, over the whole profile [0, t_end]
-    sm.out(x0, 0.0, sm.p0)                  # F_C, F_S, take_up, T_min [, slip_fwd, slip_back]
+    sm.out(x0, 0.0, sm.p0)                  # F_C, F_S, take_up, T_min, T [, slip_fwd, slip_back]
+    sm.bounds(sm.p0)                        # the phases' ends [s] as functions of p (t_ramp may be a symbol)
+    sm.pieces[k].f(x, t, p)                 # phase k's own smooth right-hand side (no if_else)
 
 The variants build the same equations as :func:`~ropemodel.dynamics.simulate` does, from symbolic
 values: the static model's outputs (q_l, q_lw of a catalogue rope, the forces the drum contact is
 linearised at, ...) through its compiled forward Function, the initial equilibrium as a symbolic
 linear solve.  The drive profile is one piecewise expression over [0, t_end] (``if_else`` at the
-phases' ends, each branch finite everywhere).  Parameters that fix the structure (route geometry,
-the load's position: each variant's ``structural`` names) must stay numbers.
+phases' ends, each branch finite everywhere); ``pieces`` gives each phase's own expressions (smooth up
+to and past its ends), which an integrator restarted at the phases' ends (``bounds``) needs: the
+hybrid simulator does the same, and an integrator stepping over a step of the drive's acceleration
+loses order there.  ``out`` also gives every element tension ``T`` of the rope loop (its least,
+``T_min``, is a minimum: not smooth where two tensions cross; ``T >= 0`` element by element is).
+Parameters that fix the structure (route geometry, the load's position: each variant's ``structural``
+names) must stay numbers.
 """
 
 from __future__ import annotations
@@ -41,13 +48,23 @@ OUTPUTS = {"F_C [N]": "F_C", "F_S [N]": "F_S", "take_up [m]": "take_up", "T_min 
 SWITCHES = ("slip_fwd", "slip_back")
 
 
+class Piece(NamedTuple):
+    """One phase of the profile: f (x, t, p) → xdot and out (x, t, p) → as :attr:`SmoothMode.out`, with
+    the phase's own drive speed and acceleration (smooth expressions, valid past the phase's ends)."""
+
+    f: ca.Function
+    out: ca.Function
+
+
 class SmoothMode(NamedTuple):
     """CasADi Functions of the smooth mode.
 
     f: (x, t, p) → xdot; out: (x, t, p) → F_C [N], F_S [N], take_up [m], T_min [N] (least tension of the
-    rope) and, with a friction lining, slip_fwd = ρ(F_S)·F_S − F_C and slip_back = ρ(F_C)·F_C − F_S [N]
-    (≥ 0: no slip); x0: (p) → the state at t = 0.  params: the names in p; p0: their scene values (SI);
-    layout: the named states of x; t_end [s] and phase_ends [s] (at p0: where the profile has kinks).
+    rope), T [N] (every element's tension; empty for a rigid rope) and, with a friction lining,
+    slip_fwd = ρ(F_S)·F_S − F_C and slip_back = ρ(F_C)·F_C − F_S [N] (≥ 0: no slip); x0: (p) → the
+    state at t = 0.  params: the names in p; p0: their scene values (SI); layout: the named states of x;
+    t_end [s] and phase_ends [s] (at p0: where the profile has kinks); pieces: one :class:`Piece` per
+    phase; bounds: (p) → the phases' starts and ends [s] (``t0``, ``t1``, one entry per phase).
     """
 
     f: ca.Function
@@ -58,6 +75,8 @@ class SmoothMode(NamedTuple):
     layout: Layout
     t_end: float
     phase_ends: tuple
+    pieces: tuple
+    bounds: ca.Function
 
 
 def smooth_mode(scene, params) -> SmoothMode:
@@ -72,19 +91,29 @@ def smooth_mode(scene, params) -> SmoothMode:
                   {q.effect: q for q in parts}, submodels)
     system = bind(setup, parts)
     profile = next(q for q in parts if isinstance(q, Profile))
-    ode, switches, outputs, _ = system.assemble(profile.whole(), system.smooth_mode())
-    x, t = system.x, system.t
-    raw = {s.name: s.g for s in switches if s.name in SWITCHES}
-    names = [OUTPUTS[k] for k in OUTPUTS] + [n for n in SWITCHES if n in raw]
-    exprs = [outputs[k] for k in OUTPUTS] + [raw[n] for n in SWITCHES if n in raw]
+    f, out = _functions(system, profile.whole(), p, "")
+    pieces = tuple(Piece(*_functions(system, ph, p, f"_{k}")) for k, ph in enumerate(setup.phases))
     x0, _ = system.initial()
     p0 = np.array([scene.parameters[n] for n in params], float)
     ends = tuple(float(ca.evalf(ca.substitute(ph.t1, p, p0))) for ph in setup.phases)
-    return SmoothMode(
-        ca.Function("f", [x, t, p], [ode], ["x", "t", "p"], ["xdot"]),
-        ca.Function("out", [x, t, p], exprs, ["x", "t", "p"], names),
-        ca.Function("x0", [p], [x0], ["p"], ["x0"]),
-        params, p0, system.layout, ends[-1], ends)
+    t0s = ca.vertcat(*[ph.t0 for ph in setup.phases])
+    t1s = ca.vertcat(*[ph.t1 for ph in setup.phases])
+    return SmoothMode(f, out, ca.Function("x0", [p], [x0], ["p"], ["x0"]),
+                      params, p0, system.layout, ends[-1], ends, pieces,
+                      ca.Function("bounds", [p], [t0s, t1s], ["p"], ["t0", "t1"]))
+
+
+def _functions(system, phase, p, suffix: str):
+    """(f, out) of the smooth mode in ``phase`` as Functions of (x, t, p)."""
+    mode = system.smooth_mode()
+    ode, switches, outputs, _ = system.assemble(phase, mode)
+    tensions = system.variables(phase, mode).get("T", [])
+    x, t = system.x, system.t
+    raw = {s.name: s.g for s in switches if s.name in SWITCHES}
+    names = [OUTPUTS[k] for k in OUTPUTS] + ["T"] + [n for n in SWITCHES if n in raw]
+    exprs = [outputs[k] for k in OUTPUTS] + [ca.vertcat(*tensions)] + [raw[n] for n in SWITCHES if n in raw]
+    return (ca.Function(f"f{suffix}", [x, t, p], [ode], ["x", "t", "p"], ["xdot"]),
+            ca.Function(f"out{suffix}", [x, t, p], exprs, ["x", "t", "p"], names))
 
 
 def _check_params(scene, params, parts) -> None:

@@ -60,9 +60,14 @@ class Context:
 
     @once
     def design(self):
-        """The sizing (``optimisation.design.Design``) of a sizing scene, else None."""
+        """The sizing (``optimisation.design.Design``) of a sizing scene, else None; through the four manoeuvres
+        (``optimisation.dynamic.DynamicDesign``) when the scene asks for it (``[numerics] sizing = "dynamic"``)."""
         if not self.sizing:
             return None
+        if self.scene.numerics.get("sizing") == "dynamic":
+            from optimisation.dynamic import size_dynamic
+
+            return size_dynamic(self.scene)
         from optimisation.design import DEFAULT_DISCRETE, size
 
         return size(self.scene, method=self.method or DEFAULT_DISCRETE, with_sensitivities=False)

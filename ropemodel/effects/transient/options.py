@@ -24,3 +24,6 @@ define_numerics(MODEL, "sim_rtol", 1e-8, "relative tolerance of the transient's 
 define_numerics(MODEL, "sim_dt", 0.02, "output step of the transient's history [s]", positive_number(0.0, 10.0))
 define_numerics(MODEL, "sim_integrator", "cvodes", "CasADi integrator of the transient (BDF: cvodes, idas)",
                 choice("cvodes", "idas"))
+define_numerics(MODEL, "sizing", "static", "how `ropemodel size` and the report size the winch: static (the paper's "
+                "forces) or dynamic (every check through start and stop in both directions; needs a transient)",
+                choice("static", "dynamic"))

@@ -1,0 +1,236 @@
+"""The whole dynamic sizing answer: continuous optimum, catalogue design, each manoeuvre's peaks and
+active instant, every design verified by the hybrid simulator — or why no design exists.
+
+Steps of :func:`size_dynamic`: the static optimum (:mod:`optimisation.design`); the static design with
+the dynamic factors its own transient shows (:func:`~optimisation.dynamic.start.factored_start`, the
+start); the dynamic NLP on a refined time grid (:func:`~optimisation.dynamic.refine.solve_refined`);
+the next catalogue size up with F_nwl and stroke re-optimised through the transients, rounded up as
+the static sizing rounds; each design simulated through its four manoeuvres
+(:func:`~optimisation.dynamic.verify.verify`).  A design the simulator does not confirm is an error
+(:class:`~ropemodel.errors.SolveError`), never a result.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from optimisation.design import Design, rounded_up, solve_best
+from optimisation.dynamic.diagnose import diagnose_dynamic
+from optimisation.dynamic.problem import DynamicSizingProblem
+from optimisation.dynamic.refine import Refinement, solve_refined
+from optimisation.dynamic.start import factored_start, fallback_starts
+from optimisation.dynamic.verify import verify
+from optimisation.infeasibility import diagnose
+from optimisation.problem import VARIABLES, SizingProblem
+from ropemodel.errors import SolveError
+from ropemodel.numerics.held import held_solver_output
+from ropemodel.papers import en12385 as ropes
+from ropemodel.scene import Scene
+
+
+@dataclass
+class DynamicDesign(Design):
+    """:class:`~optimisation.design.Design` with the manoeuvres: ``manoeuvres`` (per manoeuvre at the
+    catalogue design: where the load is, peaks and least margins from the simulator), ``static`` (the
+    static optimum, SI), ``refinement`` (what the grid refinement did), ``seconds`` (static and dynamic
+    solve times, s, this run)."""
+
+    manoeuvres: list = field(default_factory=list)
+    manoeuvres_continuous: list = field(default_factory=list)
+    static: dict | None = None
+    refinement: dict = field(default_factory=dict)
+    seconds: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        out = super().to_dict()
+        out["sizing"] = "dynamic"
+        out["manoeuvres"] = self.manoeuvres
+        if out.get("continuous") is not None:
+            out["continuous"]["manoeuvres"] = self.manoeuvres_continuous
+        out["active_instants"] = [a for a in self.active if " @ " in a and ", t = " in a]
+        out["static"] = self.static
+        out["refinement"] = self.refinement
+        out["seconds"] = self.seconds
+        return out
+
+
+def _checked(problem, xs, what: str) -> list:
+    """The verdicts of the simulator at ``xs``; a failure is an error."""
+    verdicts = verify(problem, xs)
+    bad = [f"{v.manoeuvre}: " + "; ".join(v.failures) for v in verdicts if not v.ok]
+    if bad:
+        raise SolveError(f"the {what} design fails in the hybrid simulator (" + " | ".join(bad) + "); the NLP's "
+                         "checks did not hold between its grid points; report it")
+    return verdicts
+
+
+def _summaries(verdicts) -> list[dict]:
+    return [v.to_dict() for v in verdicts]
+
+
+def _margins(problem, xs, verdicts) -> dict:
+    """The static checks' margins (the static model) and each check's least margin through each manoeuvre
+    (the simulator's history), in their own units."""
+    out = {k: v for k, v in problem.margins(xs).items() if k in problem.static_constraints}
+    for v in verdicts:
+        out.update({f"{name} @ {v.manoeuvre}": m for name, (m, _) in v.least.items()})
+    return out
+
+
+def _active(sol, problem, catalogue: bool) -> list[str]:
+    bounds = [f"{VARIABLES[i]} {side} bound" for i, side in sol.active_bounds if not (catalogue and i == 0)]
+    return list(sol.active) + bounds + (["d (catalogue size)"] if catalogue else [])
+
+
+def _static(scene):
+    """The static optimum (scaled solution, problem, seconds)."""
+    static = SizingProblem(scene)
+    t0 = time.perf_counter()
+    sol = solve_best(static)
+    return static, sol, time.perf_counter() - t0
+
+
+def continuous_optimum(problem, static_xs, record: Refinement | None = None, say=None):
+    """The continuous dynamic optimum from the static optimum ``static_xs`` (scaled): (problem on its refined
+    grid, solution, None), or (problem, solution, the diagnosis) when no design exists.
+
+    Starts: the static design with the factors its transient shows (:func:`factored_start`), then the
+    static design with the flat factor (:func:`fallback_starts`); when neither ends in a design, the
+    least-violation problem (:func:`diagnose_dynamic`) decides: no design, or a design IPOPT missed, from
+    which the NLP is solved again (measured: the 600 m route at 25 deg with a 3 s ramp, where both starts
+    ended infeasible and the least-violation problem found a design)."""
+    problem, sol = solve_refined(problem, factored_start(problem, static_xs), record=record,
+                                 others=fallback_starts(problem, static_xs))
+    if sol.feasible:
+        return problem, sol, None
+    diagnosis, x_least = diagnose_dynamic(problem, sol.xs, say)
+    if not diagnosis.feasible:
+        return problem, sol, diagnosis
+    problem, sol = solve_refined(problem, x_least, record=record)
+    if not sol.feasible:
+        raise SolveError("a design keeping every check through the manoeuvres exists (the least-violation problem "
+                         "found one), but the sizing NLP did not converge from it; report it")
+    return problem, sol, None
+
+
+def size_dynamic(scene: Scene | str | os.PathLike, with_sensitivities: bool = False,
+                 progress: Callable[[str], None] | None = None) -> DynamicDesign:
+    """Size the winch of ``scene`` through its start-up and braking in both directions
+    (``ropemodel size --dynamic``): the lightest catalogue rope, then the least pretension, then the least
+    stroke such that every design check of Krauze et al. (2025) holds at every instant of four simulated
+    manoeuvres (start and stop, up and down), each returned design verified by the hybrid simulator.
+
+    Parameters
+    ----------
+    scene : Scene or str or Path
+        A winch sizing scene (catalogue rope) with a transient: ``dynamics = "start"`` or ``"stop"`` with
+        its ramp ``t_ramp`` [s], duration ``t_end`` [s], rope model, tensioner and drum friction; the four
+        manoeuvres are made from it. A TOML file or built-in name is read by
+        :func:`optimisation.problem.load_sizing`.
+    with_sensitivities : bool
+        Also compute ∂x*/∂p of the continuous optimum (:mod:`optimisation.dynamic.sensitivity`).
+    progress : callable, optional
+        Called with a short text at each step (the command line's status line).
+
+    Returns
+    -------
+    DynamicDesign
+        As :func:`optimisation.design.size`'s :class:`~optimisation.design.Design` (``design``,
+        ``continuous``: d [m], F_nwl [N], stroke [m]; ``active``; ``margins``), plus ``static`` (the static
+        optimum, SI), ``manoeuvres`` (per manoeuvre: where the load is, peaks F_C_max [N], F_S_min [N],
+        take_up_max [m], dynamic factor [-], each check's least margin and its instant [s]) and
+        ``seconds``. When no design exists: ``feasible`` is False, ``message`` and ``diagnosis`` name the
+        conflicting checks with their manoeuvre and instant, and what alone would make a design exist.
+
+    Raises
+    ------
+    InputError
+        The scene cannot be sized dynamically (no transient, a rope without a catalogue, bad values).
+    SolveError
+        A design the hybrid simulator does not confirm (never returned as a result).
+
+    Examples
+    --------
+    A minute or more of work (four manoeuvres integrated inside IPOPT), so not run as a doctest; the
+    test scene of ``tests/_dynamic_scene.py``::
+
+        design = size_dynamic("my_winch.toml")
+        design.design["d"], design.continuous["d"], design.static["d"]    # m: catalogue, dynamic, static
+        [m["peaks"]["F_C_max"] for m in design.manoeuvres]                 # N, each manoeuvre simulated
+    """
+    if not isinstance(scene, Scene):
+        from optimisation.problem import load_sizing
+
+        scene = load_sizing(scene, emit=False)
+    with held_solver_output():
+        return _size(scene, with_sensitivities, progress or (lambda text: None))
+
+
+def _size(scene: Scene, with_sensitivities: bool, say: Callable[[str], None]) -> DynamicDesign:
+    problem = DynamicSizingProblem(scene)
+    design = DynamicDesign(problem.scene, False, units=dict(problem.units))
+    say("static optimum")
+    static, ssol, t_static = _static(problem.scene)
+    if not ssol.feasible:
+        design.diagnosis = diagnose(static)
+        design.message = "no static design exists, so no dynamic one: " + design.diagnosis.text(static.units)
+        return design
+    design.static = static.to_si(ssol.xs)
+    say("dynamic optimum (the four manoeuvres inside the NLP)")
+    t0 = time.perf_counter()
+    record = Refinement()
+    problem, sol, diagnosis = continuous_optimum(problem, ssol.xs, record, say)
+    design.refinement = record.to_dict()
+    if diagnosis is not None:
+        design.diagnosis = diagnosis
+        design.message = diagnosis.text(problem.units)
+        return design
+    design.seconds = {"static": t_static, "dynamic": time.perf_counter() - t0}
+    say("verifying the continuous optimum by simulation")
+    verdicts = _checked(problem, sol.xs, "continuous")
+    design.continuous = problem.to_si(sol.xs)
+    design.active_continuous = _active(sol, problem, False)
+    design.margins_continuous = _margins(problem, sol.xs, verdicts)
+    design.manoeuvres_continuous = _summaries(verdicts)
+    design.lexicographic_ok = sol.lexicographic_ok
+    if with_sensitivities:
+        from optimisation.dynamic.sensitivity import sensitivities
+
+        say("sensitivities of the optimum")
+        design.sensitivities = sensitivities(problem, sol)
+    say("catalogue size")
+    return _catalogue(problem, sol, design, say)
+
+
+def _catalogue(problem, sol, design: DynamicDesign, say) -> DynamicDesign:
+    """The next catalogue size up with F_nwl and stroke re-optimised (and rounded up), verified."""
+    if design.continuous is None:
+        raise ValueError("the catalogue design needs the continuous optimum")
+    d_star = design.continuous["d"]
+    for dk in [d for d in ropes.diameters() if d >= d_star - 1e-9]:
+        x0 = np.array([dk / problem.x_scale[0], *sol.xs[1:]])
+        prob, dsol = solve_refined(problem, x0, fix_d=dk)
+        if not dsol.feasible:
+            continue
+        xs = rounded_up(prob, dsol.xs)
+        say(f"verifying d = {dk * 1e3:g} mm by simulation")
+        verdicts = _checked(prob, xs, "catalogue")
+        design.feasible = True
+        design.design = prob.to_si(xs)
+        design.active = _active(dsol, prob, True)
+        design.margins = _margins(prob, xs, verdicts)
+        design.manoeuvres = _summaries(verdicts)
+        values = prob.evaluate(xs)
+        design.power = {k: values[k] for k in ("N_p_up", "N_p_down") if k in values}
+        if prob.least_drum:
+            design.least_drum = values["D"]
+        design.message = "design found; every check holds through the four manoeuvres (verified by simulation)"
+        return design
+    design.message = (f"no catalogue diameter from {d_star * 1e3:.4g} mm up keeps every check through the "
+                      f"manoeuvres (the largest is {ropes.diameters()[-1] * 1e3:g} mm)")
+    return design

@@ -1,0 +1,130 @@
+"""The four manoeuvres of dynamic sizing and the checks made through each of them.
+
+A winch starts and stops in both directions: upward start, upward stop, downward start, downward
+stop.  Each manoeuvre is the scene's transient (its ramp, rope model, tensioner, drum friction) with
+``dynamics`` = ``"start"`` or ``"stop"`` and ``travel`` = ``"up"`` or ``"down"``, and the load where
+it happens: at the scene's ``x_m`` when the scene gives one, otherwise where the manoeuvre naturally
+happens on a trip — an upward trip starts with the load at the return sheave (x_m = L_u) and stops
+with it at the drive (x_m = 0), a downward trip the other way round (:data:`NATURAL`).
+
+The checks through a manoeuvre (:data:`CHECKS`, each ≥ 0 at every instant; docs/physics.md §7):
+
+* rope safety: the rope force at the drum's tangent points against the static check's rope safety,
+  F_min − n_rope·F_C(t) ≥ 0 and the same for F_S(t) (the margin shown as F_min/(n_rope F) − 1);
+* no slip on the drum: the switching functions of the hybrid simulator, slip_fwd = ρ(F_S)·F_S − F_C
+  and slip_back = ρ(F_C)·F_C − F_S ≥ 0 [N] (the transient is the force history itself: no n_slip);
+* unwinding rope taut, F_S(t) − F_S_min ≥ 0, and winding rope taut, F_C(t) − F_S_min ≥ 0 [N], as in
+  static sizing; every element of the rope loop in tension, T_e(t) ≥ 0 [N] (the lumped rope model's
+  validity; the simulator's terminal ``slack`` event);
+* the tensioner within its stroke: stroke − z(t) ≥ 0 and z(t) ≥ 0 [m] (z the take-up, the paper's
+  measure of stroke ΔF, eq. (23)).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import NamedTuple
+from collections.abc import Callable
+
+from ropemodel.errors import InputError
+
+#: (dynamics, travel) → (where the load is when the scene gives no x_m, as a fraction of L_u; why)
+NATURAL = {
+    ("start", "up"): (1.0, "the start of an upward trip: the load at the return sheave, x_m = L_u"),
+    ("stop", "up"): (0.0, "the end of an upward trip: the load at the drive, x_m = 0"),
+    ("start", "down"): (0.0, "the start of a downward trip: the load at the drive, x_m = 0"),
+    ("stop", "down"): (1.0, "the end of a downward trip: the load at the return sheave, x_m = L_u"),
+}
+ORDER = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
+WORDS = {"up": "upward", "down": "downward"}
+
+
+@dataclass(frozen=True)
+class Manoeuvre:
+    """One manoeuvre: ``dynamics`` ("start"/"stop"), ``travel`` ("up"/"down"), the load's place x_m [m]
+    and why it is there (``source``: "given" or the natural place's reason)."""
+
+    dynamics: str
+    travel: str
+    x_m: float
+    source: str
+
+    @property
+    def label(self) -> str:
+        """``"upward start"``, ``"downward stop"``, ..."""
+        return f"{WORDS[self.travel]} {self.dynamics}"
+
+    @property
+    def where(self) -> str:
+        """Where the load is, and why (for the output)."""
+        return f"x_m = {self.x_m:.6g} m ({self.source})"
+
+    def to_dict(self) -> dict:
+        return {"dynamics": self.dynamics, "travel": self.travel, "x_m": self.x_m, "x_m_source": self.source}
+
+
+def manoeuvres(scene) -> list[Manoeuvre]:
+    """The four manoeuvres of ``scene``, in :data:`ORDER`."""
+    v = scene.parameters
+    if "L_u" not in v:
+        raise InputError("dynamic sizing needs the route length L_u (a straight route)")
+    x_m = v.get("x_m", math.inf)
+    given = math.isfinite(x_m)
+    out = []
+    for dynamics, travel in ORDER:
+        fraction, why = NATURAL[(dynamics, travel)]
+        out.append(Manoeuvre(dynamics, travel, float(x_m) if given else fraction * float(v["L_u"]),
+                             "given" if given else why))
+    return out
+
+
+def manoeuvre_scene(scene, manoeuvre: Manoeuvre, design: dict, optional=()):
+    """The scene of one manoeuvre at the SI ``design`` (d, F_nwl, stroke: numbers for the transient's
+    structure and scales; the NLP makes them symbols)."""
+    sc = scene.with_effects({"dynamics": manoeuvre.dynamics, "travel": manoeuvre.travel}, optional=optional)
+    values = {"x_m": manoeuvre.x_m, **design}
+    if "D" in sc.absent:        # a rigid drum without a diameter: the traction does not depend on it
+        values["D"] = 40.0 * design["d"]
+    return sc.with_values(values)
+
+
+class Check(NamedTuple):
+    """A check through a manoeuvre: ``nlp(o, a)`` the constraint (≥ 0, in ``unit`` — N or m — before
+    scaling), ``margin(o, a)`` the margin shown (its own ``shown`` unit); ``o`` the smooth mode's
+    outputs at the samples, ``a`` the design's and scene's values (F_min, n_rope, F_S_min, stroke)."""
+
+    name: str
+    text: str
+    unit: str
+    shown: str
+    needs: str
+    nlp: Callable
+    margin: Callable
+
+
+def _ratio(force):
+    return lambda o, a: a["F_min"] / (a["n_rope"] * o[force]) - 1
+
+
+CHECKS = (
+    Check("safety_margin", "rope safety F_min/F_C(t) >= n_rope", "N", "1", "F_C",
+          lambda o, a: a["F_min"] - a["n_rope"] * o["F_C"], _ratio("F_C")),
+    Check("safety_margin_S", "rope safety F_min/F_S(t) >= n_rope", "N", "1", "F_S",
+          lambda o, a: a["F_min"] - a["n_rope"] * o["F_S"], _ratio("F_S")),
+    Check("slip_margin_fwd", "no slip, drum ahead: rho F_S(t) >= F_C(t)", "N", "N", "slip_fwd",
+          lambda o, a: o["slip_fwd"], lambda o, a: o["slip_fwd"]),
+    Check("slip_margin_back", "no slip, rope overruns: rho F_C(t) >= F_S(t)", "N", "N", "slip_back",
+          lambda o, a: o["slip_back"], lambda o, a: o["slip_back"]),
+    Check("slack_margin", "unwinding rope taut F_S(t) >= F_S_min", "N", "N", "F_S",
+          lambda o, a: o["F_S"] - a["F_S_min"], lambda o, a: o["F_S"] - a["F_S_min"]),
+    Check("taut_margin", "winding rope taut F_C(t) >= F_S_min", "N", "N", "F_C",
+          lambda o, a: o["F_C"] - a["F_S_min"], lambda o, a: o["F_C"] - a["F_S_min"]),
+    Check("tension_margin", "every rope element in tension T(t) >= 0", "N", "N", "T",
+          lambda o, a: o["T"], lambda o, a: o["T"]),
+    Check("stroke_margin", "take-up within the stroke z(t) <= stroke", "m", "m", "take_up",
+          lambda o, a: a["stroke"] - o["take_up"], lambda o, a: a["stroke"] - o["take_up"]),
+    Check("stroke_start_margin", "carriage off its start stop z(t) >= 0", "m", "m", "take_up",
+          lambda o, a: o["take_up"], lambda o, a: o["take_up"]),
+)
+CHECK = {c.name: c for c in CHECKS}

@@ -1,0 +1,142 @@
+"""The dynamic sizing NLP: the static sizing problem plus every check through the four manoeuvres.
+
+Same decision variables (d, F_nwl, stroke, scaled as in :class:`optimisation.problem.SizingProblem`),
+same lexicographic objective (least rope mass, then pretension, then stroke), same parameters p and
+every static check; added: the checks of :data:`~optimisation.dynamic.manoeuvres.CHECKS` at every
+point of each manoeuvre's time grid, each manoeuvre's transient integrated inside the NLP
+(:mod:`optimisation.dynamic.shooting`).  A constraint is named
+``"<check> @ <manoeuvre>, t = <time> s"``.  The class is a :class:`SizingProblem` (the same
+attributes: ``g``, ``constraints``, ``units``, ``g_scale``, ``margins()``), so the static package's
+IPOPT solve with its active-set polish, catalogue rounding, infeasibility diagnosis and
+sensitivities apply to it unchanged.
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+import casadi as ca
+import numpy as np
+
+from optimisation.dynamic.manoeuvres import manoeuvre_scene, manoeuvres
+from optimisation.dynamic.shooting import Path
+from optimisation.problem import D_OPTIONAL, SIZED, VARIABLES, SizingProblem
+from ropemodel.dynamics.assemble import chosen, transient_parts
+from ropemodel.errors import InputError
+
+#: largest step [s] of the first time grid (refinement adds the exact local minima of the checks)
+DT_GRID = 0.1
+#: back-off of every check through a manoeuvre in the NLP, in scaled units (F_ref = 0.1 G_m for forces, 1 m
+#: for the stroke): the NLP asks g >= BACKOFF.  Two integrations at rtol 1e-10 (the NLP's and the hybrid
+#: simulator's) of the Fig. 9 manoeuvres agree to 0.2 N (4e-6 F_ref); the back-off (4.7 N on ~250 kN, 0.1 mm
+#: of stroke) keeps a design the NLP puts on a check on the safe side of it in the simulator too
+BACKOFF = 1e-4
+#: IPOPT's first barrier parameter: the start (:func:`optimisation.dynamic.start.factored_start`) is near the
+#: optimum; IPOPT's default 0.1 first pushes the stroke (objective weight 1e-3) ~1e4 m up and takes ~20
+#: iterations to come back (measured on the Fig. 9 scene: 39 iterations against 15)
+MU_INIT = 1e-5
+#: IPOPT's iteration limit on the dynamic NLP (each iteration integrates four manoeuvres with sensitivities,
+#: ~0.4 s on the test scene): measured 13-18 iterations to an optimum, 183 to "Infeasible_Problem_Detected"
+#: (the test scene with a 2 s ramp); a start that reaches the limit hands over to the next start and then to
+#: the least-violation problem (:mod:`optimisation.dynamic.diagnose`)
+MAX_ITER = 250
+#: parameters that stay numbers in the transient: its duration (the grid) and where the load is
+FIXED = ("t_end",)
+
+
+def _transient(scene):
+    if scene.effects.get("dynamics") not in ("start", "stop"):
+        raise InputError("dynamic sizing needs a scene with a transient: set [effects] dynamics = \"start\" (or "
+                         "\"stop\"; sizing makes all four manoeuvres, start and stop in both directions) with its "
+                         "t_ramp, t_end and the rope model, tensioner and drum friction")
+
+
+class DynamicSizingProblem(SizingProblem):
+    """The dynamic sizing NLP of ``scene`` (a winch sizing scene with a transient).
+
+    grids: one time grid per manoeuvre (see :class:`~optimisation.dynamic.shooting.Path`); default a
+    uniform grid of step :data:`DT_GRID`.  paths: the manoeuvres' :class:`Path` objects of a previous
+    problem of the same scene (a refined grid re-uses them).
+    """
+
+    def __init__(self, scene, grids=None, paths=None):
+        _transient(scene)
+        super().__init__(scene)
+        self.static_constraints = list(self.constraints)
+        self.g_static = self.g
+        self.manoeuvres = manoeuvres(self.scene)
+        if paths is None:
+            start = self.to_si(self.x0())
+            paths = [self._path(m, start) for m in self.manoeuvres]
+        self.paths = paths
+        self.grids = grids or [path.uniform_grid(self.pp0(path), DT_GRID) for path in paths]
+        self._add_paths()
+
+    def _path(self, manoeuvre, design) -> Path:
+        optional = SIZED + D_OPTIONAL
+        sc = manoeuvre_scene(self.scene, manoeuvre, design, optional)
+        structural = {n for q in transient_parts(sc, chosen(sc)) for n in q.structural}
+        shared = [k for k in self.params if k in sc.parameters and k not in structural and k not in FIXED]
+        return Path(manoeuvre, sc, VARIABLES + tuple(shared))
+
+    def pp_of(self, path, x_si, p):
+        """The smooth mode's parameter vector of ``path`` from the design (SI) and the NLP's p."""
+        idx = [self.params.index(k) for k in path.names[len(VARIABLES):]]
+        return ca.vertcat(x_si, *[p[i] for i in idx])
+
+    def pp0(self, path, xs=None, p=None) -> np.ndarray:
+        """Numbers of :meth:`pp_of` at scaled ``xs`` (default the start) and ``p`` (default the scene's)."""
+        xs = self.x0() if xs is None else np.asarray(xs, float)
+        p = self.p0 if p is None else np.asarray(p, float)
+        return np.asarray(ca.evalf(self.pp_of(path, ca.DM(xs * self.x_scale), ca.DM(p)))).ravel()
+
+    def values(self, x_si, p) -> dict:
+        """What the checks read besides the transient: F_min (the catalogue rope's), n_rope, F_S_min, stroke."""
+        xs = x_si / ca.DM(self.x_scale)
+        return {"F_min": self.outputs(x=xs, p=p)["F_min"], "n_rope": p[self.params.index("n_rope")],
+                "F_S_min": p[self.params.index("F_S_min")], "stroke": x_si[2]}
+
+    def _add_paths(self) -> None:
+        x_si = self.xs * ca.DM(self.x_scale)
+        a = self.values(x_si, self.p)
+        g, names, scale, margins = [], [], [], []
+        unit_scale = {"N": self.F_ref, "m": 1.0}
+        for j, (path, grid) in enumerate(zip(self.paths, self.grids)):
+            _, o, _ = path.samples(self.pp_of(path, x_si, self.p), grid, f"m{j}")
+            times = np.concatenate(path.times(self.pp0(path), grid))
+            for check in path.checks:
+                rows = o[check.needs].shape[0]
+                g.append(ca.vec(check.nlp(o, a)))
+                margins.append(ca.vec(check.margin(o, a)))
+                for t in times:
+                    for e in range(rows):
+                        tag = f"[{e}]" if check.needs == "T" else ""
+                        names.append(f"{check.name}{tag} @ {path.manoeuvre.label}, t = {t:.6g} s")
+                scale += [unit_scale[check.unit]] * (rows * len(times))
+                self.units.update({n: check.unit for n in names[len(names) - rows * len(times):]})
+        self.dynamic_constraints = names
+        self.constraints = self.static_constraints + names
+        self.g = ca.vertcat(self.g, ca.vertcat(*g) / ca.DM(scale) - BACKOFF)
+        self.g_scale = np.concatenate([self.g_scale, scale])
+        self._margin_exprs = self._margin_exprs + margins
+
+    @cached_property
+    def ipopt_options(self) -> dict:
+        """IPOPT settings of this NLP (:func:`optimisation.ipopt.solver` adds them): the first barrier
+        parameter :data:`MU_INIT`, and the Hessian of the Lagrangian of the objective and the static checks
+        only (exact, closed form).  The transient's own second derivatives are left out: through the
+        integrator they cost 20-80 Jacobians each (forward-over-adjoint 19 s, forward-over-forward 5.4 s
+        against 0.28 s for the Jacobian, measured on the Fig. 9 scene), and at the usual optimum, a vertex
+        of three active checks, the Newton step is fixed by the active constraints' Jacobian alone, so
+        IPOPT converges as fast without them (measured: 15 iterations).  The optimum satisfies the KKT
+        conditions with the exact first derivatives."""
+        lam_f, lam_g = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", self.g.numel())
+        n = self.g_static.numel()
+        lagrangian = lam_f * self.f + ca.dot(lam_g[:n], self.g_static)
+        hess = ca.Function("hess_lag", [self.xs, self.p, lam_f, lam_g], [ca.triu(ca.hessian(lagrangian, self.xs)[0])],
+                           ["x", "p", "lam_f", "lam_g"], ["hess"])
+        return {"hess_lag": hess, "ipopt.mu_init": MU_INIT, "ipopt.max_iter": MAX_ITER}
+
+    def refined(self, grids) -> DynamicSizingProblem:
+        """The same problem on other grids (the manoeuvres' smooth modes re-used)."""
+        return DynamicSizingProblem(self.scene, grids, self.paths)

@@ -1,0 +1,57 @@
+"""Sensitivities of the dynamic optimum, ∂x*/∂p, from its active checks.
+
+At the usual dynamic optimum, a vertex (as many active checks and bounds as design variables — e.g.
+the rope safety at the peak of the upward start, no slip at another instant of it, and the static
+stroke), the active set fixes the design: g_A(x*(p), p) = 0, so
+
+    ∂x*/∂p = −J_A⁻¹ ∂g_A/∂p,
+
+with J_A = ∂g_A/∂x (and unit rows for active bounds).  Both Jacobians are exact CasADi derivatives
+through the integrator (forward sensitivities).  An active check at an instant t* stays active at
+the moving instant t*(p): its value there is a local minimum in t, so ∂g/∂t = 0 and moving the
+instant changes g only to second order (an envelope argument); the NLP's grid point is the
+refinement's exact t* (:mod:`optimisation.dynamic.refine`).  Elsewhere (fewer active constraints
+than variables) the KKT system needs the Lagrangian's second derivatives through the integrator:
+:func:`optimisation.sensitivity.sensitivities` computes it exactly (slower).
+
+Parameters that fix the transient's structure (the route's geometry, where the load is, the
+transient's duration t_end) are not symbols of the transient and get no sensitivity.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from optimisation.ipopt import Solution
+from optimisation.problem import VARIABLES
+
+
+def symbolic_params(problem) -> list[str]:
+    """The parameters every manoeuvre's transient has as symbols (those with a sensitivity)."""
+    shared = set.intersection(*[set(path.names) for path in problem.paths])
+    return [k for k in problem.params if k in shared]
+
+
+def sensitivities(problem, sol: Solution, p=None) -> dict[str, dict[str, float]]:
+    """∂{d, F_nwl, stroke}*/∂p_j in SI units for every parameter of :func:`symbolic_params`."""
+    p = problem.p0 if p is None else np.asarray(p, float)
+    names = symbolic_params(problem)
+    idx = [problem.constraints.index(c) for c in sol.active]
+    fixed = [i for i, _ in sol.active_bounds]
+    if len(idx) + len(fixed) != len(VARIABLES):
+        from optimisation.sensitivity import sensitivities as kkt
+
+        full = kkt(problem, sol, p)
+        return {k: full[k] for k in names}
+    cols = [problem.params.index(k) for k in names]
+    g = problem.g_function(problem.xs, problem.p)
+    active = ca.vertcat(*[g[i] for i in idx])
+    jac = ca.Function("jac_active", [problem.xs, problem.p],
+                      [ca.jacobian(active, problem.xs), ca.jacobian(active, problem.p)])
+    Jx, Jp = (np.asarray(a) for a in jac(sol.xs, p))
+    E = np.eye(len(VARIABLES))[fixed, :]
+    A = np.vstack([Jx, E]) if fixed else Jx
+    rhs = -np.vstack([Jp[:, cols], np.zeros((len(fixed), len(cols)))])
+    dx = np.linalg.solve(A, rhs) * problem.x_scale[:, None]
+    return {name: {v: float(dx[i, j]) for i, v in enumerate(VARIABLES)} for j, name in enumerate(names)}

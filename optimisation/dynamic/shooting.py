@@ -1,0 +1,151 @@
+"""One manoeuvre's transient inside the NLP: single shooting with CasADi's cvodes and its sensitivities.
+
+The smooth mode (:func:`ropemodel.dynamics.smooth_mode`: rope sticking, carriage free, the drive on
+its ramp) is integrated phase by phase of the drive profile — restarted at every phase's end, as the
+hybrid simulator does, so no step of the drive's acceleration is stepped over — in scaled time
+t = t0 + (t1 − t0)·τ, τ ∈ [0, 1], so that a phase's end may be a decision variable (``t_ramp`` for the
+shortest ramp).  The integrator returns the state on the grid of τ; the checks
+(:data:`~optimisation.dynamic.manoeuvres.CHECKS`) are evaluated there.  Exact derivatives: CasADi
+differentiates through the integrator by forward sensitivities (the Jacobian) and
+forward-over-adjoint ones (the Hessian of the Lagrangian), under cvodes' own error control.
+
+Why single shooting, measured (the test scene of ``tests/_dynamic_scene.py``: Fig. 9 route and load, 4 rope
+elements per span, 22 states per manoeuvre, 12 s manoeuvres; the design fixed at d 48 mm, F_nwl 59.8 kN):
+
+* **single shooting** (this module): 3 decision variables and 7 819 path constraints over the four
+  manoeuvres.  All four integrated with the Jacobian of every constraint (forward sensitivities): 0.18 s,
+  i.e. one IPOPT iteration; the whole continuous solve with grid refinement took 9-14 s, and the
+  integration agrees with the hybrid simulator's to 0.2 N (:mod:`optimisation.dynamic.verify`).
+* **direct collocation** (Radau, 3 points per interval, one manoeuvre only, design fixed — just solving
+  the transient): 10 582 variables and equations at 0.1 s intervals, 1.1 s; 21 142 at 0.05 s, 2.6 s; its
+  peak F_C off the integrator's by 8e-5 relative (25 N: five times the NLP's back-off of 4.7 N, so the
+  transcription error would decide the design, with no error control); at 0.02 s (52 822 variables)
+  IPOPT's restoration failed from a constant initial guess.  Four manoeuvres with free design variables
+  would be four times larger again.  Multiple shooting would add the node states (22 per node) for
+  no gain: the smooth mode is stable (damped) over a manoeuvre, which is where multiple shooting earns
+  its keep.
+
+So the transient's accuracy is the integrator's error control, not a discretisation the NLP picks,
+and the design is checked between grid points by adding each check's exact local minima to the grid
+(:mod:`optimisation.dynamic.refine`) and, independently, by the hybrid simulator
+(:mod:`optimisation.dynamic.verify`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import casadi as ca
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from optimisation.dynamic.manoeuvres import CHECKS, Manoeuvre
+from ropemodel.dynamics import smooth_mode
+
+#: cvodes tolerances of the NLP's integration: relative, and absolute in the states' units (m, m/s, J)
+RTOL = 1e-10
+ATOL = 1e-11
+OPTS = {"reltol": RTOL, "abstol": ATOL, "max_num_steps": 100000, "show_eval_warnings": False,
+        "disable_internal_warnings": True}
+
+
+class Path:
+    """The smooth mode of one manoeuvre and its checks, integrated on a grid of each phase's τ.
+
+    ``names``: the smooth mode's symbolic parameters (the sized design and the scene's other
+    parameters); ``pp`` below is a vector of them (numbers or MX).  A *grid* is a list, one entry per
+    phase, of increasing τ in [0, 1] that starts at 0 and ends at 1.
+    """
+
+    def __init__(self, manoeuvre: Manoeuvre, scene, names):
+        self.manoeuvre, self.names = manoeuvre, tuple(names)
+        self.sm = smooth_mode(scene, self.names)
+        outs = self.sm.out.name_out()
+        self.n_elements = self.sm.out.size1_out("T")
+        self.checks = [c for c in CHECKS if c.needs in outs and (c.needs != "T" or self.n_elements)]
+        self._dae = []
+        tau, pp, x = ca.SX.sym("tau"), ca.SX.sym("pp", len(self.names)), ca.SX.sym("x", self.sm.layout.nx)
+        ends = ca.SX.sym("ends", 2)
+        for piece in self.sm.pieces:
+            h = ends[1] - ends[0]
+            ode = h * piece.f(x, ends[0] + h * tau, pp)
+            self._dae.append({"x": x, "t": tau, "p": ca.vertcat(pp, ends), "ode": ode})
+        self._steps: dict = {}
+
+    # ------------------------------------------------------------------ grids
+    def phase_bounds(self, pp) -> np.ndarray:
+        """Numeric (t0, t1) of every phase at the numbers ``pp``."""
+        t0, t1 = self.sm.bounds(pp)
+        return np.column_stack([np.asarray(t0).ravel(), np.asarray(t1).ravel()])
+
+    def uniform_grid(self, pp, dt: float) -> list[np.ndarray]:
+        """At most ``dt`` [s] between grid points in every phase."""
+        out = []
+        for t0, t1 in self.phase_bounds(pp):
+            n = max(2, math.ceil((t1 - t0) / dt))
+            out.append(np.linspace(0.0, 1.0, n + 1))
+        return out
+
+    def times(self, pp, grid) -> list[np.ndarray]:
+        """The grid's times [s] per phase at the numbers ``pp``."""
+        return [t0 + (t1 - t0) * np.asarray(g) for (t0, t1), g in zip(self.phase_bounds(pp), grid)]
+
+    # ------------------------------------------------------------------ the transient on a grid
+    def samples(self, pp, grid, name: str = "I"):
+        """The smooth mode at every grid point: (times, outputs, states) with ``outputs`` a dict name →
+        row(s) of samples (F_C, F_S, take_up, T, slip_fwd, slip_back) and ``states`` one column per
+        sample; MX when ``pp`` is, numpy arrays for numbers.
+
+        Each phase contributes its own τ = 0 (the state where the previous phase ended, with this
+        phase's drive acceleration) and τ = 1: both one-sided values at a step of acceleration."""
+        symbolic = isinstance(pp, ca.MX)
+        t0s, t1s = self.sm.bounds(pp)
+        x = self.sm.x0(pp)
+        times: list = []
+        cols: dict[str, list] = {}
+        states: list = []
+        for k, (piece, tau) in enumerate(zip(self.sm.pieces, grid)):
+            tau = np.asarray(tau, float)
+            t0, t1 = t0s[k], t1s[k]
+            integ = ca.integrator(f"{name}_{k}", "cvodes", self._dae[k], 0.0, list(tau[1:]), OPTS)
+            X = integ(x0=x, p=ca.vertcat(pp, t0, t1))["xf"]
+            X = ca.horzcat(x, X)
+            t = t0 + (t1 - t0) * ca.DM(tau).T
+            out = piece.out.map(len(tau))(X, t, pp)
+            for key in piece.out.name_out():
+                cols.setdefault(key, []).append(out[piece.out.name_out().index(key)])
+            times.append(t)
+            states.append(X)
+            x = X[:, -1]
+        result = {k: ca.horzcat(*v) for k, v in cols.items()}
+        all_times, all_states = ca.horzcat(*times), ca.horzcat(*states)
+        if symbolic:
+            return all_times, result, all_states
+        return (np.asarray(all_times).ravel(), {k: np.asarray(v) for k, v in result.items()},
+                np.asarray(all_states))
+
+    # ------------------------------------------------------------------ exact minima between samples
+    def step(self, k: int) -> ca.Function:
+        """(x, t_a, h, pp) → the state at t_a + h in phase k (numbers)."""
+        if k not in self._steps:
+            x, pp = ca.SX.sym("x", self.sm.layout.nx), ca.SX.sym("pp", len(self.names))
+            ta, h, s = ca.SX.sym("ta"), ca.SX.sym("h"), ca.SX.sym("s")
+            dae = {"x": x, "t": s, "p": ca.vertcat(pp, ta, h), "ode": h * self.sm.pieces[k].f(x, ta + h * s, pp)}
+            integ = ca.integrator(f"step_{k}", "cvodes", dae, 0.0, 1.0, OPTS)
+            X, P, TA, H = ca.MX.sym("x", self.sm.layout.nx), ca.MX.sym("pp", len(self.names)), ca.MX.sym("ta"), \
+                ca.MX.sym("h")
+            self._steps[k] = ca.Function(f"step_{k}", [X, TA, H, P], [integ(x0=X, p=ca.vertcat(P, TA, H))["xf"]])
+        return self._steps[k]
+
+    def exact_minimum(self, k: int, x_a, t_a: float, span: float, value, pp) -> float:
+        """The time of the least ``value(out)`` in phase k within [t_a, t_a + span], integrating from the
+        state ``x_a`` at t_a (bounded Brent to 1e-10 s)."""
+        out = self.sm.pieces[k].out
+        step = self.step(k)
+
+        def g(s):
+            x = x_a if s <= 0 else step(x_a, t_a, s, pp)
+            return float(value(out.call({"x": x, "t": t_a + s, "p": pp})))
+
+        res = minimize_scalar(g, bounds=(0.0, span), method="bounded", options={"xatol": 1e-10})
+        return t_a + float(res.x)

@@ -1,0 +1,87 @@
+"""``ropemodel size SCENE --dynamic [--find t_ramp]``: sizing through start-up and braking.
+
+``--dynamic``: d, F_nwl and stroke such that every check holds through the four manoeuvres (start and stop,
+both directions; :mod:`optimisation.dynamic`), each design verified by the hybrid simulator.
+``--dynamic --find t_ramp``: the shortest ramp that keeps the scene's design safe.  Exit 0 with an answer,
+1 when none exists, 2 on bad input.
+"""
+
+from __future__ import annotations
+
+import json
+
+from ropemodel.progress import status
+
+#: what ``--find`` can ask for with ``--dynamic``
+FINDS = ("t_ramp",)
+
+
+def _row(name, values, q) -> str:
+    cells = "".join(f"{q[name].to_display(v):>14.6g}" if v is not None else f"{'-':>14}" for v in values)
+    return f"{name:<12}{cells}  {q[name].display_unit}"
+
+
+def _manoeuvre_lines(manoeuvres, q) -> list[str]:
+    kN = 1e-3
+    lines = ["", f"{'manoeuvre':<16}{'F_C max':>10}{'F_S min':>10}{'take-up max':>13}{'factor':>8}  where the load is",
+             f"{'':<16}{'[kN]':>10}{'[kN]':>10}{'[m]':>13}{'[-]':>8}"]
+    for m in manoeuvres:
+        pk = m["peaks"]
+        lines.append(f"{m['manoeuvre']:<16}{pk['F_C_max'] * kN:>10.4g}{pk['F_S_min'] * kN:>10.4g}"
+                     f"{pk['take_up_max']:>13.4g}{pk['dynamic_factor']:>8.3g}  {m['where']}")
+    return lines
+
+
+def design_text(design) -> str:
+    """The human output of a :class:`~optimisation.dynamic.DynamicDesign` (units stated)."""
+    from optimisation.dynamic.manoeuvres import CHECK
+
+    q = design.scene.built.quantities
+    lines = [f"{design.scene.name}: dynamic sizing (start and stop in both directions, verified by simulation)"]
+    if design.continuous:
+        lines += ["", f"{'':<12}{'catalogue':>14}{'continuous':>14}{'static':>14}"]
+        for k in ("d", "F_nwl", "stroke"):
+            lines.append(_row(k, [design.design[k] if design.design else None, design.continuous[k],
+                                  (design.static or {}).get(k)], q))
+    if design.feasible:
+        lines += ["", "active constraints: " + ", ".join(design.active)]
+        lines += _manoeuvre_lines(design.manoeuvres, q)
+        lines += ["", f"{'check margin (least over the manoeuvre)':<52}{'value':>14}  unit"]
+        for k, v in design.margins.items():
+            check = k.split(" @ ")[0]
+            unit = CHECK[check].shown if " @ " in k else design.units.get(k, q[k].unit if k in q else "")
+            unit = "-" if unit == "1" else unit
+            lines.append(f"{k:<52}{v:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS'}")
+    lines += ["", design.message]
+    return "\n".join(lines)
+
+
+def ramp_text(scene, answer) -> str:
+    lines = [f"{scene.name}: the shortest start and stop ramp that keeps the design safe",
+             "design: " + ", ".join(f"{k} = {scene.built.quantities[k].to_display(v):.6g} "
+                                    f"{scene.built.quantities[k].display_unit}" for k, v in answer.design.items()),
+             "", f"t_ramp = {answer.t_ramp:.6g} s  (verified by simulation: it holds; a shorter ramp fails "
+             f"{', '.join(answer.active) or 'a check'})"]
+    lines += _manoeuvre_lines([v.to_dict() for v in answer.verdicts], scene.built.quantities)
+    return "\n".join(lines)
+
+
+def main(scene, args, to_json) -> int:
+    """Run ``size --dynamic`` on the prepared ``scene``; ``to_json`` turns a dict into JSON-safe numbers."""
+    from optimisation.dynamic import size_dynamic
+    from optimisation.dynamic.ramp import shortest_ramp
+    from ropemodel.errors import InputError
+
+    if args.find:
+        if args.find not in FINDS:
+            raise InputError(f"--find {args.find!r}: with --dynamic it finds {', '.join(FINDS)}")
+        with status(f"{scene.name}: the shortest ramp that keeps the design safe"):
+            answer = shortest_ramp(scene)
+        print(json.dumps(to_json(answer.to_dict()), indent=2, allow_nan=False) if args.json
+              else ramp_text(scene, answer))
+        return 0
+    with status(f"dynamic sizing {scene.name}: rope, pretension and stroke through four manoeuvres") as line:
+        design = size_dynamic(scene, with_sensitivities=True,
+                              progress=lambda step: line.update(f"dynamic sizing {scene.name}: {step}"))
+    print(json.dumps(to_json(design.to_dict()), indent=2, allow_nan=False) if args.json else design_text(design))
+    return 0 if design.feasible else 1

@@ -1,0 +1,63 @@
+"""Section "dynamic sizing": a scene that sizes through its start-up and braking (``[numerics] sizing =
+"dynamic"``): the dynamic design against the static one, each of the four manoeuvres simulated at the
+recommended design (where the load is, peaks, least margins) and which instant of which manoeuvre fixes
+the design (:mod:`optimisation.dynamic`)."""
+
+from __future__ import annotations
+
+from ropemodel.reports import page
+from ropemodel.reports.registry import section
+
+INTRO = """<p>Every design check holds through the start and stop of both directions of travel (four manoeuvres),
+not only at the static forces (<code>ropemodel size --dynamic</code>); every design verified by the hybrid simulator.
+The recommended design against the static optimum (continuous optima; the static one is what the paper's
+sizing gives):</p>"""
+
+
+def sizes_dynamically(ctx) -> bool:
+    return bool(ctx.sizing) and ctx.scene.numerics.get("sizing") == "dynamic"
+
+
+def _kN(x: float) -> str:
+    return f"{x * 1e-3:.4g}"
+
+
+@section("dynamic_sizing", "Dynamic sizing", when=sizes_dynamically)
+def dynamic_sizing(ctx):
+    design = ctx.design
+    q = design.scene.built.quantities
+    html = page.fragment(INTRO)
+    if design.continuous and design.static:
+        rows = [[k, page.show(q[k], design.continuous[k]), page.show(q[k], design.static[k]),
+                 f"{100 * (design.continuous[k] / design.static[k] - 1):+.1f} %"] for k in ("d", "F_nwl", "stroke")]
+        html += page.table(["design variable", "dynamic optimum", "static optimum", "dynamic vs static"], rows,
+                           kinds=["name", "num", "num", "num"], cls="dynamic-design")
+    if not design.feasible:
+        return html + page.verdict(False, "No design keeps every check through the manoeuvres.") + page.fragment(
+            "<pre>{{ m }}</pre>", m=design.message)
+    rows = [[m["manoeuvre"], m["where"], _kN(m["peaks"]["F_C_max"]), _kN(m["peaks"]["F_S_min"]),
+             f"{m['peaks']['take_up_max']:.4g}", f"{m['peaks']['dynamic_factor']:.3f}",
+             "ok" if m["ok"] else "FAILS"] for m in design.manoeuvres]
+    html += page.fragment("<h3>The four manoeuvres at the recommended design (simulated)</h3>")
+    html += page.table(["manoeuvre", "where the load is", "F_C max [kN]", "F_S min [kN]", "take-up max [m]",
+                        "dynamic factor [-]", "checks"], rows,
+                       kinds=["name", "", "num", "num", "num", "num", ""], cls="manoeuvres")
+    html += page.fragment("<h3>What fixes the design</h3><p>Active at the continuous optimum (a check at an instant "
+                          "of a manoeuvre, or a static check):</p><ul>{% for a in active %}<li><code>{{ a }}</code>"
+                          "</li>{% endfor %}</ul>", active=design.active_continuous)
+    return html + _least_margins(design.manoeuvres)
+
+
+def _least_margins(manoeuvres) -> str:
+    """Each check's least margin through each manoeuvre (the simulator's history), in the check's own unit."""
+    from optimisation.dynamic.manoeuvres import CHECK
+
+    rows = []
+    for m in manoeuvres:
+        for name, least in m["least_margins"].items():
+            unit = CHECK[name].shown
+            rows.append([name, m["manoeuvre"], f"{least['margin']:.6g}", "-" if unit == "1" else unit,
+                         f"{least['t']:.3f}", "pass" if least["margin"] >= 0 else "FAIL"])
+    return page.fragment("<h3>Least margins through the manoeuvres</h3>") + page.table(
+        ["check", "manoeuvre", "least margin", "unit", "at t [s]", "verdict"], rows,
+        kinds=["name", "", "num", "", "num", ""], cls="manoeuvre-checks")

@@ -1,0 +1,138 @@
+"""Dynamic sizing of the test scene, whole (slow: one sizing ~30 s): every returned design kept by the
+simulator in all four manoeuvres (judged by the test's own checks), the continuous optimum tight and never
+lighter than the static one, and its sensitivities against central differences of re-solves."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+from _dynamic_scene import simulated_failures, write_scene
+
+from optimisation.dynamic import size_dynamic
+from optimisation.dynamic.problem import DynamicSizingProblem
+from optimisation.dynamic.refine import solve_refined
+from optimisation.problem import VARIABLES, load_sizing
+from ropemodel.cli import main
+
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture(scope="module")
+def scene(tmp_path_factory):
+    return load_sizing(write_scene(tmp_path_factory.mktemp("dyn")), emit=False)
+
+
+@pytest.fixture(scope="module")
+def design(scene):
+    return size_dynamic(scene, with_sensitivities=True)
+
+
+def test_catalogue_design_keeps_every_check_in_the_four_simulated_manoeuvres(scene, design):
+    assert design.feasible
+    assert design.design["d"] in (0.046, 0.048, 0.050)   # catalogue sizes near the continuous optimum
+    assert simulated_failures(scene, design.design) == []
+
+
+def test_continuous_optimum_is_tight(scene, design):
+    """3 % less rope diameter, pretension or stroke (the others kept) fails some check: in a simulated
+    manoeuvre, or — where the static stroke check is the active one — that static check (the static
+    model's margin, as static sizing judges it)."""
+    x = design.continuous
+    problem = DynamicSizingProblem(scene)
+    assert simulated_failures(scene, x) == []
+    for k in VARIABLES:
+        lighter = {**x, k: 0.97 * x[k]}
+        failures = simulated_failures(scene, lighter)
+        if not failures:
+            margins = problem.margins(np.array([lighter[v] for v in VARIABLES]) / problem.x_scale)
+            failures = [c for c in problem.static_constraints if margins[c] < 0]
+        assert failures, f"3 % less {k} still keeps every check"
+
+
+def test_never_lighter_than_the_static_optimum(design):
+    assert design.continuous["d"] >= design.static["d"] * (1 - 1e-9)
+    assert design.design["d"] >= design.static["d"]
+    assert design.continuous["d"] > 1.1 * design.static["d"]    # the upward start's peak: much heavier here
+
+
+def test_json_has_the_static_keys_and_each_manoeuvre(scene, design, capsys, tmp_path):
+    path = write_scene(tmp_path)
+    assert main(["size", str(path), "--dynamic", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    for key in ("d", "F_nwl", "stroke", "continuous", "active", "margins", "manoeuvres", "active_instants"):
+        assert key in out
+    assert out["d"] == pytest.approx(design.design["d"])
+    assert [m["manoeuvre"] for m in out["manoeuvres"]] == ["upward start", "upward stop", "downward start",
+                                                          "downward stop"]
+    assert all("F_C_max" in m["peaks"] and "x_m" in m["where"] for m in out["manoeuvres"])
+    assert any("upward start, t = " in a for a in out["continuous"]["active"])
+    for name in ("G_m", "t_ramp"):     # as static sizing's JSON: the optimum's sensitivities, SI
+        assert out["sensitivities"][name] == pytest.approx(design.sensitivities[name], rel=1e-6)
+
+
+@pytest.mark.parametrize("name, rel_step", [("G_m", 1e-3), ("t_ramp", 1e-3)])
+def test_sensitivities_match_central_differences(scene, design, name, rel_step):
+    """∂x*/∂p from the active set against (x*(p + h) − x*(p − h)) / 2h of two re-solves."""
+    problem = DynamicSizingProblem(scene)
+    x = np.array([design.continuous[v] for v in VARIABLES]) / problem.x_scale
+    h = rel_step * scene.parameters[name]
+    sols = []
+    for sign in (1, -1):
+        p = problem.p_of({name: scene.parameters[name] + sign * h})
+        _, sol = solve_refined(problem, x, p=p)
+        assert sol.feasible
+        sols.append(sol.xs * problem.x_scale)
+    fd = (sols[0] - sols[1]) / (2 * h)
+    exact = np.array([design.sensitivities[name][v] for v in VARIABLES])
+    scale = np.abs(np.array([design.continuous[v] for v in VARIABLES])) / scene.parameters[name]
+    assert (np.abs(fd - exact) <= 1e-3 * scale + 1e-3 * np.abs(exact)).all(), (fd, exact)
+
+
+def test_sweep_of_the_dynamic_optimum(tmp_path, capsys):
+    """``sweep --sizing --dynamic``: every row's design keeps every check in the simulator (the test's own
+    judgement), and a heavier load needs a thicker rope and more pretension."""
+    path = write_scene(tmp_path, 'd = "48 mm"\nF_nwl = "60 kN"\nstroke = "3.8 m"')
+    out = tmp_path / "sweep.csv"
+    assert main(["sweep", str(path), "--sizing", "--dynamic", "--vary", "G_m=440kN:480kN:2", "-o", str(out)]) == 0
+    frame = pd.read_csv(out)
+    assert frame["feasible"].all() and len(frame) == 2
+    assert (np.diff(frame["d [mm]"]) > 0).all() and (np.diff(frame["F_nwl [kN]"]) > 0).all()
+    scene = load_sizing(path, emit=False)
+    for _, row in frame.iterrows():
+        design = {"d": row["d [mm]"] / 1e3, "F_nwl": row["F_nwl [kN]"] * 1e3, "stroke": row["stroke [mm]"] / 1e3}
+        assert simulated_failures(scene.with_values({"G_m": row["G_m [kN]"] * 1e3}), design) == []
+
+
+def test_report_section_shows_the_dynamic_design_and_the_manoeuvres(tmp_path, design):
+    """A scene with ``[numerics] sizing = "dynamic"``: the report's "dynamic sizing" section prints the
+    dynamic and static optima and each simulated manoeuvre's peak F_C, as the sizing computed them."""
+    from ropemodel.reports import build, load
+
+    path = write_scene(tmp_path)
+    path.write_text(path.read_text().replace("[numerics]", '[numerics]\nsizing = "dynamic"'))
+    report = build(load(path))
+    assert report.incomplete == [], report.incomplete
+    assert "dynamic_sizing" in report.shown
+    html = report.html
+    section = html[html.index('<section id="dynamic_sizing">'):]
+    section = section[:section.index("</section>")]
+    d = design.scene.built.quantities["d"]
+    assert d.show(design.continuous["d"]) in section and d.show(design.static["d"]) in section
+    for m in design.manoeuvres:
+        assert m["manoeuvre"] in section and f"{m['peaks']['F_C_max'] * 1e-3:.4g}" in section
+    assert "upward start, t = " in section
+
+
+def test_no_dynamic_design_is_named_in_the_users_terms(tmp_path, capsys):
+    """A 2 s ramp (the scene's 4 s has a design): the static sizing has a design, none survives the start
+    (exit 1); the answer names the conflicting checks with their manoeuvre and what would help, with no
+    solver output on the way (measured before it was held: CasADi's dumps of a failing integrator's inputs
+    while IPOPT searched for the least drum friction)."""
+    path = write_scene(tmp_path)
+    assert main(["size", str(path), "--dynamic", "--set", "t_ramp=2s"]) == 1
+    out = capsys.readouterr()
+    assert out.err == ""
+    assert "conflict" in out.out and " @ " in out.out and "t_ramp >=" in out.out
