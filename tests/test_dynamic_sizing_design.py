@@ -136,3 +136,18 @@ def test_no_dynamic_design_is_named_in_the_users_terms(tmp_path, capsys):
     out = capsys.readouterr()
     assert out.err == ""
     assert "conflict" in out.out and " @ " in out.out and "t_ramp >=" in out.out
+
+
+def test_human_output_states_each_margins_unit(design):
+    """The text of ``size --dynamic``: static margins as static sizing prints them (display units: a ratio
+    is "-", the stroke margin in mm), checks through a manoeuvre in their own unit (N, m or "-")."""
+    from ropemodel.cli._size_dynamic import design_text
+
+    lines = {ln.split()[0] if " @ " not in ln else ln[:52].strip(): ln.split()
+             for ln in design_text(design).splitlines() if "margin" in ln and ln.rstrip().endswith(("ok", "FAILS"))}
+    q = design.scene.built.quantities
+    stroke = lines["stroke_margin_up"]
+    assert stroke[-2] == "mm" and float(stroke[1]) == pytest.approx(design.margins["stroke_margin_up"] * 1e3, rel=1e-5)
+    assert lines["safety_margin_up"][-2] == "-" and q["safety_margin_up"].display_unit == "1"
+    assert lines["slip_margin_fwd @ upward start"][-2] == "N"
+    assert lines["safety_margin @ upward start"][-2] == "-"

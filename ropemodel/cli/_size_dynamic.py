@@ -48,10 +48,14 @@ def design_text(design) -> str:
         lines += _manoeuvre_lines(design.manoeuvres, q)
         lines += ["", f"{'check margin (least over the manoeuvre)':<52}{'value':>14}  unit"]
         for k, v in design.margins.items():
-            check = k.split(" @ ")[0]
-            unit = CHECK[check].shown if " @ " in k else design.units.get(k, q[k].unit if k in q else "")
+            base = k.split(" @ ")[0]
+            if base in CHECK:   # a check through a manoeuvre, in the check's own unit
+                unit, shown = CHECK[base].shown, v
+            else:               # a static check (on a route: "@ segment 2"), as static sizing prints it
+                unit, shown = q[base].display_unit, q[base].to_display(v)
             unit = "-" if unit == "1" else unit
-            lines.append(f"{k:<52}{v:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS'}")
+            shown = shown if abs(v) > 1e-9 else 0.0     # an active check prints as 0, not -8.9e-13
+            lines.append(f"{k:<52}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS'}")
     lines += ["", design.message]
     return "\n".join(lines)
 
