@@ -161,9 +161,15 @@ def remedies(problem: SizingProblem, conflicting, p, lbx, ubx, x0) -> list[str]:
             found = [v for v in found if v is not None]
             value = (min(found) if sense == "min" else max(found)) if found else None
             if value is not None:
-                shown = _safe_round(q[name].to_display(value), up=sense == "min")
-                out.append(f"{name} {'>=' if sense == 'min' else '<='} {shown:.4g}{q[name].unit_text}")
+                out.append(remedy_text(name, sense, value, q[name]))
     return out
+
+
+def remedy_text(name: str, sense: str, value: float, quantity) -> str:
+    """"NAME >= value unit" ("min") or "NAME <= value unit" ("max"), the SI ``value`` in the quantity's display
+    unit to four significant digits, rounded away from the infeasible side."""
+    shown = _safe_round(quantity.to_display(value), up=sense == "min")
+    return f"{name} {'>=' if sense == 'min' else '<='} {shown:.4g}{quantity.unit_text}"
 
 
 def _diameters(lbx, ubx, problem) -> list[float]:

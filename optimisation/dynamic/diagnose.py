@@ -18,7 +18,7 @@ import casadi as ca
 import numpy as np
 
 from optimisation.infeasibility import REMEDIES as STATIC_REMEDIES
-from optimisation.infeasibility import Diagnosis
+from optimisation.infeasibility import Diagnosis, remedy_text
 from ropemodel.papers import en12385 as ropes
 
 OPTS = {"ipopt.tol": 1e-9, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False,
@@ -107,8 +107,7 @@ def remedies(problem, conflicting, lbx, ubx, x0, say=None) -> list[str]:
                 f"({k + 1} of {len(names)})")
         value = _free(problem, name, sense, q[name], lbx, ubx, x0)
         if value is not None:
-            shown = _round(q[name].to_display(value), up=sense == "min")
-            out.append(f"{name} {'>=' if sense == 'min' else '<='} {shown:.4g}{q[name].unit_text}")
+            out.append(remedy_text(name, sense, value, q[name]))
     return out
 
 
@@ -134,10 +133,3 @@ def _free(problem, name, sense, quantity, lbx, ubx, x0):
         return None
     return value
 
-
-def _round(x: float, up: bool) -> float:
-    """``x`` to four significant digits, away from the infeasible side."""
-    if x == 0 or not math.isfinite(x):
-        return x
-    step = 10.0 ** (math.floor(math.log10(abs(x))) - 3)
-    return (math.ceil(x / step) if up else math.floor(x / step)) * step

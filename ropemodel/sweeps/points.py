@@ -148,11 +148,7 @@ class Grid(Points):
         return self.names.index(name)
 
     def fingerprint(self):
-        h = hashlib.sha256(b"grid")
-        for k, a in self.axes.items():
-            h.update(k.encode())
-            h.update(np.ascontiguousarray(a, dtype=float).tobytes())
-        return h.hexdigest()
+        return _digest(b"grid", self.axes)
 
 
 @dataclass
@@ -175,11 +171,16 @@ class Table(Points):
         return self.columns[name]
 
     def fingerprint(self):
-        h = hashlib.sha256(b"table")
-        for k, a in self.columns.items():
-            h.update(k.encode())
-            h.update(np.ascontiguousarray(a, dtype=float).tobytes())
-        return h.hexdigest()
+        return _digest(b"table", self.columns)
+
+
+def _digest(kind: bytes, arrays: dict[str, np.ndarray]) -> str:
+    """SHA-256 of ``kind`` and each name with its values (as float64), in order."""
+    h = hashlib.sha256(kind)
+    for k, a in arrays.items():
+        h.update(k.encode())
+        h.update(np.ascontiguousarray(a, dtype=float).tobytes())
+    return h.hexdigest()
 
 
 def grid(vary: dict, quantities: dict, bare: str = "si") -> Grid:
