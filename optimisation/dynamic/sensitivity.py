@@ -29,7 +29,7 @@ from optimisation.problem import VARIABLES
 
 def symbolic_params(problem) -> list[str]:
     """The parameters every manoeuvre's transient has as symbols (those with a sensitivity)."""
-    shared = set.intersection(*[set(path.names) for path in problem.paths])
+    shared = set.intersection(*[set(path.names) for path in problem.all_paths])
     return [k for k in problem.params if k in shared]
 
 
