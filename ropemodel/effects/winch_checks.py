@@ -106,12 +106,12 @@ class DesignChecks(Submodel):
         return eqs
 
     def frames(self, values, scene):
-        return {"design checks": checks_frame(values, scene.built.quantities)}
+        return {"design checks": checks_frame(values, scene.built.quantities, scene.check_basis)}
 
 
-def checks_frame(values: dict, quantities: dict):
+def checks_frame(values: dict, quantities: dict, basis=None):
     """Table of every margin present in ``values`` (a pandas DataFrame): check, direction, margin
-    (display unit), pass/fail."""
+    (display unit), pass/fail, and the rule its factor comes from (``basis(margin name) -> text``)."""
     import pandas as pd
 
     text = {base: t for base, t, _ in CHECKS}
@@ -121,5 +121,5 @@ def checks_frame(values: dict, quantities: dict):
         q = quantities[n]
         unit = "-" if q.display_unit == "1" else q.display_unit
         rows.append({"check": text[base], "direction": way or "-", "margin": q.to_display(values[n]),
-                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO"})
-    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass"])
+                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO", "rule": basis(n) if basis else "-"})
+    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass", "rule"])
