@@ -8,6 +8,7 @@ set:
 governs            parameter       checks                                   context
 =================  ==============  =======================================  ===========================
 rope_safety        ``n_rope``      safety_margin (F_min/F_C ≥ n_rope)       rope = friction-drum
+                                   (and safety_margin_S of the transients)
 drum_ratio         ``D_ratio_min`` drum_margin (D ≥ D_ratio_min d)          drum = friction-drum
 slip_safety        ``n_slip``      slip_margin (lining effect)              drum = friction-drum
 least_tension      ``F_S_min``     slack_margin, taut_margin                 —
@@ -60,7 +61,7 @@ bind_rules(
     MODEL, "winch",
     lengths=(Length("suspended", route_length, route_inputs, SUSPENDED, "engineering judgement"),),
     bindings=(
-        Binding("rope_safety", "n_rope", ("safety_margin",), {"rope": "friction-drum"}),
+        Binding("rope_safety", "n_rope", ("safety_margin", "safety_margin_S"), {"rope": "friction-drum"}),
         Binding("drum_ratio", "D_ratio_min", ("drum_margin",), {"drum": "friction-drum"}),
         Binding("slip_safety", "n_slip", ("slip_margin",), {"drum": "friction-drum"}),
         Binding("least_tension", "F_S_min", ("slack_margin", "taut_margin")),

@@ -243,7 +243,7 @@ def _fill(applied: Applied, model, params: dict, origin: dict, given: set, found
                           f"{p} = {{ value = ..., reason = \"...\" }}")
             continue
         inputs = applied.inputs_of(p, params)
-        if not inputs or any(k not in params for k in inputs):
+        if rule.variables and (not inputs or any(k not in params for k in inputs)):
             continue        # the missing length is named with the scene's other missing parameters
         try:
             value = applied.value(p, params)
