@@ -128,6 +128,8 @@ class Result:
     def _mark(self, name: str) -> str:
         if name in self.given:
             return "given"
+        if self.scene.origin.get(name) in ("rules", "rules override"):
+            return self.scene.basis(name)       # the rule (set, clause, formula, status) or the override's reason
         return "default" if name in self.scene.defaults else ""
 
     def _source(self, name: str) -> str:

@@ -284,12 +284,13 @@ def _pieces(r: dict, variables, where_text: str, found: Problems) -> list[Piece]
         found.add(f"{where_text}: give either formula = \"...\" or pieces = [{{ formula = \"...\", below = ... }}, "
                   f"...]")
         return []
-    names = [v.name for v in variables]
+    declared = r.get("variables", {})
+    names = list(declared) if isinstance(declared, dict) else [v.name for v in variables]
     raw = [{"formula": r["formula"]}] if "formula" in r else r["pieces"]
     if not isinstance(raw, list) or not raw or not all(isinstance(p, dict) for p in raw):
         found.add(f"{where_text}: pieces is a list of {{ formula = \"...\", below = <length> }} tables")
         return []
-    if len(raw) > 1 and len(variables) != 1:
+    if len(raw) > 1 and len(names) != 1:
         found.add(f"{where_text}: a formula in pieces needs exactly one variable (the length the pieces split)")
         return []
     lower = raw[0].get("from", -math.inf)
