@@ -41,7 +41,7 @@ def test_every_mistake_of_a_data_file_at_once():
     for expected in ("unknown key 'titel'", "unknown machine 'crane'", "governs = 'rope_safty' is unknown",
                      "did you mean 'rope_safety'", "status = 'probably'", "where.rope = 'steel'",
                      "where.colour: unknown key", "unit 'kN' is not a unit of rope_safety",
-                     "variables.L = { length", "attribute access is not arithmetic",
+                     "variables.L = { length", "c: piece 2: formula \"os.system(1)\": a call of something other",
                      "give either formula", "give evidence as text"):
         assert expected in text, expected
     assert "in rule set bad" in str(info.value)

@@ -309,8 +309,9 @@ def _pieces(r: dict, variables, where_text: str, found: Problems) -> list[Piece]
             found.add(f"{where_text}: piece {i + 1}: every piece but the last ends with below = <length> (in the "
                       f"variable's unit), rising; the last piece has no below")
             upper = math.inf if last else lower + 1.0
-        with found.collect():
-            formula = Formula.parse(p.get("formula"), names)
-            pieces.append(Piece(formula, lower, float(upper)))
+        try:
+            pieces.append(Piece(Formula.parse(p.get("formula"), names), lower, float(upper)))
+        except InputError as exc:
+            found.add(f"{where_text}: piece {i + 1}: {exc}" if len(raw) > 1 else f"{where_text}: {exc}")
         lower = float(upper)
     return pieces
