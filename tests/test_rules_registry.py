@@ -80,7 +80,8 @@ def test_every_choice_picks_at_most_one_rule_per_factor(name):
         fake = SimpleNamespace(name=model, parameters=[b.parameter for b in binds.bindings])
         for choices in _combinations(rs):
             found = Problems()
-            governed = apply._select(rs, binds, choices, fake, found)   # RuntimeError if two rules match
+            governed, pending = apply._select(rs, binds, choices, fake, found)   # RuntimeError if two match
+            assert not pending
             assert not found, (choices, found.items)
             for _, (_, rule) in governed.items():
                 assert all(v.length in binds.lengths for v in rule.variables)

@@ -154,6 +154,7 @@ def test_every_mistake_of_rules_at_once():
     assert "n_slip: an override gives its value and its reason" in text
     assert "F_S_min = 5000 has no unit" in text                         # the override's value, as a scene's
     assert any(p.startswith("G_m") for p in problems)                   # and the scene's other mistakes
+    assert not any("missing parameter n_rope" in p for p in problems)   # the set gives it, once the group is right
     with pytest.raises(InputError, match="needs group to choose its rule for n_rope"):
         scene_of('set = "iso-4308-1"\n')
     with pytest.raises(InputError, match="unknown rule set 'us-30cfr'.*did you mean"):

@@ -131,16 +131,21 @@ def read_rules(data: dict, model, params: dict, origin: dict, given: Iterable[st
     if binds is None:
         found.add(f"[rules]: model {model.name!r} meets no rule set (none of its parameters is bound to a rule)")
         return None
+    bound = [b.parameter for b in binds.bindings if b.parameter in model.parameters and b.parameter not in params]
     ruleset = _ruleset(raw, found)
-    if ruleset is None:
-        return None
-    if binds.machine not in ruleset.machines:
+    if ruleset is not None and binds.machine not in ruleset.machines:
         found.add(_other_machine(ruleset, model.name, binds.machine))
-        return None
-    choices, overrides = _keys(raw, ruleset, binds, model, found)
-    governed = _select(ruleset, binds, choices, model, found)
-    applied = Applied(ruleset, model.name, choices, governed, overrides)
-    _fill(applied, model, params, origin, set(given), found)
+        ruleset = None
+    applied, pending = None, set(bound)
+    if ruleset is not None:
+        choices, overrides = _keys(raw, ruleset, binds, model, found)
+        governed, pending = _select(ruleset, binds, choices, model, found)
+        applied = Applied(ruleset, model.name, choices, governed, overrides)
+        _fill(applied, model, params, origin, set(given), found)
+        pending |= set(governed) | {p for p in bound if p in raw}
+    for p in bound:      # a factor [rules] should have set but could not: its problem is said, not "missing"
+        if p not in params and p in pending:
+            origin[p] = f"{FROM_RULE} (refused)"
     return applied
 
 
@@ -172,7 +177,7 @@ def _keys(raw: dict, ruleset: RuleSet, binds: ModelRules, model, found: Problems
         if key == "set":
             continue
         if key in ruleset.choices:
-            if value not in ruleset.choices[key]:
+            if not isinstance(value, str) or value not in ruleset.choices[key]:
                 found.add(f"[rules] {key} = {value!r}; valid: " + ", ".join(
                     f"{v!r} ({why})" for v, why in ruleset.choices[key].items()) + suggest(str(value),
                                                                                           ruleset.choices[key]))
@@ -200,9 +205,10 @@ def _override(name: str, value, q) -> Override:
     return Override(name, si, reason.strip(), str(value["value"]))
 
 
-def _select(ruleset: RuleSet, binds: ModelRules, choices: dict, model, found: Problems) -> dict:
-    """parameter → (binding, the one rule of the set that governs it here)."""
-    out = {}
+def _select(ruleset: RuleSet, binds: ModelRules, choices: dict, model, found: Problems) -> tuple[dict, set]:
+    """(parameter → (binding, the one rule of the set that governs it here), the parameters waiting for a
+    choice the scene did not make)."""
+    out, pending = {}, set()
     for b in binds.bindings:
         if b.parameter not in model.parameters:
             continue
@@ -214,6 +220,8 @@ def _select(ruleset: RuleSet, binds: ModelRules, choices: dict, model, found: Pr
                       f"({GOVERNS[b.governs][1]}): " + ", ".join(
                           f"{key} = {v!r} ({why})" for v, why in ruleset.choices[key].items()))
         matched = [r for r in rules if r.matches(context)]
+        if missing:
+            pending.add(b.parameter)
         if missing or not matched:
             continue
         if len(matched) > 1:
@@ -224,7 +232,7 @@ def _select(ruleset: RuleSet, binds: ModelRules, choices: dict, model, found: Pr
                 found.add(f"[rules] rule {matched[0].id} needs the {v.length} length, which model {model.name!r} "
                           f"does not define")
         out[b.parameter] = (b, matched[0])
-    return out
+    return out, pending
 
 
 def _fill(applied: Applied, model, params: dict, origin: dict, given: set, found: Problems) -> None:
