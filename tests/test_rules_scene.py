@@ -243,3 +243,17 @@ def test_the_report_names_the_rule_of_each_check(tmp_path):
     assert "n_rope: us-30cfr-57 § 57.19021(b) (to verify)" in html       # in the checks tables
     assert "engineering judgement" in html and "does not apply here (rope = winding-drum)" in html
     assert math.isfinite(float(re.search(r"1150 m \(([\d.]+) ft\)", html).group(1)))
+
+
+def test_a_sizing_map_over_the_route_length_carries_the_rule():
+    """A sizing sweep (shared active sets, and IPOPT at each point) against a sizing of each length alone."""
+    from optimisation.design import size
+    from optimisation.sweep import sizing_sweep
+
+    s = scene_of(US)
+    lengths = [900.0, 1150.0, 1400.0]
+    alone = [size(s.with_values({"L_u": L}), with_sensitivities=False).continuous["d"] * 1e3 for L in lengths]
+    for method in ("active-set", "ipopt"):
+        df = sizing_sweep(s, {"L_u": lengths}, method=method, progress=False)
+        np.testing.assert_allclose(df["d [mm]"], alone, rtol=1e-6)
+        np.testing.assert_allclose(df["n_rope [-]"], [cfr_friction(L) for L in lengths], rtol=1e-12)

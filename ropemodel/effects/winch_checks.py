@@ -14,7 +14,9 @@ Krauze et al. (2025) give eq. (23) (least stroke ΔF) and the rule D >= 30 d (th
 introduction, "Drum diameter D is selected based on rope diameter d, ensuring
 compliance with minimum conditions D >= 30d"): hence the default D_ratio_min = 30.
 The safety factor n_rope has no default: it is set by the code of practice that
-applies (mine haulage regulations differ by country and duty).
+applies (mine haulage regulations differ by country and duty): typed, or given by
+a rule set in the scene's [rules] (ropemodel.rules; the checks read their factors
+the same way either way, and each check names where its factor comes from).
 """
 
 from __future__ import annotations

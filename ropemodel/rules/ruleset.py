@@ -12,6 +12,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from ropemodel import _math
 from ropemodel.errors import InputError, Problems, suggest
 from ropemodel.formula import Formula
@@ -80,6 +82,9 @@ class Rule:
                     return self._scaled(p.formula(**xs))
             raise InputError(f"rule {self.id} ({self.clause}) has no value for {self.variables[0].name} = "
                              f"{x:.6g} {self.variables[0].unit}: it covers {self.domain_text()}")
+        if isinstance(x, np.ndarray) and np.any(x < self.pieces[0].lower):
+            raise InputError(f"rule {self.id} ({self.clause}) has no value for {self.variables[0].name} = "
+                             f"{np.min(x):.6g} {self.variables[0].unit}: it covers {self.domain_text()}")
         out = self.pieces[-1].formula(**xs)
         for p in reversed(self.pieces[:-1]):           # every branch is a plain formula: safe to evaluate
             out = _math.if_else(x < p.upper, p.formula(**xs), out)
