@@ -65,7 +65,7 @@ class Result:
         out["unlimited"] = [k for k in self.outputs if self.values[k] == math.inf]
         out["warnings"] = list(self.scene.warnings)
         out["citations"] = self.citations
-        rules = rules_summary(self.scene) if hasattr(self.scene, "rules") else {}
+        rules = rules_summary(self.scene)
         if rules:
             out["rules"] = rules    # every factor of the checks: its rule (set, clause, status) or user-given
         out.update(extra)

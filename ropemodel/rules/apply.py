@@ -86,7 +86,6 @@ class Applied:
                 out[p] = self.value(p, values)
         return out
 
-
     def jacobian(self, values: Mapping, live: Iterable[str]) -> dict[str, dict[str, float]]:
         """∂value/∂input of each ``live`` parameter's rule at ``values`` (SI; one-sided at a piece's limit)."""
         out = {}
@@ -94,6 +93,8 @@ class Applied:
             if p not in self.governed:
                 continue
             inputs = self.inputs_of(p, values)
+            if not inputs:
+                continue
             syms = {k: ca.SX.sym(k) for k in inputs}
             x = ca.vertcat(*syms.values())
             f = ca.Function("rule_jacobian", [x], [ca.jacobian(self.value(p, {**values, **syms}), x)])
