@@ -55,5 +55,5 @@ STATUSES: dict[str, str] = {
     "engineering judgement": "no text: a choice ropemodel makes, with its reason",
 }
 
-#: units a rule's variable may be written in (the source's unit) → its kind
+#: units a rule's length may be written in (the unit the source writes it in)
 LENGTH_UNITS = ("m", "ft")
