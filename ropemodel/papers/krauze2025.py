@@ -258,7 +258,8 @@ def drum_power(F_C, F_S, u):
     drive): u = s·v_pj with s = +1 upward and −1 downward (physics reference §1 and §4).  The
     four-quadrant convention follows: P_drum > 0, the drive motors (it lifts the load or pulls it
     against the resistances); P_drum < 0, it brakes (the load drives the drum, as when a load is
-    lowered on a slope steeper than its resistances can hold).
+    lowered on a slope steeper than its resistances can hold).  Valid where the forces are: both
+    ropes taut (F_C, F_S > 0) and the rope not slipping on the drum.
 
     Erratum: an earlier version of the physics reference (``docs/physics.md`` §1, and ropemodel with
     it) wrote N_p = (F_C − F_S)·v_pj/η for both directions with v_pj ≥ 0, which counts lowering a
