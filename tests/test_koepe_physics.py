@@ -222,6 +222,17 @@ def test_slip_accelerations_against_newton_and_the_integrated_arc(name, manoeuvr
             assert library_slip(hoist, y_L, manoeuvre, q_arc, v) == pytest.approx(ref, rel=1e-9, abs=1e-10)
 
 
+@pytest.mark.parametrize("name", HOISTS)
+def test_the_slip_limits_are_least_at_an_end_of_the_wind(name):
+    hoist = HOISTS[name]
+    q = hoist[4] * hoist[5]
+    y = np.linspace(0.0, hoist[2], 501)
+    for manoeuvre in ks.MANOEUVRES:
+        grid = library_slip(hoist, y, manoeuvre, q, 10.0)
+        ends = [library_slip(hoist, y_L, manoeuvre, q, 10.0) for y_L in (0.0, hoist[2])]
+        assert np.min(grid) == pytest.approx(min(ends), rel=1e-14, abs=1e-14)
+
+
 def test_models_md_closed_forms_with_masses_t_over_g():
     rng = np.random.default_rng(5)
     T_1, T_2 = rng.uniform(4e5, 9e5, 200), rng.uniform(1e5, 4e5, 200)
