@@ -22,9 +22,10 @@ other at H − y_L.
   T_1, for rope safety, by g n_tail q_tail h_loop).
 * All n_head ropes share the side's tension equally (per rope T/n_head).
 
-With these, each side's tension is linear in y_L, so the ratio T_1/T_2 (a ratio of linear functions, monotone
-in y_L) and the tensions themselves are worst at an end of the wind.  At rest the tensions do not depend on
-the direction of travel; the direction enters through the manoeuvres (:mod:`ropemodel.papers.koepe_slip`).
+With these, each side's tension is linear in y_L, so T_L/T_E is monotone in y_L and T_1/T_2 =
+max(T_L/T_E, T_E/T_L), like the tensions themselves, is worst at an end of the wind.  At rest the tensions do
+not depend on the direction of travel; the direction enters through the manoeuvres
+(:mod:`ropemodel.papers.koepe_slip`).
 
 Units: masses [kg], masses per metre [kg/m], lengths and depths [m], tensions [N], angles [rad].  Every
 function works on floats, numpy arrays and CasADi expressions, except those marked "floats only".
