@@ -246,6 +246,15 @@ def test_models_md_closed_forms_with_masses_t_over_g():
     np.testing.assert_array_equal(ks.a_slip_lower_accel(T_1, T_2, T_1 / G, T_2 / G, 0.25, np.pi), decel)
 
 
+def test_the_dynamic_anti_slip_factor_is_one_at_each_slip_limit():
+    T_L, T_E = kp.side_tensions(905.0, 29.6e3, 22e3, 905.0, 56.7, 4, 8.6, 2, 15.5)
+    M_L, M_E, E = kp.side_mass(T_L), kp.side_mass(T_E, 900.0), math.exp(0.25 * math.pi)
+    for F_U, F_D, M_U, M_D in ks.manoeuvre_sides(T_L, T_E, M_L, M_E, 3e3).values():
+        a = ks.slip_acceleration(F_U, F_D, M_U, M_D, 0.25, math.pi)
+        T_U, T_D = ks.side_tension_dynamic(F_U, M_U, a), ks.side_tension_dynamic(F_D, M_D, -a)
+        assert kp.anti_slip_factor(T_U, T_D, E) == pytest.approx(1.0, rel=1e-13)
+
+
 def test_without_friction_the_slip_limits_are_the_free_motion():
     T_L, T_E, M_L, M_E, q, R, alpha = 8e5, 6e5, 9e4, 7e4, 40.0, 2.5, 3.3
     m_arc = q * R * alpha
