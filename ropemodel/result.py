@@ -123,6 +123,9 @@ class Result:
                 cells.append(f"{_cell(q[n], self.values[n]):>14}" if n in self.values else f"{'':>14}")
             src = self._source(f"{base}_up" if f"{base}_up" in self.values else f"{base}_down")
             lines.append(f"{base:<14}{''.join(cells)}  {_unit(qq):<8}{src}".rstrip())
+            if qq.signs:   # a signed quantity: what each sign means, under its number
+                signs = [q[f"{base}_{d}"].sign_text(self.values.get(f"{base}_{d}", 0.0)) for d in ("down", "up")]
+                lines.append(f"{'':<14}{''.join(f'{t:>14}' for t in signs)}".rstrip())
         return lines
 
     def _mark(self, name: str) -> str:

@@ -56,7 +56,8 @@ def _text(design) -> str:
         lines.append("")
         lines.append("active constraints: " + ", ".join(design.active))
         for k, v in design.power.items():
-            lines.append(f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}")
+            sign = q[k].sign_text(v)   # a drive power: motoring (> 0) or braking (< 0)
+            lines.append(f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}" + (f"  {sign}" if sign else ""))
         if design.least_drum is not None:
             lines.append(f"{'D_min':<12}{q['D'].to_display(design.least_drum):>14.6g}  {q['D'].display_unit}"
                          f"  (no drum diameter given: the least drum, D_ratio_min d)")
