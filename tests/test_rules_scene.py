@@ -200,7 +200,7 @@ def test_elasticity_to_the_length_includes_the_rule():
     h = 0.5
     up, down = (rm.run(s.with_values({"L_u": 1150.0 + d}))["safety_margin_up"] for d in (h, -h))
     dy_dL = (up - down) / (2 * h)
-    assert e.set_index("parameter").loc["L_u", "dy_dp"] == pytest.approx(dy_dL, rel=1e-5)
+    assert e.set_index("parameter").loc["L_u", "dy_dp"] == pytest.approx(dy_dL, rel=1e-6)    # measured 3e-8
     n = s.parameters["n_rope"]
     m = rm.run(s)["safety_margin_up"]
     assert e.set_index("parameter").loc["n_rope", "dy_dp"] == pytest.approx(-(m + 1) / n, rel=1e-9)
@@ -214,7 +214,7 @@ def test_sizing_sensitivity_to_the_length_includes_the_rule():
     h = 2.0
     up, down = (size(s.with_values({"L_u": 1150.0 + d}), with_sensitivities=False) for d in (h, -h))
     fd = (up.continuous["d"] - down.continuous["d"]) / (2 * h)
-    assert base.sensitivities["L_u"]["d"] == pytest.approx(fd, rel=1e-3)
+    assert base.sensitivities["L_u"]["d"] == pytest.approx(fd, rel=1e-6)    # measured 4e-8 (h = 2 m)
     assert fd != pytest.approx(0.0, abs=1e-9)
 
 
