@@ -37,7 +37,9 @@ tr.fail td:last-child, tr.fail td:first-child, p.fail { color: #8b1111; font-wei
 .formula { font-family: "DejaVu Serif", "Liberation Serif", "Times New Roman", serif; font-size: 10.5pt; }
 .eq { display: grid; grid-template-columns: 1fr auto; column-gap: 1rem; margin: .25rem 0 .1rem;
       break-inside: avoid; }
-.eqno { color: #333; white-space: nowrap; }
+.eqno { color: #333; max-width: 20rem; text-align: right; }
+.cases { display: inline-grid; grid-template-columns: auto auto; column-gap: .8rem; vertical-align: middle;
+         border-left: 2px solid #333; border-radius: 6px 0 0 6px; padding-left: .4rem; }
 .numbers { margin: 0 0 .5rem 1.2rem; font-size: 8.5pt; color: #333; }
 pre { background: #f6f8fa; padding: .5rem; font-size: 8.5pt; white-space: pre-wrap; break-inside: avoid; }
 figure { margin: .5rem 0 1rem; break-inside: avoid; }
@@ -82,6 +84,7 @@ def environment():
     env = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined, trim_blocks=True,
                              lstrip_blocks=True)
     env.filters["typeset"] = typeset
+    env.filters["formula"] = formula
     return env
 
 
@@ -153,7 +156,7 @@ def verdict(ok: bool, text: str):
     return fragment('<p class="verdict {{ c }}">{{ t }}</p>', c="pass" if ok else "fail", t=text)
 
 
-_SUB = re.compile(r"(?<=[A-Za-zΑ-ωΔ′)])_([A-Za-z0-9]+(?:,[A-Za-z0-9]+)?)")
+_SUB = re.compile(r"(?<=[A-Za-zΑ-ω′)])_([A-Za-z0-9Α-ω]+(?:,[A-Za-z0-9Α-ω]+)?)")
 
 
 def _superscripts(text: str) -> str:
@@ -188,6 +191,49 @@ def typeset(formula: str):
     text = str(escape(formula))
     text = _superscripts(text)
     return Markup(_SUB.sub(lambda m: f"<sub>{m.group(1)}</sub>", text))
+
+
+def _split(text: str, sep: str) -> list[str]:
+    """``text`` split at ``sep`` where no bracket is open."""
+    parts, depth, start, i = [], 0, 0, 0
+    while i < len(text):
+        c = text[i]
+        depth += (c in "({[") - (c in ")}]")
+        if depth == 0 and text.startswith(sep, i):
+            parts.append(text[start:i])
+            start = i = i + len(sep)
+            continue
+        i += 1
+    return parts + [text[start:]]
+
+
+def _closing(text: str) -> int:
+    """The index of the bracket that closes ``text[0]``'s (-1 if none)."""
+    depth = 0
+    for i, c in enumerate(text):
+        depth += (c in "({[") - (c in ")}]")
+        if depth == 0:
+            return i
+    return -1
+
+
+def formula(text: str):
+    """A formula as HTML (:func:`typeset`); ``y = {a if c; b otherwise}`` (:mod:`ropemodel.core.infix`'s
+    choice of cases) laid out as stacked cases."""
+    from markupsafe import Markup
+
+    left, eq, right = text.partition(" = ")
+    braced = eq and right.startswith("{") and _closing(right) == len(right) - 1
+    cases = _split(right[1:-1], "; ") if braced else []
+    if len(cases) < 2:
+        return typeset(text)
+    rows = []
+    for case in cases:
+        parts = _split(case, " if ") if not case.endswith(" otherwise") else [case[:-10], "otherwise"]
+        value, cond = " if ".join(parts[:-1]) or parts[-1], parts[-1]
+        rows.append(f"<span>{typeset(value)}</span><span>{'if ' + typeset(cond) if cond != 'otherwise' else cond}"
+                    "</span>")
+    return Markup(f'{typeset(left)} = <span class="cases">{"".join(rows)}</span>')
 
 
 def page(title: str, version: str, date: str, sections) -> str:
