@@ -104,6 +104,10 @@ class Submodel:
     quantities: ClassVar[tuple[Quantity, ...]] = ()
     #: the quantities :meth:`invalid_mask` reads (a sweep computes them even when not asked for)
     invalid_needs: ClassVar[tuple[str, ...]] = ()
+    #: what this variant takes for granted, one sentence each (the report's "Assumptions")
+    assumptions: ClassVar[tuple[str, ...]] = ()
+    #: what a calculation with this variant still lacks before it is filed, one sentence each ("Data still missing")
+    missing: ClassVar[tuple[str, ...]] = ()
 
     def __init__(self, options: dict | None = None, effects: dict | None = None):
         #: the scene's ``[numerics]`` (and structural options such as the route's segments)

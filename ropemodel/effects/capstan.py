@@ -193,6 +193,8 @@ class PublishedStiffness(_Stiffness):
     """
 
     description = LAWS["li"].doc
+    assumptions = ("Eq. (26) as published, the slack side's stiffness jumping up where its slip zone fills its "
+                   "wrap.",)
 
 
 @register(MODEL, "stiffness", "continuous")

@@ -295,6 +295,7 @@ class ConstantFriction(Submodel):
     """Constant friction coefficient μ (c_mu = 0)."""
 
     description = "constant friction coefficient"
+    assumptions = ("A constant friction coefficient μ, independent of the contact pressure.",)
     quantities = (C_MU,)
 
     def equations(self, v):

@@ -102,6 +102,8 @@ class HaulageForces(Submodel):
     """
 
     description = "static forces in the winding (F_C) and unwinding (F_S) rope, both directions"
+    assumptions = ("The rope forces of eq. (12)-(13): half the tensioner's force F_nwl in each rope at the return "
+                   "sheave, the weights along the incline, and resistances proportional to the normal forces.",)
     citations = ("krauze2025",)
     quantities = (
         F_NWL,
@@ -163,6 +165,8 @@ class SteadyMotion(Submodel):
     """Steady motion: no inertia force (the paper's forces)."""
 
     description = "steady motion: no inertia force"
+    assumptions = ("Steady motion: the forces are those at constant speed; starting and stopping add inertia "
+                   "(inertia = \"rigid\", or the transient).",)
 
 
 @register(MODEL, "inertia", "rigid")
@@ -196,6 +200,7 @@ class ResistanceCase1(Submodel):
     """Case 1 of Krauze et al. (2025), eq. (15): μ_pl1 = μ_pl2 = μ_pl; eq. (16) follows."""
 
     description = "one resistance coefficient mu_pl for all rope sections"
+    assumptions = ("One resistance coefficient μ_pl for every section of the rope, eq. (15).",)
     citations = ("krauze2025",)
 
     def equations(self, v):
@@ -224,6 +229,13 @@ class Elongation(Submodel):
     """Rope elongation and the minimum tensioner stroke, Krauze et al. (2025) eq. (19)-(23)."""
 
     description = "elongation of both ropes and the minimum stroke of the return sheave"
+    assumptions = (
+        "Each rope side stretches under its largest force over its whole length, eq. (19)-(20): the elastic "
+        "elongation is bounded from above.",
+        "No constructional (permanent) stretch of a new rope: it comes on top of the elastic elongation and usually "
+        "dominates the first months.",
+        "The tensioner takes up the loop's whole elongation: its reeving (number of falls) is not modelled.",
+    )
     citations = ("krauze2025",)
     quantities = (
         Q("q_lw", "m/N", "unit elongation of the installed rope", "mm/kN", guess=5.8e-6,
@@ -253,6 +265,7 @@ class NoElongation(Submodel):
     """Elongation off: no elongation or stroke equation is built."""
 
     description = "no elongation equations"
+    missing = ("No elongation: the tensioner's stroke is not computed (elongation = \"krauze2025\").",)
 
 
 @register(MODEL, "power", "none")
@@ -274,6 +287,8 @@ class DrivePower(Submodel):
     """
 
     description = "drive power per direction, > 0 motoring, < 0 braking, from the force balance on the drum"
+    assumptions = ("The drive train's efficiency η divides the power while motoring and multiplies it while "
+                   "braking; the drum's own inertia and losses are not included.",)
     citations = ("krauze2025",)
     quantities = (
         V_PJ,

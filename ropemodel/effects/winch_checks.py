@@ -53,6 +53,7 @@ class NoChecks(Submodel):
     """Design checks off."""
 
     description = "no design checks"
+    missing = ("No design checks (rope safety, slack rope, stroke, drum diameter): choose checks = \"design\".",)
 
 
 @register(MODEL, "checks", "design")

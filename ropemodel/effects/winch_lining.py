@@ -81,6 +81,7 @@ class NoLining(Submodel):
     """Drum traction off: no slip check is built."""
 
     description = "no traction check"
+    missing = ("No check of slip on the drum: choose lining = \"rigid\" or \"voigt\".",)
 
     def transient_traction(self, values):
         """No friction engagement: the transient's rope is fixed to the drum (no traction ratio, no slip)."""
@@ -92,6 +93,8 @@ class RigidLining(Submodel):
     """No-slip check with the Euler–Eytelwein ratio traction = e^{μ_d α_d} (rigid drum surface)."""
 
     description = "no-slip check on a rigid drum, traction = exp(mu_d alpha_d)"
+    assumptions = ("Euler–Eytelwein on a rigid drum: one friction coefficient μ_d over the whole wrap, no creep "
+                   "of a lining.",)
     citations = ("euler_eytelwein",)
     quantities = (
         *DRUM,
@@ -126,6 +129,8 @@ class VoigtDrumLining(Submodel):
     """
 
     description = "no-slip check on a drum with an isotropic Voigt lining (Hajduk 1992)"
+    assumptions = ("The drum lining as isotropic Voigt bodies (Hajduk 1992): one compliance Q and one retardation "
+                   "time λ, the slack side's force F_S entering the arc, a constant friction coefficient μ_d.",)
     citations = ("hajduk1992",)
     quantities = (
         *DRUM,

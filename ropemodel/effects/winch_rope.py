@@ -48,6 +48,9 @@ class RopeGiven(Submodel):
 
     description = "rope weight q_l and unit elongation q_lw given"
     citations = ("krauze2025",)
+    assumptions = ("The rope's weight q_l and unit elongation q_lw are given numbers, tied to no designated rope.",)
+    missing = ("The rope itself: no construction, grade or standard, so no designation, no breaking force and no "
+               "rope safety check; choose a catalogue construction (rope = \"6x36-IWRC\", ...).",)
 
 
 @register(MODEL, "rope", "catalogue")
@@ -61,6 +64,17 @@ class RopeCatalogue(Submodel):
 
     description = "q_l, q_lw, F_min, A_m, m_l from d and the construction (EN 12385-4)"
     citations = ("krauze2025", "en12385_4")
+    #: the named construction of the catalogue (None: factors given as parameters)
+    construction: ClassVar[ropes.Construction | None] = None
+    assumptions = (
+        "EA = E C d² from the catalogue's metallic-area factor C and the modulus E the scene gives: the rope's "
+        "stiffness is not measured on the installed rope.",
+        "F_min = K d² R_r is the catalogue's minimum breaking force of the class, not the rope's test certificate.",
+        "The rope's weight is the catalogue's nominal length mass, W d².",
+    )
+    missing = ("A measured EA (or q_lw) of the installed rope: the elongation and the stroke rest on the "
+               "catalogue and the modulus E given.",
+               "The rope's test certificate: its actual breaking force, to confirm F_min.")
     quantities: ClassVar[tuple[Quantity, ...]] = (
         D_ROPE,
         F_MIN,
@@ -96,6 +110,7 @@ def _named(c: ropes.Construction) -> type[Submodel]:
         __doc__ = (f"{c.description}: the catalogue rope with K = {c.K:g}, W = {c.W:g} kg/m^3, "
                    f"C = {c.C:g} ({c.source}).")
         description = f"{c.description} (K, W, C of {c.source})"
+        construction = c
 
         def equations(self, v):
             factors = [Equation(f"rope_{k}", v[f"rope_{k}"] - value, f"{c.source}, ropemodel/data/ropes.toml")

@@ -68,6 +68,7 @@ class StraightRoute(Submodel):
     """The paper's route: one incline of length L_u at α_u, point A at L_ul, Krauze et al. (2025) eq. (1)-(11)."""
 
     description = "one straight incline (L_u, alpha_u), eq. (1)-(11)"
+    assumptions = ("The route is one straight incline of length L_u at α_u, the rope lying along it.",)
     citations = ("krauze2025",)
     quantities = INPUTS + OUTPUTS
 
@@ -126,6 +127,8 @@ class SegmentedRoute(Submodel):
     """
 
     description = "a route of straight segments, the load at x_m"
+    assumptions = ("The route is a chain of straight segments, the rope lying along each; the forces are those "
+                   "with the load at x_m.",)
     citations = ("krauze2025",)
     quantities = (*INPUTS, *OUTPUTS, X_M)
 

@@ -51,16 +51,26 @@ a { color: #1d4e89; }
 dl.head { display: grid; grid-template-columns: max-content 1fr; column-gap: 1rem; row-gap: .1rem; }
 dl.head dt { font-weight: bold; } dl.head dd { margin: 0; word-break: break-all; }
 @media print { body { max-width: none; margin: 0; padding: 0; } }
-@page { size: A4; margin: 14mm 12mm 16mm 12mm;
-        @bottom-right { content: "page " counter(page) " of " counter(pages); font-size: 8pt; color: #555; } }
+table.signoff td { height: 2.2rem; min-width: 9rem; } table.signoff td:first-child { font-weight: bold; }
 """
+
+#: the printed page: A4, a running header (document and revision left, title right) and footer (the scene's
+#: file and digest left, the page number right), in CSS paged media (Chromium prints the margin boxes)
+PAGE_RULE = """@page { size: A4; margin: 18mm 12mm 16mm 12mm;
+  @top-left { content: "{{ left }}"; font-size: 8pt; color: #555; }
+  @top-right { content: "{{ right }}"; font-size: 8pt; color: #555; }
+  @bottom-left { content: "{{ foot }}"; font-size: 7pt; color: #777; }
+  @bottom-right { content: "page " counter(page) " of " counter(pages); font-size: 8pt; color: #555; } }"""
+#: characters a CSS string keeps as they are; every other is written as a CSS escape
+_CSS_PLAIN = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 .,-_:;()/#+=")
 
 PAGE = """<!DOCTYPE html>
 <html lang="en">
 <head>
 <meta charset="utf-8">
 <title>{{ title }}</title>
-<style>{{ style | safe }}</style>
+<style>{{ style | safe }}
+{{ rule | safe }}</style>
 </head>
 <body>
 <h1>{{ title }}</h1>
@@ -236,7 +246,16 @@ def formula(text: str):
     return Markup(f'{typeset(left)} = <span class="cases">{"".join(rows)}</span>')
 
 
-def page(title: str, version: str, date: str, sections) -> str:
-    """The whole page: ``sections`` a list of (name, title, html)."""
+def css_string(text: str) -> str:
+    """``text`` as the inside of a CSS string: quotes, backslashes, ``<`` and every other character not plainly
+    safe written as CSS escapes (``\\3c ``), so no text can end the string or the style element."""
+    return "".join(c if c in _CSS_PLAIN else f"\\{ord(c):x} " for c in " ".join(str(text).split()))
+
+
+def page(title: str, version: str, date: str, sections, header: tuple[str, str, str] = ("", "", "")) -> str:
+    """The whole page: ``sections`` a list of (name, title, html); ``header`` the printed page's running header
+    (left, right) and footer (left) texts."""
     items = [{"name": n, "title": t, "html": h} for n, t, h in sections]
-    return _template(PAGE).render(title=title, version=version, date=date, style=STYLE, sections=items)
+    left, right, foot = (css_string(x) for x in header)
+    rule = _template(PAGE_RULE).render(left=left, right=right, foot=foot)
+    return _template(PAGE).render(title=title, version=version, date=date, style=STYLE, rule=rule, sections=items)

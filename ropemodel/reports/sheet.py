@@ -79,6 +79,26 @@ def entry(model, eq, values: dict, effect: str, cites: list[str]) -> dict:
     return e
 
 
+def document(ctx) -> dict:
+    """The document's filing data: number, revision, title, sign-off and history (``[report]``)."""
+    from ropemodel.reports.sections.document import filing, title
+
+    f = filing(ctx)
+    return {"document": f.document, "project": f.project, "title": title(ctx), "revision": f.revision,
+            "signoff": [{"role": s.role, "name": s.name, "date": s.date and s.date.isoformat()} for s in f.signatures],
+            "history": [{"revision": r.revision, "date": r.date.isoformat(), "description": r.description, "by": r.by}
+                        for r in f.history]}
+
+
+def basis(ctx, values: dict) -> dict:
+    """The rope's designation, the normative numbers, the assumptions and the data still missing."""
+    from ropemodel.reports import filing
+
+    return {"rope": filing.rope_designation(ctx.scene, values), "normative": filing.normative_numbers(ctx.scene),
+            "statuses": filing.STATUS_TEXT, "assumptions": filing.assumptions(ctx.scene),
+            "missing": filing.missing(ctx.scene, values)}
+
+
 def sheet(ctx) -> dict:
     """The calculation sheet of a report's context (:class:`~ropemodel.reports.context.Context`), as JSON data."""
     from ropemodel.reports.sections.scene import stamp, version
@@ -89,6 +109,7 @@ def sheet(ctx) -> dict:
         "scene": {"name": scene.name, "model": scene.model, "file": scene.source, "sha256": scene.digest},
         "at": "the recommended design" if ctx.at_design else "the scene's values",
         "units": "SI", "evaluate": EVALUATE,
+        "document": document(ctx), "basis": basis(ctx, result.values),
         "equations": entries(result.model, result.values),
         "references": references(result.model),
     }
