@@ -27,6 +27,7 @@ Examples
 from __future__ import annotations
 
 import keyword
+import math
 
 import casadi as ca
 
@@ -201,6 +202,8 @@ def _py(t) -> tuple[str, int]:
     if op == "sym":
         return identifier(t[1]), 9
     if op == "num":
+        if t[1] != t[1] or abs(t[1]) == math.inf:          # nan, ±inf: math's names
+            return ("math.nan" if t[1] != t[1] else ("math.inf" if t[1] > 0 else "(-math.inf)")), 9
         return (repr(t[1]), 9) if t[1] >= 0 else (f"({t[1]!r})", 9)
     if op in _PY_BIN:
         sep, p = _PY_BIN[op]
@@ -208,8 +211,8 @@ def _py(t) -> tuple[str, int]:
         return f"{_wrap(left, p)}{sep}{_wrap(right, p + 1)}", p     # left to right, as CasADi evaluates
     if op == "neg":
         return f"-{_wrap(_py(t[1]), 7)}", 7
-    if op == "pow":
-        return f"{_wrap(_py(t[1]), 9)} ** {_wrap(_py(t[2]), 8)}", 8
+    if op == "pow":     # math.pow: a real power or a domain error, never a complex number
+        return f"math.pow({_py(t[1])[0]}, {_py(t[2])[0]})", 9
     if op == "sq":
         return f"{_wrap(_py(t[1]), 9)} ** 2", 8
     if op == "not":
@@ -248,7 +251,11 @@ def number(v: float) -> str:
     """A constant as a formula shows it: ``2``, ``0.5``, ``g`` (9.80665), ``1×10^(-30)``."""
     if v == G_N:
         return "g"
-    if v == int(v) and abs(v) < 1e6:
+    if v < 0:
+        return f"−{number(-v)}"
+    if not math.isfinite(v):
+        return "∞" if v > 0 else "NaN"
+    if v == int(v) and v < 1e6:
         return str(int(v))
     text = f"{v:.10g}"
     if "e" in text:
