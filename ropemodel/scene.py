@@ -46,6 +46,7 @@ from ropemodel.core.compile import forward_of
 from ropemodel.core.model import Model
 from ropemodel.effects import all_quantities, effects_of, models, resolve_effects
 from ropemodel.errors import InputError, Problems, suggest
+from ropemodel.views.scene import SceneViews
 
 EXAMPLE = "krauze2025_fig9"
 
@@ -55,8 +56,8 @@ class SceneWarning(UserWarning):
 
 
 
-@dataclass(frozen=True)
-class Scene:
+@dataclass(frozen=True, repr=False)
+class Scene(SceneViews):
     """A validated scene.  ``parameters`` are SI floats; ``effects`` have defaults filled in.
 
     Attributes

@@ -27,12 +27,13 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
 from ropemodel.errors import InputError
 from ropemodel.papers import route as rt
+from ropemodel.views.records import TripViews
 
 if TYPE_CHECKING:
     from ropemodel.scene import Scene
@@ -61,12 +62,15 @@ class Piece:
 
 
 @dataclass
-class Trip:
+class Trip(TripViews):
     """A trip: :attr:`pieces` (exact), :attr:`summary` (SI), :attr:`history` (a DataFrame of samples).
 
     ``phases`` are (t0, t1, v0, a) of the speed profile; the load starts at ``start`` [m] from the
-    drive and moves toward it (``sign`` +1, upward) or away (−1).
+    drive and moves toward it (``sign`` +1, upward) or away (−1).  In Jupyter it shows its summary
+    with units; ``to_series()``, ``to_frame()`` (the history) and ``plot()`` (the drive's power).
     """
+
+    units: ClassVar[dict[str, str]] = SUMMARY
 
     scene: Scene
     direction: str
