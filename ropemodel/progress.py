@@ -42,9 +42,13 @@ def enabled(flag: bool | None = None) -> bool:
 
 def bar(total: float, desc: str, unit: str = "it", flag: bool | None = None, **kw):
     """A tqdm progress bar on stderr (disabled where :func:`enabled` says no)."""
-    from tqdm.auto import tqdm
+    shown = enabled(flag)
+    if shown:
+        from tqdm.auto import tqdm
+    else:   # a bar never drawn needs no notebook widget (tqdm.auto warns in Jupyter without ipywidgets)
+        from tqdm import tqdm
 
-    return tqdm(total=total, desc=desc, unit=unit, disable=not enabled(flag), file=sys.stderr,
+    return tqdm(total=total, desc=desc, unit=unit, disable=not shown, file=sys.stderr,
                 mininterval=0.2, **_size(), **kw)
 
 
