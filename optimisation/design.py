@@ -16,6 +16,8 @@ from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import VARIABLES, SizingProblem
 from optimisation.sensitivity import sensitivities
 from ropemodel.papers import en12385 as ropes
+from ropemodel.rules.apply import with_rule_terms
+from ropemodel.rules.describe import summary as rules_summary
 from ropemodel.scene import Scene
 from ropemodel.views.design import DesignViews
 
@@ -69,6 +71,9 @@ class Design(DesignViews):
                                  "relax_alone": self.diagnosis.alone, "elastic": self.diagnosis.elastic,
                                  "where": self.diagnosis.where.strip(), "needs": self.diagnosis.needs}
         out["message"] = self.message
+        rules = rules_summary(self.scene)
+        if rules:
+            out["rules"] = rules
         return out
 
 
@@ -179,7 +184,7 @@ def size(scene: Scene | str | os.PathLike, method: str = DEFAULT_DISCRETE, with_
     design.margins_continuous = problem.margins(sol.xs)
     design.lexicographic_ok = sol.lexicographic_ok
     if with_sensitivities:
-        design.sensitivities = sensitivities(problem, sol)
+        design.sensitivities = with_rule_terms(problem.scene, sensitivities(problem, sol))
     d_star = design.continuous["d"]
     if method == "bonmin":
         disc = discrete.bonmin_with_timeout(problem, BONMIN_TIMEOUT, x0=sol.xs)

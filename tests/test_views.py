@@ -135,14 +135,16 @@ def test_trip_html_and_series_match_trip_json(capsys):
     data = command_json(capsys, "trip", "trip_fig9")
     trip = rm.trip(rm.load_scene("trip_fig9"))
     rows = {r["name"]: r for r in Tables(trip._repr_html_()).named("summary")}
-    units = {"t_trip": "s", "F_C_max": "kN", "F_S_min": "kN", "P_max": "kW", "P_rms": "kW", "E_trip": "kWh",
-             "E_regen": "kWh", "stroke_needed": "m"}
+    units = {"t_trip": "s", "F_C_max": "kN", "F_S_min": "kN", "P_max": "kW", "P_brake_max": "kW", "P_rms": "kW",
+             "E_trip": "kWh", "E_regen": "kWh", "W_drum": "kWh", "stroke_needed": "m"}
+    numbers = {k for k, v in data.items() if isinstance(v, (int, float)) and k != "pieces"}
+    assert set(rows) == numbers                                    # every number of the JSON, with its unit
     for name, unit in units.items():
         assert rows[name]["unit"] == unit, name
         assert si(rows[name]["value"], unit) == pytest.approx(data[name], rel=SHOWN, abs=1e-9), name
     series = trip.to_series(si=True)
     assert series["E_trip [J]"] == data["E_trip"] and series["P_max [W]"] == data["P_max"]
-    # the picture: P(t) between its samples, largest where the JSON says, integral the motoring energy
+    # the picture: the drive's power N_p(t), largest where the JSON says, its integral the motoring energy
     t, P = trip.plot().lines[0].get_data()
     assert P.max() * 1e3 == pytest.approx(data["P_max"], rel=1e-12)
     assert np.trapezoid(np.clip(P, 0, None), t) * 1e3 == pytest.approx(data["E_trip"], rel=1e-9)

@@ -81,11 +81,13 @@ class TripViews:
                          notes=[", ".join(f"{k} {v}" for k, v in rest)])
 
     def plot(self, ax: Any = None) -> Any:
-        """The drive's power along the trip (motoring > 0, braking < 0) [kW]; returns the axes."""
+        """The drive's power along the trip, N_p [kW] (motoring > 0, braking < 0), and the drum's, P_drum;
+        returns the axes."""
         ax = axes(ax)
         h = self.to_frame()
-        P = h["P [W]"] / 1e3
-        ax.plot(h["t [s]"], P, label="P, drive power")
+        P = h["N_p [W]"] / 1e3
+        ax.plot(h["t [s]"], P, label="N_p, drive power")
+        ax.plot(h["t [s]"], h["P_drum [W]"] / 1e3, "--", lw=0.8, label="P_drum, at the drum")
         ax.fill_between(h["t [s]"], P, 0.0, where=P >= 0, alpha=0.15, label="motoring")
         ax.fill_between(h["t [s]"], P, 0.0, where=P < 0, alpha=0.15, color="C3", label="braking")
         ax.axhline(0.0, color="0.4", lw=0.8)
