@@ -51,6 +51,7 @@ from ropemodel.effects import all_quantities, effects_of, models, resolve_effect
 from ropemodel.errors import InputError, Problems, suggest
 from ropemodel.rules import apply as rules_apply
 from ropemodel.rules import describe as rules_describe
+from ropemodel.views.scene import SceneViews
 
 EXAMPLE = "krauze2025_fig9"
 
@@ -60,8 +61,8 @@ class SceneWarning(UserWarning):
 
 
 
-@dataclass(frozen=True)
-class Scene:
+@dataclass(frozen=True, repr=False)
+class Scene(SceneViews):
     """A validated scene.  ``parameters`` are SI floats; ``effects`` have defaults filled in.
 
     Attributes
