@@ -19,3 +19,9 @@ def test_ci_runs_the_readme_test_command_verbatim():
     ci = [ln.strip() for ln in (ROOT / ".ci" / "run").read_text().splitlines()]
     assert command in ci
     assert re.search(r'-m "not slow"', command) and re.search(r"\s-n \S+", command), command
+
+
+def test_the_documentation_shows_the_same_command():
+    site = [ln.split("#")[0].strip() for ln in (ROOT / "docs" / "index.md").read_text().splitlines()
+            if ln.startswith('pip install -e ".[test]"')]
+    assert site == [_readme_test_command()]
