@@ -102,8 +102,11 @@ def check_rows(margins: dict, quantities: dict):
 
 
 def checks_html(margins: dict, quantities: dict):
-    """A verdict line and the table of every margin in ``margins`` (SI)."""
+    """A verdict line and the table of every margin in ``margins`` (SI); nothing when there is none (no verdict
+    over no checks)."""
     rows, classes, failed = check_rows(margins, quantities)
+    if not rows:
+        return ""
     if failed:
         line = page.verdict(False, f"{len(failed)} of {len(rows)} checks FAIL: {', '.join(failed)}")
     else:
