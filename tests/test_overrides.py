@@ -97,24 +97,27 @@ def nudged(scene, name: str):
     raise AssertionError(f"no valid value of {name} near {value}")
 
 
-def numbers(x, prefix="") -> dict[str, float]:
-    """Every number in a nested answer, by its path."""
+def leaves(x, prefix="") -> dict[str, float | str]:
+    """Every number (a float) and text of a nested answer, by its path."""
     if isinstance(x, dict):
-        return {k: v for key, val in x.items() for k, v in numbers(val, f"{prefix}{key}.").items()}
+        return {k: v for key, val in x.items() for k, v in leaves(val, f"{prefix}{key}.").items()}
     if isinstance(x, list | tuple):
-        return {k: v for i, val in enumerate(x) for k, v in numbers(val, f"{prefix}{i}.").items()}
-    if isinstance(x, bool) or not isinstance(x, int | float):
-        return {}
-    return {prefix: float(x)}
+        return {k: v for i, val in enumerate(x) for k, v in leaves(val, f"{prefix}{i}.").items()}
+    if isinstance(x, int | float) and not isinstance(x, bool):
+        return {prefix: float(x)}
+    return {prefix: str(x)}
+
+
+def differ(a: float | str, b: float | str, rtol: float) -> bool:
+    if isinstance(a, str) or isinstance(b, str):
+        return a != b
+    return not (math.isnan(a) and math.isnan(b)) and abs(a - b) > rtol * max(abs(a), abs(b))
 
 
 def changed(a, b, rtol: float = 1e-12) -> bool:
-    """True when any number of two answers differs by more than rounding (``rtol``)."""
-    x, y = numbers(a), numbers(b)
-    if x.keys() != y.keys():
-        return True
-    return any(not (math.isnan(x[k]) and math.isnan(y[k])) and abs(x[k] - y[k]) > rtol * max(abs(x[k]), abs(y[k]))
-               for k in x)
+    """True when two answers differ: a text, or a number by more than rounding (``rtol``)."""
+    x, y = leaves(a), leaves(b)
+    return x.keys() != y.keys() or any(differ(x[k], y[k], rtol) for k in x)
 
 
 def independent(scene, command: str, name: str) -> str | None:

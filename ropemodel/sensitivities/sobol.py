@@ -172,10 +172,10 @@ def sobol(scene: SceneLike, ranges: Mapping, outputs: Sequence[str] | None = Non
         q[k].check(lo, f"{k} (low end of its range)")
         q[k].check(hi, f"{k} (high end of its range)")
     outputs = list(problem.unknowns) if outputs is None else list(outputs)
+    options = {"progress": False, **sweep_options}     # the samples are one sweep's points: no bar unless asked
 
     def func(columns):
-        frame = sweep(scene, pd.DataFrame(columns), outputs, given=given, find=find, si=True,
-                      progress=False, **sweep_options)
+        frame = sweep(scene, pd.DataFrame(columns), outputs, given=given, find=find, si=True, **options)
         return {o: frame.iloc[:, len(columns) + i].to_numpy() for i, o in enumerate(outputs)}
 
     return sobol_indices(func, si_ranges, n, seed)
