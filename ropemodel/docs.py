@@ -1,11 +1,12 @@
-"""The README's reference tables, generated from the effect registry (``python -m ropemodel.docs``).
+"""The README's reference tables, generated from the effect registry, and the output of ``ropemodel run`` it
+shows (``python -m ropemodel.docs``).
 
 The README holds each table between ``<!-- generated: NAME -->`` and ``<!-- end: NAME -->``;
 :func:`render` returns the tables, :func:`update` rewrites them in a README, and a test checks
 that the committed README equals what :func:`update` would write (so the tables never drift from
 the code).  Tables: ``effects`` (every effect and variant of every model), and per model
 ``parameters-MODEL`` (unit, meaning, default and why, valid range, usual range and its source)
-and ``outputs-MODEL`` (unit, meaning, equation).
+and ``outputs-MODEL`` (unit, meaning, equation); ``run-example``: what ``ropemodel run`` prints.
 """
 
 from __future__ import annotations
@@ -73,9 +74,17 @@ def outputs_table(model: str) -> str:
     return "\n".join(rows)
 
 
+def run_example() -> str:
+    """What ``ropemodel run`` prints (the built-in example, Krauze et al. 2025, Fig. 9), as a text block."""
+    from ropemodel.problem import run
+    from ropemodel.scene import load
+
+    return f"```text\n{run(load(emit=False)).table()}\n```"
+
+
 def render() -> dict[str, str]:
-    """Every generated table by its block name."""
-    out = {"effects": effects_table()}
+    """Every generated block by its name."""
+    out = {"effects": effects_table(), "run-example": run_example()}
     for model in REGISTRY:
         out[f"parameters-{model}"] = parameters_table(model)
         out[f"outputs-{model}"] = outputs_table(model)
