@@ -52,7 +52,7 @@ import numpy as np
 from ropemodel.effects.winch_checks import margin_names
 from ropemodel.errors import InputError
 from ropemodel.problem import Problem
-from ropemodel.scene import Scene, SceneLike, as_scene
+from ropemodel.scene import Scene, SceneLike, SceneWarning, as_scene
 
 VARIABLES = ("d", "F_nwl", "stroke")
 W_F = 1e-3
@@ -152,8 +152,6 @@ def load_sizing(scene: SceneLike, emit: bool = True) -> Scene:
     built-in scene's name loaded with no starting design needed; the warnings of a scene loaded here
     (``emit=False``: kept in ``scene.warnings`` for the caller to print)."""
     import warnings
-
-    from ropemodel.scene import SceneWarning
 
     loaded = as_scene(scene, optional=SIZED + D_OPTIONAL, emit=False)
     prepared = prepare(loaded)

@@ -316,7 +316,7 @@ def run(scene: SceneLike, values: Mapping | None = None) -> Result:
     >>> round(r["F_C_up"] / 1e3, 2)          # kN, the paper prints 190.95
     190.95
     """
-    return Problem(as_scene(scene)).solve(values)
+    return Problem(scene).solve(values)
 
 
 def solve(scene: SceneLike, given: Mapping, find: Sequence[str] | str, bare: str = "si") -> Result:
@@ -354,7 +354,7 @@ def solve(scene: SceneLike, given: Mapping, find: Sequence[str] | str, bare: str
     """
     if isinstance(find, str):
         find = [find]
-    return Problem(as_scene(scene), given, find, bare=bare).solve()
+    return Problem(scene, given, find, bare=bare).solve()
 
 
 __all__ = ["Problem", "reach", "run", "solve", "worst_position"]

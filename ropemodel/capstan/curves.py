@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-
 import numpy as np
 import pandas as pd
 
@@ -13,7 +12,6 @@ from ropemodel.scene import Scene, SceneLike, as_scene
 from ropemodel.sweeps.files import check_size
 from ropemodel.sweeps.points import MAX_AXIS
 from ropemodel.units import label, to_si
-
 
 #: columns of a load curve, in this order (the load first)
 CURVE_OUTPUTS = ("T", "K", "K_ti", "K_sl", "delta", "delta_alpha", "alpha_1", "alpha_2", "theta_s1", "theta_s2",

@@ -32,7 +32,6 @@ from ropemodel.errors import InputError, Problems, SolveError
 from ropemodel.scene import Scene, SceneLike, as_scene
 from ropemodel.units import factor
 
-
 FITTABLE = ("mu", "EA", "F_p", "L")
 SINGULAR = 1e-8
 #: IPOPT statuses taken as converged; "acceptable" happens where the optimum sits on a kink of the

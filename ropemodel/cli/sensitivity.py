@@ -59,6 +59,8 @@ def main(args) -> int:
     plot = check_plot(args.plot) if args.plot is not None else None   # before any work
     scene = sizing_scene_from_args(args) if args.sizing and ranges else scene_from_args(args)
     outputs = _names(args.outputs) or None
+    if outputs:
+        scene.built.check_names(outputs, "output")
     if not (args.sizing and ranges):
         warn_unread(scene, "sensitivity", scene.built.inputs_of(outputs) if outputs else None)
     if ranges:

@@ -66,7 +66,6 @@ def main(args) -> int:
     from ropemodel.sweeps import read_points, sweep
     from ropemodel.sweeps.runner import SweepFile, SweepInterrupted
 
-    scene = sizing_scene_from_args(args) if args.sizing else scene_from_args(args)
     vary = named(args.vary, "--vary", "NAME=START:STOP:N, e.g. alpha_u=5deg:45deg:1000")
     points = read_points(args.points) if args.points else None
     if points is not None and vary:
@@ -74,8 +73,11 @@ def main(args) -> int:
     if args.dynamic and not args.sizing:
         raise InputError("--dynamic needs --sizing (a sweep of the dynamic sizing optimum)")
     if args.sizing:
-        return _sizing(scene, vary, points, args)
+        return _sizing(vary, points, args)
+    scene = scene_from_args(args)
     outputs = _names(args.outputs) or None
+    if outputs:
+        scene.built.check_names(outputs, "output")
     warn_unread(scene, "this sweep", scene.built.inputs_of(outputs) if outputs else None)
     given: dict[str, str | None] = {g.strip(): None for g in args.given if "=" not in g}
     given.update(assignments([g for g in args.given if "=" in g], "--given"))
@@ -105,7 +107,8 @@ def _summary(path, as_json: bool, rows: int, columns: list[str], status: str = "
         print(f"wrote {rows} points x {len(columns)} columns to {path}")
 
 
-def _sizing(scene, vary, points, args) -> int:
+def _sizing(vary, points, args) -> int:
+    """The sizing optimum at every point; the scene read as sizing reads it (no starting design needed)."""
     from optimisation.sweep import sizing_sweep
     from ropemodel.progress import enabled
     from ropemodel.sweeps.files import OutputLock, check_output, write_frame
@@ -114,6 +117,7 @@ def _sizing(scene, vary, points, args) -> int:
         raise InputError("--sizing computes d, F_nwl and stroke; it takes no --given, --find or --outputs")
     out = check_output(args.output)
     with OutputLock(out):
+        scene = sizing_scene_from_args(args)
         try:
             if args.dynamic:
                 from optimisation.dynamic.sweep import dynamic_sizing_sweep
