@@ -15,6 +15,8 @@ from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import VARIABLES, SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
 from ropemodel.papers import en12385 as ropes
+from ropemodel.rules.apply import with_rule_terms
+from ropemodel.rules.describe import summary as rules_summary
 from ropemodel.scene import Scene, SceneLike
 
 #: default way to pick a catalogue diameter, chosen on the evidence of studies/discrete_design.py:
@@ -66,6 +68,9 @@ class Design:
                                  "relax_alone": self.diagnosis.alone, "elastic": self.diagnosis.elastic,
                                  "where": self.diagnosis.where.strip(), "needs": self.diagnosis.needs}
         out["message"] = self.message
+        rules = rules_summary(self.scene)
+        if rules:
+            out["rules"] = rules
         return out
 
 
@@ -173,7 +178,7 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     design.margins_continuous = problem.margins(sol.xs)
     design.lexicographic_ok = sol.lexicographic_ok
     if with_sensitivities:
-        design.sensitivities = sensitivities(problem, sol)
+        design.sensitivities = with_rule_terms(problem.scene, sensitivities(problem, sol))
     d_star = design.continuous["d"]
     if method == "bonmin":
         disc = discrete.bonmin_with_timeout(problem, BONMIN_TIMEOUT, x0=sol.xs)

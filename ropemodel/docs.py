@@ -4,9 +4,10 @@ shows (``python -m ropemodel.docs``).
 The README holds each table between ``<!-- generated: NAME -->`` and ``<!-- end: NAME -->``;
 :func:`render` returns the tables, :func:`update` rewrites them in a README, and a test checks
 that the committed README equals what :func:`update` would write (so the tables never drift from
-the code).  Tables: ``effects`` (every effect and variant of every model), and per model
+the code).  Tables: ``effects`` (every effect and variant of every model), per model
 ``parameters-MODEL`` (unit, meaning, default and why, valid range, usual range and its source)
-and ``outputs-MODEL`` (unit, meaning, equation); ``run-example``: what ``ropemodel run`` prints.
+and ``outputs-MODEL`` (unit, meaning, equation), ``rule-sets`` and ``rules`` (every shipped rule
+set and rule, with its source and status), and ``run-example``: what ``ropemodel run`` prints.
 """
 
 from __future__ import annotations
@@ -82,9 +83,32 @@ def run_example() -> str:
     return f"```text\n{run(load(emit=False)).table()}\n```"
 
 
+def rule_sets_table() -> str:
+    """Markdown: every shipped rule set, the machines it is written for, its source and its status."""
+    from ropemodel.rules import rule_sets
+
+    rows = ["| rule set | written for | source | status |", "|---|---|---|---|"]
+    for name, rs in rule_sets().items():
+        rows.append(f"| `{name}` | {', '.join(rs.machines)} | [{rs.title}]({rs.url}) | {rs.status} |")
+    return "\n".join(rows)
+
+
+def rules_table() -> str:
+    """Markdown: every rule of every set: what it governs, where it applies, its formula, clause and status."""
+    from ropemodel.rules import rule_sets
+
+    rows = ["| rule set | rule | governs | where | value | clause | status |", "|---|---|---|---|---|---|---|"]
+    for name, rs in rule_sets().items():
+        for r in rs.rules:
+            where = ", ".join(f"{k} = {'/'.join(v)}" for k, v in r.where.items()) or "-"
+            rows.append(f"| `{name}` | `{r.id}` | {r.governs} | {where} | {r.unicode()} | {r.clause} | {r.status} |")
+    return "\n".join(rows)
+
+
 def render() -> dict[str, str]:
     """Every generated block by its name."""
-    out = {"effects": effects_table(), "run-example": run_example()}
+    out = {"effects": effects_table(), "rule-sets": rule_sets_table(), "rules": rules_table(),
+           "run-example": run_example()}
     for model in REGISTRY:
         out[f"parameters-{model}"] = parameters_table(model)
         out[f"outputs-{model}"] = outputs_table(model)

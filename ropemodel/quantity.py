@@ -32,6 +32,8 @@ class Quantity:
     guess: starting value for Newton when the quantity is an unknown of a nonlinear block.
     default: value used when a scene leaves the parameter out (``None``: required), with
         ``default_note`` saying why that value (reported wherever the default is used).
+    signs: what a negative and a positive value mean, for a signed quantity (``("braking", "motoring")``
+        of a drive power); tables print it next to the number (:meth:`sign_text`).
     """
 
     name: str
@@ -52,6 +54,7 @@ class Quantity:
     guess: float = 1.0
     default: float | None = None
     default_note: str = ""
+    signs: tuple[str, ...] = ()
 
     @property
     def display_unit(self) -> str:
@@ -65,6 +68,12 @@ class Quantity:
     def to_display(self, value):
         """Convert an SI value to the display unit."""
         return value * factor(self.unit, self.display_unit)
+
+    def sign_text(self, value: float) -> str:
+        """What the sign of ``value`` means (``"braking"``), or ``""`` for an unsigned quantity or 0."""
+        if not self.signs or not value or not math.isfinite(value):
+            return ""
+        return self.signs[value > 0]
 
     def to_si(self, value, bare: str = "refuse") -> float:
         """``value`` (string with unit, pint Quantity or number) in SI; see :func:`ropemodel.units.to_si`.

@@ -7,11 +7,12 @@ import math
 import re
 from typing import Any
 
+from ropemodel.rules.describe import summary as rules_summary
 from ropemodel.units import label
 
 _DIR = re.compile(r"^(?P<base>.+)_(?P<dir>up|down)$")
 #: keys of the JSON object that are not quantities (no quantity has one of these names)
-META = ("given", "found", "defaults", "unused", "unlimited", "warnings", "citations")
+META = ("given", "found", "defaults", "unused", "unlimited", "warnings", "citations", "rules")
 
 
 class Result:
@@ -52,7 +53,9 @@ class Result:
 
     def to_json(self, **extra) -> str:
         """One JSON object: every solved quantity (SI), then ``given`` (inverse questions), ``found``,
-        ``defaults`` (parameter → why its default), ``unused``, ``unlimited``, ``warnings`` and ``citations``."""
+        ``defaults`` (parameter → why its default), ``unused``, ``unlimited``, ``warnings``, ``citations`` and,
+        for a model with design checks, ``rules`` (what each factor rests on; see
+        :func:`ropemodel.rules.describe.summary`)."""
         out: dict[str, Any] = {k: (v if math.isfinite(v) else None) for k, v in self.to_dict().items()}
         if self.given:
             out["given"] = {k: self.values[k] for k in self.given}
@@ -62,6 +65,9 @@ class Result:
         out["unlimited"] = [k for k in self.outputs if self.values[k] == math.inf]
         out["warnings"] = list(self.scene.warnings)
         out["citations"] = self.citations
+        rules = rules_summary(self.scene)
+        if rules:
+            out["rules"] = rules    # every factor of the checks: its rule (set, clause, status) or user-given
         out.update(extra)
         return json.dumps(out, indent=2, allow_nan=False)
 
@@ -117,11 +123,16 @@ class Result:
                 cells.append(f"{_cell(q[n], self.values[n]):>14}" if n in self.values else f"{'':>14}")
             src = self._source(f"{base}_up" if f"{base}_up" in self.values else f"{base}_down")
             lines.append(f"{base:<14}{''.join(cells)}  {_unit(qq):<8}{src}".rstrip())
+            if qq.signs:   # a signed quantity: what each sign means, under its number
+                signs = [q[f"{base}_{d}"].sign_text(self.values.get(f"{base}_{d}", 0.0)) for d in ("down", "up")]
+                lines.append(f"{'':<14}{''.join(f'{t:>14}' for t in signs)}".rstrip())
         return lines
 
     def _mark(self, name: str) -> str:
         if name in self.given:
             return "given"
+        if self.scene.origin.get(name) in ("rules", "rules override"):
+            return self.scene.basis(name)       # the rule (set, clause, formula, status) or the override's reason
         return "default" if name in self.scene.defaults else ""
 
     def _source(self, name: str) -> str:

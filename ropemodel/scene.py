@@ -46,10 +46,12 @@ from ropemodel.core.compile import forward_of
 from ropemodel.core.model import Model
 from ropemodel.effects import all_quantities, effects_of, models, resolve_effects
 from ropemodel.errors import InputError, Problems, suggest
+from ropemodel.rules import apply as rules_apply
+from ropemodel.rules import describe as rules_describe
 
 EXAMPLE = "krauze2025_fig9"
 #: where a value read from the scene's own file came from (:meth:`Scene.with_effects` reads the file again)
-FILE_ORIGINS = ("scene", "route", "default")
+FILE_ORIGINS = ("scene", "route", "default", rules_apply.FROM_RULE, rules_apply.FROM_OVERRIDE)
 
 
 class SceneWarning(UserWarning):
@@ -92,6 +94,8 @@ class Scene:
     raw: dict = field(default_factory=dict, repr=False, compare=False)
     #: the route's structure (``[[route]]``): per segment, whether it gives its own mu_winding
     route: tuple[bool, ...] = ()
+    #: the rule set of ``[rules]`` applied to this scene (:class:`ropemodel.rules.apply.Applied`), or None
+    rules: rules_apply.Applied | None = None
     unused_values: dict[str, float] = field(default_factory=dict)
 
     @cached_property
@@ -114,6 +118,9 @@ class Scene:
         for name in values:
             if name in params:
                 defaults.pop(name, None)
+        if self.rules is not None:
+            with found.collect():
+                params.update(rules_apply.refresh(self.rules, params, origin_of, values))
         for problem in model.problems({k: v for k, v in params.items() if k in model.parameters}):
             found.add(problem)
         found.raise_if_any()
@@ -146,36 +153,36 @@ class Scene:
             scene = scene.with_values(values, origin=where)
         return scene
 
+    def basis(self, parameter: str) -> str:
+        """Where ``parameter``'s value comes from: a rule (set, clause, formula, status), an override and its
+        reason, a default, or "user-given"."""
+        return rules_describe.basis(self, parameter)
+
+    def check_basis(self, check: str) -> str:
+        """The rule a design check applies (``check``: a margin name), or "user-given" ("-": no factor)."""
+        return rules_describe.check_basis(self, check)
+
+    def rule_values(self, values: Mapping, changed) -> dict:
+        """The values the rule set gives again where its inputs among ``changed`` take ``values`` (floats,
+        numpy arrays or CasADi expressions); {} without a rule set or when no rule input changed."""
+        if self.rules is None:
+            return {}
+        return self.rules.derive(values, changed, self.ruled())
+
+    def ruled(self) -> list[str]:
+        """The parameters whose value the rule set gives (not overridden, not set by hand)."""
+        return [p for p, o in self.origin.items() if o == rules_apply.FROM_RULE]
+
+    def ruled_by(self, name: str) -> list[str]:
+        """The parameters the rule set gives from ``name`` (e.g. ``["n_rope"]`` for the route's ``L_u``)."""
+        if self.rules is None:
+            return []
+        return [p for p in self.ruled() if name in self.rules.inputs_of(p, self.parameters)]
+
     def required(self) -> list[str]:
         """Parameters this scene must be given (no default)."""
         q = self.built.quantities
         return [n for n in self.built.parameters if q[n].default is None]
-
-
-def unread(scene: Scene, reads: Iterable[str], chosen: Mapping[str, str] | None = None) -> dict[str, str]:
-    """The values given on top of the scene's file (``--set``, ``values=``, :meth:`Scene.with_values`) that a
-    command does not use, each with why: those in ``chosen`` it sets itself (name → how), the others are not
-    in ``reads``, the parameters its results are computed from.  A value the scene's effects do not use at
-    all is the scene's own warning (``unused``), not named here."""
-    chosen, reads = dict(chosen or {}), set(reads)
-    out = {}
-    for values in scene.overrides().values():
-        for name in values:
-            if name in scene.parameters and (name in chosen or name not in reads):
-                out[name] = chosen.get(name, "none of its results depends on it")
-    return out
-
-
-def not_read(scene: Scene, reads: Iterable[str], command: str, chosen: Mapping[str, str] | None = None) -> list[str]:
-    """One warning line for each value of :func:`unread`, naming the value, where it came from and ``command``.
-
-    >>> scene = load("winch_start", values={"t_ramp": "8 s"}, emit=False)
-    >>> not_read(scene, scene.built.inputs_of(), "run")
-    ['t_ramp = 8 s (api) does not change what run computes: none of its results depends on it']
-    """
-    q = scene.built.quantities
-    return [f"{name} = {q[name].show(scene.parameters[name])} ({scene.origin.get(name, 'api')}) does not change what "
-            f"{command} computes: {why}" for name, why in unread(scene, reads, chosen).items()]
 
 
 #: what every function of the API takes as a scene: a loaded :class:`Scene`, a TOML file's path, or the
@@ -331,12 +338,13 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
     tables.route_parameters(model, route_values, bare, params, origin, found)
     if values:
         tables.set_values(model, values, values_bare, values_origin, params, origin, unused, found, notes, kept)
+    rules = rules_apply.read_rules(data, model, params, origin, given, found)
     defaults, absent = tables.fill_missing(model, params, origin, tuple(optional), found)
     for problem in model.problems(params):
         found.add(problem)
     scene = Scene(str(name if name is not None else source or "unnamed"), model_name, effects, params, numerics,
                   source, defaults, unused, checks, absent, tuple(notes), origin, digest,
-                  {k: v for k, v in data.items()}, route, kept)
+                  {k: v for k, v in data.items()}, route, rules, kept)
     scene.__dict__["built"] = model
     _verify_checks(scene, found)
     found.raise_if_any()

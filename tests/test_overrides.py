@@ -18,7 +18,8 @@ import _route3 as r3
 import ropemodel as rm
 from optimisation.problem import D_OPTIONAL, SIZED
 from ropemodel.cli import main as cli
-from ropemodel.scene import builtin_scenes, from_toml, load, unread
+from ropemodel.scene import builtin_scenes, from_toml, load
+from ropemodel.unread import unread
 from ropemodel.trips import TRIP_EFFECTS
 
 

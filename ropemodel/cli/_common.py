@@ -90,7 +90,7 @@ def warn_unread(scene, command: str, reads=None, chosen=None) -> None:
     """Warn of each value given on top of the scene's file (``--set``) that ``command`` does not use:
     ``chosen`` (name → how) it sets itself, the rest are not among ``reads`` (default: the parameters every
     output of the scene's static model is computed from)."""
-    from ropemodel.scene import not_read
+    from ropemodel.unread import not_read
 
     warn(not_read(scene, scene.built.inputs_of() if reads is None else reads, command, chosen))
 

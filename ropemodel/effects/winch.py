@@ -10,8 +10,9 @@ Effects and variants
 ``resistance``  ``case1`` (default) — μ_pl1 = μ_pl2 = μ_pl, eq. (15)-(16);
                 ``case2`` — μ_pl1, μ_pl2 given separately, eq. (17)-(18).
 ``elongation``  ``krauze2025`` (default) — eq. (19)-(23); ``none`` builds no elongation equation.
-``power``       ``none`` (default); ``drive`` — N_p = (F_C − F_S)·v_pj/η per direction (not in
-                the paper; force balance on the drum).
+``power``       ``none`` (default); ``drive`` — the drum's power P_drum = (F_C − F_S)·(±v_pj) and
+                the drive's N_p = P_drum/η motoring, P_drum·η braking, per direction, signed:
+                > 0 motoring, < 0 braking (not in the paper; force balance on the drum).
 """
 
 from __future__ import annotations
@@ -32,6 +33,9 @@ SRC = "Krauze et al. 2025"
 POSITIVE = dict(low=0.0, low_open=True, positive=True)
 NONNEGATIVE = dict(low=0.0)
 COEFFICIENT = dict(low=0.0, high=1.0)
+
+#: what a signed power's sign means (four-quadrant convention)
+SIGNS = ("braking", "motoring")
 
 #: where the usual ranges come from (warnings outside them; README, "Writing a scene")
 JUDGEMENT = "engineering judgement, a wide margin around the paper's example"
@@ -267,23 +271,36 @@ class NoPower(Submodel):
 
 @register(MODEL, "power", "drive")
 class DrivePower(Submodel):
-    """Drive power N_p = (F_C − F_S)·v_pj/η per direction (not in Krauze et al. 2025).
+    """Drive power per direction, signed (four-quadrant; not in Krauze et al. 2025).
 
-    The drum's torque balances the difference of the winding and unwinding rope
-    forces; η is the efficiency of the drive train from motor to drum rim.
+    The drum's power P_drum = (F_C − F_S)·u with u = s·v_pj the load's signed speed (s = +1 upward,
+    −1 downward; :func:`ropemodel.papers.krauze2025.drum_power`), and the drive's
+    N_p = P_drum/η while it motors (P_drum > 0), P_drum·η while it brakes (P_drum < 0;
+    :func:`~ropemodel.papers.krauze2025.drive_power`).  η is the efficiency of the drive train from
+    motor to drum rim.  Lowering the paper's load (Fig. 9) the drive brakes: N_p_down = −243.584 kW.
     """
 
-    description = "drive power per direction from the force balance on the drum"
+    description = "drive power per direction, > 0 motoring, < 0 braking, from the force balance on the drum"
     citations = ("krauze2025",)
     quantities = (
         V_PJ,
         ETA,
-        *per_direction("N_p", "W", "drive power", "kW", equation="force balance on the drum"),
+        *per_direction("P_drum", "W", "power at the drum, (F_C − F_S) times the load's signed speed: > 0 motoring, "
+                       "< 0 braking", "kW", equation="force balance on the drum (not in the paper)",
+                       signs=SIGNS),
+        *per_direction("N_p", "W", "drive power, P_drum/η motoring (> 0), P_drum·η braking (< 0)", "kW",
+                       equation="force balance on the drum and the drive train's efficiency (not in the paper)",
+                       signs=SIGNS),
     )
 
     def equations(self, v):
-        return [
-            Equation(f"N_p_{d}", v[f"N_p_{d}"] - kr.drive_power(v[f"F_C_{d}"], v[f"F_S_{d}"], v["v_pj"], v["eta"]),
-                     "N_p = (F_C - F_S) v_pj / eta", formula="N_p = (F_C − F_S) v_pj / η")
-            for d in DIRECTIONS
-        ]
+        eqs = []
+        for d, sign in DIRECTIONS.items():
+            u = "v_pj" if sign > 0 else "−v_pj"
+            eqs += [Equation(f"P_drum_{d}", v[f"P_drum_{d}"] - kr.drum_power(v[f"F_C_{d}"], v[f"F_S_{d}"],
+                                                                           sign * v["v_pj"]),
+                             "force balance on the drum (not in the paper)", formula=f"P_drum = (F_C − F_S) · ({u})"),
+                    Equation(f"N_p_{d}", v[f"N_p_{d}"] - kr.drive_power(v[f"P_drum_{d}"], v["eta"]),
+                             "P_drum/η motoring, P_drum·η braking",
+                             formula="N_p = max(P_drum, 0)/η + min(P_drum, 0)·η")]
+        return eqs

@@ -14,7 +14,9 @@ Krauze et al. (2025) give eq. (23) (least stroke ΔF) and the rule D >= 30 d (th
 introduction, "Drum diameter D is selected based on rope diameter d, ensuring
 compliance with minimum conditions D >= 30d"): hence the default D_ratio_min = 30.
 The safety factor n_rope has no default: it is set by the code of practice that
-applies (mine haulage regulations differ by country and duty).
+applies (mine haulage regulations differ by country and duty): typed, or given by
+a rule set in the scene's [rules] (ropemodel.rules; the checks read their factors
+the same way either way, and each check names where its factor comes from).
 """
 
 from __future__ import annotations
@@ -106,12 +108,12 @@ class DesignChecks(Submodel):
         return eqs
 
     def frames(self, values, scene):
-        return {"design checks": checks_frame(values, scene.built.quantities)}
+        return {"design checks": checks_frame(values, scene.built.quantities, scene.check_basis)}
 
 
-def checks_frame(values: dict, quantities: dict):
+def checks_frame(values: dict, quantities: dict, basis=None):
     """Table of every margin present in ``values`` (a pandas DataFrame): check, direction, margin
-    (display unit), pass/fail."""
+    (display unit), pass/fail, and the rule its factor comes from (``basis(margin name) -> text``)."""
     import pandas as pd
 
     text = {base: t for base, t, _ in CHECKS}
@@ -121,5 +123,5 @@ def checks_frame(values: dict, quantities: dict):
         q = quantities[n]
         unit = "-" if q.display_unit == "1" else q.display_unit
         rows.append({"check": text[base], "direction": way or "-", "margin": q.to_display(values[n]),
-                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO"})
-    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass"])
+                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO", "rule": basis(n) if basis else "-"})
+    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass", "rule"])

@@ -135,10 +135,12 @@ def table(head, rows, kinds=None, row_class=None, cls: str = ""):
 
 def show(q, value) -> str:
     """``value`` (SI) in the quantity's display unit, as :meth:`ropemodel.quantity.Quantity.show` writes it;
-    a value that is not a finite number says so."""
+    a value that is not a finite number says so; a signed quantity says what its sign means
+    (``"-243.584 kW (braking)"``)."""
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "not computed"
-    return q.show(float(value))
+    sign = q.sign_text(float(value))
+    return q.show(float(value)) + (f" ({sign})" if sign else "")
 
 
 def error(message: str):

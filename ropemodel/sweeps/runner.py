@@ -335,13 +335,14 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
     fun = problem.function
     order = list(varied) + [k for k in problem.knowns if k not in varied]
     syms = {k: ca.MX.sym(k) for k in problem.knowns}
-    res = fun.call(syms)
+    args = {**syms, **problem.scene.rule_values(syms, varied)}   # a swept length carries its rule's factor
+    res = fun.call(args)
     outs = [res[o] for o in outputs]
     names = list(outputs)
     roundtrip = {}
     if problem.given:
         forward = Problem(problem.scene).function
-        params = {k: syms[k] if k in syms else res[k] for k in problem.model.parameters}
+        params = {k: args[k] if k in args else res[k] for k in problem.model.parameters}
         back = forward.call(params)
         for g in problem.given:
             roundtrip[f"roundtrip_{g}"] = g
