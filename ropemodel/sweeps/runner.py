@@ -42,6 +42,7 @@ from ropemodel.sweeps.points import MAX_AXIS, Points, grid, table
 from ropemodel.sweeps.store import ChunkStore, complete_rows, discard_parts, read_output
 from ropemodel.sweeps.validate import check_ranges, check_rules
 from ropemodel.units import label
+from ropemodel.views.records import SweepFileViews
 
 CHUNK = 65536  # points per chunk: ~20 MB of results for 40 columns
 ERRORS = ("raise", "mark")
@@ -64,7 +65,7 @@ class SweepInterrupted(KeyboardInterrupt):
 
 
 @dataclass
-class SweepFile(os.PathLike):
+class SweepFile(SweepFileViews, os.PathLike):
     """What ``sweep(..., collect=False)`` returns: the output file (path-like) and what it holds.
 
     status: ``"written"`` (computed now, or resumed) or ``"complete"`` (found finished: nothing computed).
