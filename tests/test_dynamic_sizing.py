@@ -9,7 +9,7 @@ from _dynamic_scene import MANOEUVRES, simulated_failures, write_scene
 
 from optimisation.dynamic.manoeuvres import cases
 from optimisation.dynamic.ramp import shortest_ramp
-from optimisation.dynamic.transient import transient_scene
+from optimisation.dynamic.transient import reads, transient_scene
 from optimisation.ipopt import solve_continuous
 from optimisation.problem import SizingProblem, load_sizing
 from ropemodel.cli import main
@@ -53,12 +53,14 @@ def test_a_static_route_scene_is_asked_only_for_its_ramp_then_accepted(tmp_path,
     assert out.out == "" and "Traceback" not in out.err
     lines = [ln for ln in out.err.splitlines() if ln.strip()]
     assert len(lines) == 1 and "t_ramp" in lines[0] and "dynamic sizing" in lines[0]
-    sc = transient_scene(load_sizing(route3.write(tmp_path), emit=False))
+    sc = transient_scene(load_sizing(path, emit=False).with_values({"t_ramp": "4 s"}))
     places = [0.0, 300.0, 600.0, 600.001, 950.0, 1300.0, 1300.001, 1550.0, 1800.0]
     assert [m.x_m for m in cases(sc)] == pytest.approx([x for _ in MANOEUVRES for x in places], abs=1e-9)
     assert {"t_end", "m_t", "rope_damping", "v_eps", "x_m"} <= set(sc.defaults)
     assert "T_1" in sc.defaults["t_end"] and sc.parameters["t_end"] > sc.parameters["t_ramp"]
     assert sc.effects["rope_elasticity"] == "segments" and sc.effects["tensioner"] == "constant_force"
+    names, sets = reads(sc)        # what a --set reaches: the transient's own parameters too
+    assert {"t_ramp", "t_end", "rope_damping", "m_t", "G_m", "alpha_2"} <= names and "x_m" in sets
 
 
 def test_static_optimum_slips_or_overloads_in_a_start(scene):

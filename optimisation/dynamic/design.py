@@ -16,7 +16,6 @@ each design simulated in every case, every manoeuvre with the load at every cand
 
 from __future__ import annotations
 
-import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -31,11 +30,11 @@ from optimisation.dynamic.start import factored_start, fallback_starts
 from optimisation.dynamic.transient import transient_effects_of
 from optimisation.dynamic.verify import by_manoeuvre, verify
 from optimisation.infeasibility import diagnose
-from optimisation.problem import VARIABLES, SizingProblem
+from optimisation.problem import VARIABLES, SizingProblem, load_sizing
 from ropemodel.errors import SolveError
 from ropemodel.numerics.held import held_solver_output
 from ropemodel.papers import en12385 as ropes
-from ropemodel.scene import Scene
+from ropemodel.scene import Scene, SceneLike
 
 
 @dataclass
@@ -129,7 +128,7 @@ def continuous_optimum(problem, static_xs, record: Refinement | None = None, say
     return problem, sol, None
 
 
-def size_dynamic(scene: Scene | str | os.PathLike, with_sensitivities: bool = False,
+def size_dynamic(scene: SceneLike, with_sensitivities: bool = False,
                  progress: Callable[[str], None] | None = None) -> DynamicDesign:
     """Size the winch of ``scene`` through its start-up and braking in both directions
     (``ropemodel size --dynamic``): the lightest catalogue rope, then the least pretension, then the least
@@ -179,10 +178,7 @@ def size_dynamic(scene: Scene | str | os.PathLike, with_sensitivities: bool = Fa
         design.design["d"], design.continuous["d"], design.static["d"]    # m: catalogue, dynamic, static
         [(m["peaks"]["F_C_max"], m["where"]) for m in design.manoeuvres]  # N, and where the load governs
     """
-    if not isinstance(scene, Scene):
-        from optimisation.problem import load_sizing
-
-        scene = load_sizing(scene, emit=False)
+    scene = load_sizing(scene, emit=False)
     with held_solver_output():
         return _size(scene, with_sensitivities, progress or (lambda text: None))
 

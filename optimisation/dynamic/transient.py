@@ -26,6 +26,8 @@ from optimisation.design import solve_best
 from optimisation.dynamic.manoeuvres import Manoeuvre, manoeuvre_scene
 from optimisation.dynamic.positions import candidates
 from optimisation.problem import D_OPTIONAL, SIZED, SizingProblem
+from optimisation.problem import reads as static_reads
+from ropemodel.dynamics.assemble import chosen, transient_parts
 from ropemodel.dynamics.smooth import slowest_period
 from ropemodel.effects.transient.base import transient_effects
 from ropemodel.errors import InputError
@@ -81,6 +83,21 @@ def transient_effects_of(scene) -> dict:
     chosen = scene.raw.get("effects", {})
     return {e: (scene.effects[e], e in chosen) for e in transient_effects(scene.model)
             if e not in ("dynamics", "travel") and e in scene.effects}
+
+
+def reads(scene) -> tuple[set[str], dict[str, str]]:
+    """What dynamic sizing of the transient ``scene`` (:func:`transient_scene`) is computed from: what static
+    sizing reads, and the parameters of the transient's chosen variants (the ramp, the rope model, the
+    tensioner, ...); and what it sets itself (name → how): the design variables and, unless the scene pins
+    it, where the load is."""
+    names, sets = static_reads(scene)
+    for part in transient_parts(scene, chosen(scene)):
+        names |= {q.name for q in part.quantities} | set(part.reads)
+    if scene.origin.get("x_m") == "default":
+        sets["x_m"] = "dynamic sizing makes every manoeuvre with the load at every candidate position itself"
+    else:
+        sets.pop("x_m", None)
+    return names, sets
 
 
 def horizon(scene) -> float | None:

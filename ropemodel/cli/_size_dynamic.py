@@ -67,7 +67,8 @@ def design_text(design) -> str:
         lines += ["", "active constraints: " + ", ".join(design.active)]
         lines += _manoeuvre_lines(design.manoeuvres, q)
         places = _places(design.manoeuvres)
-        lines += ["", f"{'check margin (least over the manoeuvre)':<52}{'value':>14}  unit        where the load is"]
+        lines += ["", f"{'check margin (least over the manoeuvre)':<52}{'value':>14}  {'unit':<6}{'':<6}rule"
+                      "; where the load is"]
         for k, v in design.margins.items():
             base = k.split(" @ ")[0]
             if base in CHECK:   # a check through a manoeuvre, in the check's own unit
@@ -76,8 +77,9 @@ def design_text(design) -> str:
                 unit, shown = q[base].display_unit, q[base].to_display(v)
             unit = "-" if unit == "1" else unit
             shown = shown if abs(v) > 1e-9 else 0.0     # an active check prints as 0, not -8.9e-13
-            verdict = "ok" if v >= -1e-9 else "FAILS"
-            lines.append(f"{k:<52}{shown:>14.6g}  {unit:<6}{verdict:<6}{places.get(k, '')}".rstrip())
+            where = f"; load at {places[k]}" if k in places else ""
+            lines.append(f"{k:<52}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS':<6}"
+                         f"{design.scene.check_basis(base)}{where}")
     lines += _transient_lines(design)
     lines += ["", design.message]
     return "\n".join(lines)

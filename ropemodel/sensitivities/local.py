@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
 
 import casadi as ca
 import numpy as np
@@ -27,10 +26,9 @@ import pandas as pd
 
 from ropemodel.errors import InputError, SolveError
 from ropemodel.problem import Problem
+from ropemodel.scene import SceneLike, as_scene
 from ropemodel.units import label
 
-if TYPE_CHECKING:
-    from ropemodel.scene import Scene
 
 ZERO_RTOL = 1e-12
 
@@ -50,6 +48,9 @@ def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, o
     P = ca.MX.sym("p", len(parameters))
     args = {k: ca.MX(x[k]) for k in problem.knowns}
     args.update({k: P[i] for i, k in enumerate(parameters)})
+    ruled = problem.scene.ruled()      # a factor a rule gives follows its length, plus its own change
+    for k, v in problem.scene.rule_values(args, [p for p in parameters if p not in ruled]).items():
+        args[k] = v + (args[k] - x[k])
     res = fun.call(args)
     Y = ca.vertcat(*[res[o] for o in outputs])
     f = ca.Function("elasticity_jacobian", [P], [Y, ca.jacobian(Y, P)])
@@ -63,15 +64,16 @@ def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, o
     return y, J, dict(zip(parameters, p0)), outputs
 
 
-def elasticities(scene: Scene, values: Mapping | None = None, outputs: Sequence[str] | None = None,
+def elasticities(scene: SceneLike, values: Mapping | None = None, outputs: Sequence[str] | None = None,
                  parameters: Sequence[str] | None = None, given: Mapping | Sequence[str] = (),
                  find: Sequence[str] = ()) -> pd.DataFrame:
     """Local sensitivities: elasticities ∂ln y/∂ln p of a scene's outputs, exact (CasADi's Jacobian).
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or Path
         The scene (:func:`ropemodel.load_scene`).
+        A TOML scene file or a built-in scene's name is loaded first (:func:`ropemodel.load_scene`).
     values : dict, optional
         Inputs that override the scene's, ``{name: value}`` (SI floats, strings with units or
         pint Quantities).
@@ -111,6 +113,7 @@ def elasticities(scene: Scene, values: Mapping | None = None, outputs: Sequence[
     1   alpha_u  190.9485     kN      0.7746
     2     mu_pm  190.9485     kN      0.1175
     """
+    scene = as_scene(scene)
     problem = Problem(scene, given, find)
     if parameters is None:
         x = problem.inputs(values)
