@@ -42,8 +42,8 @@ def sensitivities(problem, sol: Solution, p=None) -> dict[str, dict[str, float]]
     if len(idx) + len(fixed) != len(VARIABLES):
         from optimisation.sensitivity import sensitivities as kkt
 
-        full = kkt(problem, sol, p)
-        return {k: full[k] for k in names}
+        full = kkt(problem, sol, p)      # {} where the optimum is not regular: no number made up
+        return {k: full[k] for k in names if k in full}
     cols = [problem.params.index(k) for k in names]
     g = problem.g_function(problem.xs, problem.p)
     active = ca.vertcat(*[g[i] for i in idx])
