@@ -27,6 +27,7 @@ one, otherwise a factor of ten or more beyond the field's largest installations 
 
 from __future__ import annotations
 
+import math
 from typing import cast
 
 from ropemodel._math import fabs, fmax
@@ -84,9 +85,9 @@ Q_HEAD = Q("q_head", "kg/m", "mass per metre of one head rope", "kg/m", guess=8.
 MU = Q("mu", "1", "friction coefficient of the head ropes on the wheel's lining", guess=0.25, low=1e-3, high=10.0,
        **usual(0.15, 0.4, "BPVS § 27(5): a lining of at least 0.25, not below 0.18 wet; polymer linings 0.2-0.3 "
                           "(judgement)"))
-ALPHA = Q("alpha", "rad", "wrap of the head ropes on the wheel", "deg", guess=3.141592653589793, low=1e-3,
-          high=62.83185307179586, **usual(2.6, 7.0, "150° to 400°: tower Koepes wrap 180°-200°, double wraps more "
-                                                     "(judgement)"))
+ALPHA = Q("alpha", "rad", "wrap of the head ropes on the wheel", "deg", guess=math.pi, low=1e-3, high=20 * math.pi,
+          **usual(math.radians(150), math.radians(400), "tower Koepes wrap 180°-200°, with a deflection sheave or a "
+                                                         "double wrap more (judgement)"))
 D_WHEEL = Q("D", "m", "diameter of the friction wheel at the rope centre", "m", guess=4.5, **positive(1e-3, 100.0),
             **usual(0.8, 10.0, "Koepe wheels of 1 to 9 m (judgement)"))
 V_MAX = Q("v_max", "m/s", "largest rope speed: the hoisting speed", "m/s", guess=10.0, **positive(0.0, 100.0),

@@ -25,7 +25,7 @@ import math
 from ropemodel._math import fmax, fmin
 from ropemodel.effects import koepe_states as st
 from ropemodel.effects.base import Equation, Submodel, register
-from ropemodel.effects.koepe import ALPHA, D_WHEEL, F_R, M_SHEAVE, MODEL, Q, tail_terms, usual
+from ropemodel.effects.koepe import ALPHA, D_WHEEL, F_R, M_SHEAVE, MODEL, Q, partner, tail_terms, usual
 from ropemodel.papers import koepe as kp
 from ropemodel.papers import koepe_slip as ks
 
@@ -93,7 +93,7 @@ class BrakeWindow(Submodel):
         return eqs
 
     def where(self, values):
-        out = {}
+        out, slips = {}, partner(self, "lining").where(values)
         for d, (sign, name) in DIRECTIONS.items():
             rows = self.coasting(values, sign)
             i = st.argleast([-x for _, x in rows])
@@ -101,7 +101,8 @@ class BrakeWindow(Submodel):
                                           values["a_brake_max"], rows[i][1])
             texts = {"the rule's least deceleration": "a_brake_min", "the rule's largest deceleration": "a_brake_max",
                      "the deceleration without brake": f"the deceleration without brake ({rows[i][0].state.name})",
-                     f"the slip limit (a_slip_{d}_decel)": f"the slip limit a_slip_{d}_decel"}
+                     f"the slip limit (a_slip_{d}_decel)":
+                         f"the slip limit a_slip_{d}_decel ({slips[f'a_slip_{d}_decel'].split(': ', 1)[-1]})"}
             low, high = texts.get(w.low_by, w.low_by), texts.get(w.high_by, w.high_by)
             out[f"a_brake_low_{d}"], out[f"a_brake_high_{d}"] = low, high
             out[f"brake_margin_{d}"] = (f"{name}: {w.low:.4g} to {w.high:.4g} m/s², from {low} to {high}"

@@ -95,8 +95,9 @@ class DesignChecks(Submodel):
         ]
 
     def where(self, values):
-        return {"head_safety_margin": "at T_max (see T_max)", "pull_margin": "at T_max (see T_max)",
-                "difference_margin": "at dT_max (see dT_max)", "antislip_margin": "at sigma_static (see T_1, T_2)",
-                **({"tail_safety_margin": "with its conveyance at the upper position"}
-                   if "tail_safety_margin" in values else {})}
-
+        hoist, lining = partner(self, "hoist").where(values), partner(self, "lining").where(values)
+        out = {"head_safety_margin": hoist["T_max"], "pull_margin": hoist["T_max"],
+               "difference_margin": hoist["dT_max"], "antislip_margin": lining["sigma_static"]}
+        if "tail_safety_margin" in values:
+            out["tail_safety_margin"] = "a tail rope hanging from a conveyance at its upper position"
+        return out

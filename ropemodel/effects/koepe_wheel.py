@@ -190,8 +190,9 @@ class RigidWheel(WheelLining):
 
 VOIGT = (
     Q("Q_R", "1/N", "radial compliance of the wheel's lining per head rope (Hajduk 1992: h/(E R² a))", "1/N",
-      low=0.0, high=1.0, guess=2e-9, **usual(1e-11, 1e-5, "Hajduk's linings, 1e-8 to 1e-4 per newton of a thin "
-                                                          "rope; a Koepe rope's 10 to 100 times stiffer (judgement)")),
+      low=0.0, high=1.0, guess=2e-9, **usual(1e-11, 3e-7, "h/(E R² a) of linings 10-50 mm thick of E = 10-500 MPa "
+                                                          "on wheels of R = 1-5 m under ropes 20-60 mm wide "
+                                                          "(judgement)")),
     Q("lambda_R", "s", "retardation time of the lining's radial Voigt bodies (η/E)", "s", low=0.0, high=1e3,
       guess=0.5, **usual(1e-3, 10.0, "polymer linings: milliseconds to seconds (judgement)")),
     Q("Q_T", "1/N", "tangential compliance of the lining per head rope (Hajduk 1992: μ/(G R a))", "1/N", low=0.0,
