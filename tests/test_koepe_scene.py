@@ -152,3 +152,17 @@ def test_rigid_slip_is_the_truths_formula():
     h = dict(ISSUE, q_head=1e-12, v_max=0.0)
     T_L, T_E = 830451.0, 584530.0
     assert rigid_slip(h, T_L, T_E, T_L / 9.80665, T_E / 9.80665) == pytest.approx(2.0964, abs=5e-5)
+
+
+def test_a_slack_rope_and_ropes_lifting_off_are_no_result():
+    """Outside the physics, no number: the shaft resistance reaching the tension of conveyance L's side (its
+    ropes would have to push, lowering), and the head ropes' centrifugal force q v² reaching the low side."""
+    lowest = min(tensions(ISSUE, f * ISSUE["H"], loaded)[0] for _, f, loaded in ENDS)     # 584.53 kN, empty
+    with pytest.raises(rm.SolveError, match=rf"go slack: .* \(700 kN against {lowest / 1e3:.4g} kN\)"):
+        rm.run(scene(dict(ISSUE, F_r=7e5)))
+    assert rm.run(scene(dict(ISSUE, F_r=0.99 * lowest)))["a_slip_hoist_accel"] < 0   # steady hoisting slips
+    fast = dict(ISSUE, H=200.0, q_head=40.0, q_tail=80.0, v_max=80.0)       # balanced: no slip at rest
+    c = 4 * 40.0 * 80.0**2
+    assert statics(fast)["worst"]["sigma"] > 1 and min(r["T_2"] for r in statics(fast)["rows"]) < c
+    with pytest.raises(rm.SolveError, match="the head ropes lift off the lining"):
+        rm.run(scene(fast))

@@ -10,12 +10,14 @@ result (exit 1), the state and numbers named (:func:`ropemodel.papers.koepe.slip
 
 The four slip accelerations (``a_slip_hoist_accel`` …, :mod:`ropemodel.papers.koepe_slip`; "hoist" moves the
 loaded conveyance up) are the least over every manoeuvre's end states
-(:data:`~ropemodel.effects.koepe_states.DYNAMIC`), each at the speed of a stop from v_max to rest where the
-lining holds least:
+(:data:`~ropemodel.effects.koepe_states.DYNAMIC`), each at the speed between rest and v_max (a start, a stop)
+where the lining holds least.  A point outside the physics gives no result (exit 1): slip at rest, a shaft
+resistance that would slacken the ropes of conveyance L's side lowering, ropes lifting off the lining.
 
 ``rigid``  ρ = e^{μα} (Euler–Eytelwein); the ropes on the wheel and their centrifugal force included
            (:func:`ropemodel.papers.koepe_slip.slip_acceleration`).  The limit falls with the speed (the
-           centrifugal term −(e^{μα} − 1) q v² of its numerator), so the least is at v_max.
+           centrifugal term −(e^{μα} − 1) q v² of its numerator), so the least is at v_max.  The slip condition
+           holds while the ropes press on the lining: no result where q v_max² reaches the low side's tension.
 ``voigt``  Hajduk (1992), eq. (19) on the wheel, S_0 = T_2/n_head (:mod:`ropemodel.papers.koepe_lining`).
            The crept compliance C(α) = Q_R (1 − e^{−α/k_R}) + Q_T (1 − e^{−α/k_T}), k = λ v/R, is largest at
            rest (k = 0), and a larger C holds less (eq. (19)'s residual rises with C, so its root T_U falls),
@@ -30,9 +32,10 @@ from __future__ import annotations
 import math
 from typing import ClassVar
 
+import numpy as np
 import pandas as pd
 
-from ropemodel._math import exp, fabs, fmax, if_else
+from ropemodel._math import exp, fabs, fmax, fmin, if_else
 from ropemodel.effects import koepe_states as st
 from ropemodel.effects.base import Equation, Submodel, register
 from ropemodel.effects.koepe import (ALPHA, D_WHEEL, F_R, M_SHEAVE, MODEL, MU, V_MAX, Q, static_states,
@@ -48,6 +51,9 @@ SRC = "docs/physics.md §7"
 NEWTON_STEPS = 20
 MANOEUVRES = {"hoist_accel": "hoisting, speeding up", "hoist_decel": "hoisting, slowing down",
               "lower_accel": "lowering, speeding up", "lower_decel": "lowering, slowing down"}
+#: what the physics checks of a sweep's points are computed from (those the scene has)
+NEEDS = ("H", "H_head", "m_conveyance", "m_payload", "n_head", "q_head", "n_tail", "q_tail", "h_loop", "F_r",
+         "m_sheave_a", "m_sheave_b", "mu", "alpha", "D", "v_max")
 STATIC_OUT = ("T_1", "T_2", "ratio_static", "traction_limit", "traction_limit_run", "sigma_static")
 
 OUTPUTS = (
@@ -70,9 +76,11 @@ OUTPUTS = (
 class WheelLining(Submodel):
     """The outputs of every lining; a variant gives its traction limits and its slip acceleration."""
 
+    #: where a variant's traction limits come from
+    limit_source: ClassVar[str] = ""
+    run_source: ClassVar[str] = ""
     citations: ClassVar[tuple[str, ...]] = ("delavergne2003", "antislip_cn")
     quantities: ClassVar[tuple[Quantity, ...]] = (MU, ALPHA, D_WHEEL, V_MAX, F_R, *M_SHEAVE, *OUTPUTS)
-    invalid_needs = ("sigma_static",)
 
     def limit(self, v, T_2):
         """Traction limit ρ = T_1/T_2 at rest for the low side's tension T_2 [-]."""
@@ -83,7 +91,7 @@ class WheelLining(Submodel):
         raise NotImplementedError
 
     def slip(self, v, F_U, F_D, M_U, M_D):
-        """The least slip acceleration of side U over a stop from v_max to rest [m/s²]."""
+        """The least slip acceleration of side U at a speed between rest and v_max [m/s²]."""
         raise NotImplementedError
 
     def static_rows(self, v) -> list:
@@ -144,17 +152,33 @@ class WheelLining(Submodel):
                          **{f"a_slip_{m} [m/s^2]": a for m, a in limits.items()}})
         return {"static states at the wheel": static, "slip accelerations in each end state": pd.DataFrame(rows)}
 
+    def troubles(self, v) -> dict:
+        """Each way a point leaves the physics → (where: a bool, or a boolean array over a sweep's points; the
+        force [N] that crosses; the force it reaches)."""
+        lowest = st.smallest([s.T_L for s in (st.sides(v, tail_terms(self, v), x) for x in st.DYNAMIC[::2])])
+        return {"the head ropes slip on the wheel at rest (sigma_static < 1)": (v["sigma_static"] < 1.0, 0.0, 0.0),
+                "lowering, the ropes of conveyance L's side would go slack: the shaft resistance F_r reaches their "
+                "tension": (v["F_r"] >= lowest, v["F_r"], lowest)}
+
     def invalid(self, values):
-        if values["sigma_static"] >= 1.0:
-            return []
-        cases = kp.static_cases(values["m_conveyance"], values["m_payload"], values["H"], values["H_head"],
-                                values["n_head"], values["q_head"], *tail_terms(self, values))
-        verdict = kp.slip_at_rest(cases, lambda T_2: self.limit(values, T_2))
-        return [f"no result: {verdict.message}"]
+        out = []
+        for reason, (bad, force, reached) in self.troubles(values).items():
+            if not bad:
+                continue
+            if reason.startswith("the head ropes slip"):
+                cases = kp.static_cases(values["m_conveyance"], values["m_payload"], values["H"], values["H_head"],
+                                        values["n_head"], values["q_head"], *tail_terms(self, values))
+                out.append(f"no result: {kp.slip_at_rest(cases, lambda T_2: self.limit(values, T_2)).message}")
+            else:
+                out.append(f"no result: {reason} ({force / 1e3:.4g} kN against {reached / 1e3:.4g} kN)")
+        return out
 
     def invalid_mask(self, values):
-        slips = values["sigma_static"] < 1.0
-        return {"the head ropes slip on the wheel at rest (sigma_static < 1)": slips} if slips.any() else {}
+        return {reason: bad for reason, (bad, _, _) in self.troubles(values).items() if np.any(bad)}
+
+    def invalid_needs_for(self, outputs):
+        """sigma_static and what the tensions and the lining's limits are computed from (those of the scene)."""
+        return ("sigma_static", *NEEDS)
 
 
 @register(MODEL, "lining", "rigid")
@@ -177,15 +201,17 @@ class RigidWheel(WheelLining):
         return ks.slip_acceleration(F_U, F_D, M_U, M_D, v["mu"], v["alpha"], v["n_head"] * v["q_head"],
                                     v["D"] / 2.0, v["v_max"])
 
-    def invalid(self, values):
-        out = super().invalid(values)
-        c = ks.centrifugal_tension(values["n_head"] * values["q_head"], values["v_max"])
-        low = min(min(s.T_L, s.T_E) for s in static_states(self, values))
-        if not out and low <= c:
-            out.append(f"no result: at v_max = {values['v_max']:g} m/s the centrifugal force of the head ropes, "
-                       f"q v² = {c / 1e3:.4g} kN, reaches the low side's tension {low / 1e3:.4g} kN: the ropes "
-                       f"lift off the lining (a slower hoist, or more tension on the low side)")
-        return out
+    def troubles(self, v):
+        """Also: the ropes lift off the lining where their centrifugal force q v_max² reaches the low side's
+        tension, at rest or at a manoeuvre's slip limit (the slip condition holds while they press on it)."""
+        c = ks.centrifugal_tension(v["n_head"] * v["q_head"], v["v_max"])
+        lows = [fmin(s.T_L, s.T_E) for s in static_states(self, v)]
+        for s, limits in self.slip_rows(v):
+            sides = ks.manoeuvre_sides(s.T_L, s.T_E, *st.masses(v, s), v["F_r"])
+            lows += [sides[m][1] - sides[m][3] * a for m, a in limits.items()]
+        return {**super().troubles(v), "the head ropes lift off the lining: their centrifugal force q v_max² "
+                                       "reaches the low side's tension, at rest or at a slip limit (a slower hoist, "
+                                       "or more tension)": (st.smallest(lows) <= c, c, st.smallest(lows))}
 
 
 VOIGT = (
