@@ -17,11 +17,16 @@ SCENES = sorted(p.name for p in resources.files("ropemodel.data").iterdir() if p
 def fd_elasticity(problem, x, out, par, h=1e-5):
     """Central differences of ln y in ln p on single evaluations (no range check: eta = 1 may step
     past 1), Richardson-extrapolated from steps h and h/2 so the O(h^2) truncation error goes
-    (outputs near zero, e.g. a slip margin, have elasticities of order 100 and large curvature)."""
+    (outputs near zero, e.g. a slip margin, have elasticities of order 100 and large curvature).
+    A factor a rule set gives from ``par`` (a safety factor from the suspended length) follows it."""
+
+    def at(value):
+        point = {**x, par: value}
+        point.update(problem.scene.rule_values(point, [par]))
+        return float(problem.function(**point)[out])
 
     def central(step):
-        up = float(problem.function(**{**x, par: x[par] * (1 + step)})[out])
-        dn = float(problem.function(**{**x, par: x[par] * (1 - step)})[out])
+        up, dn = at(x[par] * (1 + step)), at(x[par] * (1 - step))
         return (math.log(abs(up)) - math.log(abs(dn))) / (math.log1p(step) - math.log1p(-step))
 
     return (4 * central(h / 2) - central(h)) / 3
