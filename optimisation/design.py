@@ -19,6 +19,7 @@ from ropemodel.papers import en12385 as ropes
 from ropemodel.rules.apply import with_rule_terms
 from ropemodel.rules.describe import summary as rules_summary
 from ropemodel.scene import Scene
+from ropemodel.views.design import DesignViews
 
 #: default way to pick a catalogue diameter, chosen on the evidence of studies/discrete_design.py:
 #: on 30 random scenes bonmin returned the same design as next-size-up every time it finished,
@@ -29,8 +30,9 @@ BONMIN_TIMEOUT = 60.0
 
 
 @dataclass
-class Design:
-    """Result of :func:`size`.  Values SI; ``feasible`` False when no design exists."""
+class Design(DesignViews):
+    """Result of :func:`size`.  Values SI; ``feasible`` False when no design exists.  In Jupyter it shows
+    the design and every check as a table with units; ``to_frame()`` gives it as a DataFrame."""
 
     scene: Scene
     feasible: bool

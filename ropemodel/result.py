@@ -9,13 +9,14 @@ from typing import Any
 
 from ropemodel.rules.describe import summary as rules_summary
 from ropemodel.units import label
+from ropemodel.views.result import ResultViews
 
 _DIR = re.compile(r"^(?P<base>.+)_(?P<dir>up|down)$")
 #: keys of the JSON object that are not quantities (no quantity has one of these names)
 META = ("given", "found", "where", "defaults", "unused", "unlimited", "warnings", "citations", "rules")
 
 
-class Result:
+class Result(ResultViews):
     """Every known and solved quantity of one solve, in SI.
 
     ``values`` maps names to SI floats; :meth:`to_series` gives display units in the
@@ -24,7 +25,9 @@ class Result:
     submodel publishes (e.g. the tension along a sheave's arc); ``where`` says where each output taken at
     its worst occurs (a Koepe hoist's end state and manoeuvre).  An output that is
     infinite because an input is unlimited (no stroke given) reads ``unlimited`` in
-    the table and ``null`` in JSON, and is listed under ``"unlimited"``.
+    the table and ``null`` in JSON, and is listed under ``"unlimited"``.  In Jupyter it shows as
+    HTML tables with units; :meth:`to_frame` gives a DataFrame and :meth:`plot` its picture
+    (:mod:`ropemodel.views.result`).
     """
 
     def __init__(self, scene, model, values: dict[str, float], given=(), find=()):

@@ -13,6 +13,8 @@
     mu_pl = 0.05               # a bare number only for a dimensionless quantity
     [numerics]                 # solver options, where the model has any
     rtol = 1e-8
+    [report]                   # the filed report: document, revision, sign-off (ropemodel.scene_report)
+    revision = "A"
 
 Loading collects *every* problem before it raises one :class:`~ropemodel.errors.InputError`
 that lists them all (one line each): unknown names (with the nearest valid name), a key in
@@ -42,12 +44,14 @@ from importlib import resources
 from pathlib import Path
 
 from ropemodel import scene_tables as tables
+from ropemodel.scene_report import Filing, read_report
 from ropemodel.core.compile import forward_of
 from ropemodel.core.model import Model
 from ropemodel.effects import all_quantities, effects_of, models, resolve_effects
 from ropemodel.errors import InputError, Problems, suggest
 from ropemodel.rules import apply as rules_apply
 from ropemodel.rules import describe as rules_describe
+from ropemodel.views.scene import SceneViews
 
 EXAMPLE = "krauze2025_fig9"
 
@@ -57,8 +61,8 @@ class SceneWarning(UserWarning):
 
 
 
-@dataclass(frozen=True)
-class Scene:
+@dataclass(frozen=True, repr=False)
+class Scene(SceneViews):
     """A validated scene.  ``parameters`` are SI floats; ``effects`` have defaults filled in.
 
     Attributes
@@ -91,6 +95,8 @@ class Scene:
     route: tuple[bool, ...] = ()
     #: the rule set of ``[rules]`` applied to this scene (:class:`ropemodel.rules.apply.Applied`), or None
     rules: rules_apply.Applied | None = None
+    #: the filed report's data, ``[report]`` (:class:`ropemodel.scene_report.Filing`), or None
+    filing: Filing | None = None
 
     @cached_property
     def built(self) -> Model:
@@ -314,12 +320,13 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
     if values:
         tables.set_values(model, values, values_bare, values_origin, params, origin, unused, found, notes)
     rules = rules_apply.read_rules(data, model, params, origin, given, found)
+    filing = read_report(data, found)
     defaults, absent = tables.fill_missing(model, params, origin, tuple(optional), found)
     for problem in model.problems(params):
         found.add(problem)
     scene = Scene(str(name if name is not None else source or "unnamed"), model_name, effects, params, numerics,
                   source, defaults, unused, checks, absent, tuple(notes), origin, digest,
-                  {k: v for k, v in data.items()}, route, rules)
+                  {k: v for k, v in data.items()}, route, rules, filing)
     scene.__dict__["built"] = model
     _verify_checks(scene, found)
     found.raise_if_any()

@@ -38,13 +38,14 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
 from ropemodel.errors import InputError
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
+from ropemodel.views.records import TripViews
 
 if TYPE_CHECKING:
     from ropemodel.effects.winch_braking import Braking
@@ -79,13 +80,17 @@ class Piece:
 
 
 @dataclass
-class Trip:
+class Trip(TripViews):
     """A trip: :attr:`pieces` (exact), :attr:`summary` (SI), :attr:`history` (a DataFrame of samples).
 
     ``phases`` are (t0, t1, v0, a) of the speed profile along the direction of travel; the load starts
     at ``start`` [m] from the drive and moves toward it (``sign`` +1, upward) or away (−1).  ``braking``
     is the scene's :class:`~ropemodel.effects.winch_braking.Braking` variant (where braking energy goes).
+    In Jupyter it shows its summary with units; ``to_series()``, ``to_frame()`` (the history) and
+    ``plot()`` (the drive's power).
     """
+
+    units: ClassVar[dict[str, str]] = SUMMARY
 
     scene: Scene
     direction: str

@@ -27,7 +27,7 @@ def load_weight_along_incline(G_m, alpha_u):
     G_m : float
         Weight of the transported load [N], > 0.
     alpha_u : float
-        Inclination of the route [rad], |α_u| < π/2 (the paper: up to 45°).
+        Inclination of the route [rad], −π/2 < α_u < π/2 (the paper: up to 45°).
 
     Returns
     -------

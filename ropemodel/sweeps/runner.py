@@ -40,6 +40,7 @@ from ropemodel.sweeps.points import MAX_AXIS, Points, grid, table
 from ropemodel.sweeps.store import ChunkStore, complete_rows, discard_parts, read_output
 from ropemodel.sweeps.validate import check_ranges, check_rules
 from ropemodel.units import label
+from ropemodel.views.records import SweepFileViews
 
 if TYPE_CHECKING:
     from ropemodel.scene import Scene
@@ -65,7 +66,7 @@ class SweepInterrupted(KeyboardInterrupt):
 
 
 @dataclass
-class SweepFile(os.PathLike):
+class SweepFile(SweepFileViews, os.PathLike):
     """What ``sweep(..., collect=False)`` returns: the output file (path-like) and what it holds.
 
     status: ``"written"`` (computed now, or resumed) or ``"complete"`` (found finished: nothing computed).
