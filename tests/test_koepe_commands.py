@@ -138,7 +138,11 @@ def test_sensitivity_is_the_derivative_of_the_closed_form(capsys):
 def test_the_report_carries_the_koepes_checks():
     r = rm.report("koepe_example")
     assert r.incomplete == []
-    assert r.shown == ["scene", "inputs", "rules", "equations", "results", "checks", "sensitivity", "references"]
+    from ropemodel.reports.registry import sections
+
+    assert {"scene", "inputs", "rules", "equations", "results", "checks", "sensitivity"} <= set(r.shown)
+    winch_only = {"sizing", "dynamic_sizing", "trip", "transient"}
+    assert winch_only <= {s.name for s in sections()} and not winch_only & set(r.shown)
     for name in ("head_safety_margin", "tail_safety_margin", "wheel_margin", "brake_margin_hoist", "pull_margin"):
         assert name in r.html
     assert "us-30cfr-57 § 57.19021(b)" in r.html and "loaded at the bottom, the loaded side high" in r.html
@@ -149,3 +153,19 @@ def test_the_tonne_is_a_unit():
     assert rm.load_scene("koepe_example").parameters["m_conveyance"] == 29.6e3
     assert math.isclose(rm.run(rm.load_scene("koepe_example"), {"m_payload": "0.5 t"})["T_1"],
                         statics(dict(ISSUE, m_payload=500.0))["worst"]["T_1"], rel_tol=1e-12)
+
+
+def test_the_result_shows_itself():
+    """Jupyter's table carries where each worst case is; the picture's ratio at the bottom of the wind is the
+    loaded hoist's worst static ratio (the closed form), and its dashed line the traction limit."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    r = rm.run(rm.load_scene("koepe_example"))
+    assert "worst case: loaded at the bottom, the loaded side high" in r._repr_html_()
+    assert r.to_frame().loc["T_1", "source"].endswith("worst case: loaded at the bottom, the loaded side high")
+    ax = r.plot()
+    y, ratio = ax.lines[0].get_data()
+    w = statics(ISSUE)["worst"]
+    assert y[-1] == ISSUE["H"] and rel(ratio[-1], w["T_1"] / w["T_2"]) < 1e-12
+    assert ax.lines[2].get_data()[1][0] == pytest.approx(math.exp(0.25 * math.pi), rel=1e-14)

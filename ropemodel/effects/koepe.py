@@ -74,13 +74,13 @@ H = Q("H", "m", "winding distance: between a conveyance's upper and lower positi
       **positive(0.0, 4e4), **usual(20.0, 3000.0, JUDGEMENT))
 H_HEAD = Q("H_head", "m", "head-rope length from the wheel's tangent point to a conveyance at its upper position",
            "m", low=0.0, high=1e3, guess=56.7, **usual(5.0, 200.0, JUDGEMENT))
-M_CONVEYANCE = Q("m_conveyance", "kg", "mass of each conveyance with its attachments", "t", guess=3e4,
+M_CONVEYANCE = Q("m_conveyance", "kg", "mass of each conveyance with its attachments", "t", guess=3e4, symbol="m_c",
                  **positive(1e-3, 1e6), **usual(500.0, 1.5e5, JUDGEMENT))
-M_PAYLOAD = Q("m_payload", "kg", "payload of the loaded conveyance", "t", guess=2e4, **positive(0.0, 1e6),
+M_PAYLOAD = Q("m_payload", "kg", "payload of the loaded conveyance", "t", guess=2e4, symbol="m_p", **positive(0.0, 1e6),
               **usual(100.0, 1e5, JUDGEMENT))
-N_HEAD = Q("n_head", "1", "number of head ropes (a whole number)", guess=4.0, low=1.0, high=100.0,
+N_HEAD = Q("n_head", "1", "number of head ropes (a whole number)", guess=4.0, low=1.0, high=100.0, symbol="n_h",
            **usual(1.0, 10.0, "multi-rope friction hoists carry 1 to 10 head ropes (judgement)"))
-Q_HEAD = Q("q_head", "kg/m", "mass per metre of one head rope", "kg/m", guess=8.6, **positive(1e-3, 1e3),
+Q_HEAD = Q("q_head", "kg/m", "mass per metre of one head rope", "kg/m", guess=8.6, symbol="q_h", **positive(1e-3, 1e3),
            **usual(0.5, 40.0, "EN 12385-4 ropes of 10 to 90 mm (W d², W about 4000 kg/m³)"))
 MU = Q("mu", "1", "friction coefficient of the head ropes on the wheel's lining", guess=0.25, low=1e-3, high=10.0,
        **usual(0.15, 0.4, "BPVS § 27(5): a lining of at least 0.25, not below 0.18 wet; polymer linings 0.2-0.3 "
@@ -101,8 +101,8 @@ M_SHEAVE = tuple(
     for c in st.COMPARTMENTS)
 T_MAX = Q("T_max", "N", "largest static tension at the wheel (all head ropes of a side): the largest rope pull",
           "kN", equation=f"{PRACTICE}: T = g (m + n_head q_head L_h + n_tail q_tail L_t)")
-DT_MAX = Q("dT_max", "N", "largest static tension difference across the wheel", "kN",
-           equation=f"{PRACTICE}: |T_L − T_E|")
+DT_MAX = Q("dT_max", "N", "largest static tension difference across the wheel", "kN", symbol="ΔT_max",
+           equation=f"{PRACTICE}: abs(T_L − T_E)")
 
 define_effect(MODEL, "hoist", "koepe", "the static tensions at the ends of the wind, loaded and empty")
 define_effect(MODEL, "tail_ropes", "round", "tail (balance) ropes hanging in a free loop, or none")
@@ -146,7 +146,7 @@ class KoepeHoist(Submodel):
     """The static tensions at the wheel at the ends of the wind: the largest rope pull and difference.
 
     T_L, T_E of :func:`ropemodel.papers.koepe.side_tensions` (loaded side and the other) at each static
-    end state; T_max = max(T_L, T_E) and dT_max = |T_L − T_E| at their worst.  The ratings and rope safety
+    end state; T_max = max(T_L, T_E) and dT_max = abs(T_L − T_E) at their worst.  The ratings and rope safety
     (``checks = "design"``) read them.
     """
 
@@ -156,10 +156,12 @@ class KoepeHoist(Submodel):
 
     def equations(self, v):
         states = static_states(self, v)
+        every = "over the static end states (loaded at the bottom, at the top, empty), each a closed form"
         return [Equation("T_max", v["T_max"] - st.largest([fmax(s.T_L, s.T_E) for s in states]),
-                         f"{PRACTICE}: the largest T_L or T_E at an end of the wind"),
+                         f"{PRACTICE}: the largest T_L or T_E at an end of the wind", method=f"the largest {every}"),
                 Equation("dT_max", v["dT_max"] - st.largest([fabs(s.T_L - s.T_E) for s in states]),
-                         f"{PRACTICE}: the largest |T_L − T_E| at an end of the wind")]
+                         f"{PRACTICE}: the largest abs(T_L − T_E) at an end of the wind",
+                         method=f"the largest {every}")]
 
     def where(self, values):
         states = static_states(self, values)

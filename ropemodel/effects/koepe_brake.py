@@ -51,7 +51,8 @@ QUANTITIES = (
         Q(f"a_brake_high_{d}", "m/s^2", f"largest admissible brake deceleration {DIRECTIONS[d][1]}", "m/s^2",
           equation=f"{SRC}: min(a_slip_{d}_decel, a_brake_max)"),
         Q(f"brake_margin_{d}", "m/s^2", f"width of the emergency brake's window {DIRECTIONS[d][1]}, a_brake_high − "
-          f"a_brake_low (>= 0 passes: an admissible deceleration exists)", "m/s^2", equation=f"{SRC}"))),
+          f"a_brake_low (>= 0 passes: an admissible deceleration exists)", "m/s^2", symbol=f"m_brake,{d}",
+          equation=f"{SRC}"))),
 )
 
 
@@ -86,7 +87,9 @@ class BrakeWindow(Submodel):
             free = st.largest([x for _, x in self.coasting(v, sign)])
             low, high = v[f"a_brake_low_{d}"], v[f"a_brake_high_{d}"]
             eqs += [Equation(f"a_brake_low_{d}", low - fmax(v["a_brake_min"], free),
-                             f"{SRC}: the least deceleration asked, or the deceleration without brake"),
+                             f"{SRC}: the least deceleration asked, or the deceleration without brake",
+                             method="max(a_brake_min, d_free), d_free = (s (T_L − T_E) + F_r)/M_total the largest "
+                                    "over the end states (koepe_slip.coasting_deceleration, each a closed form)"),
                     Equation(f"a_brake_high_{d}", high - fmin(v[f"a_slip_{d}_decel"], v["a_brake_max"]),
                              f"{SRC}: the slip limit, or the largest deceleration allowed"),
                     Equation(f"brake_margin_{d}", v[f"brake_margin_{d}"] - (high - low), f"{SRC}: the window's width")]

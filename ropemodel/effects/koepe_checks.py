@@ -43,23 +43,24 @@ QUANTITIES = (
     Q("T_rated", "N", "the machine's rated static rope pull (the largest T_max it is built for)", "kN", guess=1e6,
       **positive(0.0, 1e10), unlimited=True, default=math.inf, default_note="not given: not checked"),
     Q("dT_rated", "N", "the machine's rated static tension difference (the largest dT_max it is built for)", "kN",
-      guess=3e5, **positive(0.0, 1e10), unlimited=True, default=math.inf, default_note="not given: not checked"),
+      symbol="ΔT_rated", guess=3e5, **positive(0.0, 1e10), unlimited=True, default=math.inf,
+      default_note="not given: not checked"),
     Q("sigma_static_min", "1", "least static anti-slip factor required", low=1.0, high=100.0, guess=1.75,
       default=1.0, default_note="not given: 1, the onset of slip (rules and practice ask more)"),
     Q("head_safety_margin", "1", "margin of the head ropes' safety n_head F_min_head/(n_safety_head T_max) − 1 "
-      "(>= 0 passes)", equation=SAFETY),
+      "(>= 0 passes)", symbol="m_safety,head", equation=SAFETY),
     Q("tail_safety_margin", "1", "margin of the tail ropes' safety F_min_tail/(n_safety_tail F_tail) − 1 "
-      "(>= 0 passes)", equation=SAFETY),
+      "(>= 0 passes)", symbol="m_safety,tail", equation=SAFETY),
     Q("wheel_margin", "1", "margin of the wheel D/(D_ratio_min d_head) − 1 (>= 0 passes)",
-      equation="D/d check with the rule's D_ratio_min"),
+      symbol="m_wheel", equation="D/d check with the rule's D_ratio_min"),
     Q("wheel_size_margin", "m", "margin of the wheel's diameter D − D_min (>= 0 passes)", "mm",
-      equation="least wheel diameter check"),
+      symbol="m_D", equation="least wheel diameter check"),
     Q("pull_margin", "1", "margin of the rated rope pull T_rated/T_max − 1 (>= 0 passes)",
-      equation="the machine's rating against T_max", unlimited=True, unlimited_text="not checked"),
+      symbol="m_pull", equation="the machine's rating against T_max", unlimited=True, unlimited_text="not checked"),
     Q("difference_margin", "1", "margin of the rated tension difference dT_rated/dT_max − 1 (>= 0 passes)",
-      equation="the machine's rating against dT_max", unlimited=True, unlimited_text="not checked"),
+      symbol="m_ΔT", equation="the machine's rating against dT_max", unlimited=True, unlimited_text="not checked"),
     Q("antislip_margin", "1", "margin of the static anti-slip factor sigma_static/sigma_static_min − 1 (>= 0 "
-      "passes)", equation="the anti-slip factor against the least required (antislip_cn)"),
+      "passes)", symbol="m_σ", equation="the anti-slip factor against the least required (antislip_cn)"),
 )
 
 

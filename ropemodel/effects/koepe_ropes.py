@@ -22,8 +22,8 @@ from ropemodel.papers.route import G_N
 SRC = "EN 12385-4"
 
 N_TAIL = Q("n_tail", "1", "number of tail (balance) ropes (a whole number)", guess=2.0, low=1.0, high=100.0,
-           **usual(1.0, 10.0, "friction hoists hang 1 to 10 tail ropes (judgement)"))
-Q_TAIL = Q("q_tail", "kg/m", "mass per metre of one tail rope", "kg/m", guess=15.5, **positive(1e-3, 1e3),
+           symbol="n_t", **usual(1.0, 10.0, "friction hoists hang 1 to 10 tail ropes (judgement)"))
+Q_TAIL = Q("q_tail", "kg/m", "mass per metre of one tail rope", "kg/m", guess=15.5, symbol="q_t", **positive(1e-3, 1e3),
            **usual(0.5, 60.0, "round and flat balance ropes (judgement, around the issue's 15.5 kg/m)"))
 H_LOOP = Q("h_loop", "m", "tail rope per side below a conveyance's lower position, half the loop's turn included: "
            "(L_tail − H)/2", "m", low=0.0, high=1e3, guess=5.0, default=0.0,

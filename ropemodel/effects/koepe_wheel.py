@@ -40,6 +40,7 @@ from ropemodel.effects import koepe_states as st
 from ropemodel.effects.base import Equation, Submodel, register
 from ropemodel.effects.koepe import (ALPHA, D_WHEEL, F_R, M_SHEAVE, MODEL, MU, V_MAX, Q, static_states,
                                      tail_terms, usual)
+from ropemodel.papers import hajduk1992 as hj
 from ropemodel.papers import koepe as kp
 from ropemodel.papers import koepe_lining as kl
 from ropemodel.papers import koepe_slip as ks
@@ -62,9 +63,9 @@ OUTPUTS = (
     Q("T_2", "N", "the low side's static tension in the worst static state", "kN", equation=f"{SRC}: min(T_L, T_E)",
       guess=6e5),
     Q("ratio_static", "1", "static tension ratio T_1/T_2 of the worst static state", equation=f"{SRC}: T_1/T_2"),
-    Q("traction_limit", "1", "the lining's traction limit at rest: T_1/T_2 at the onset of slip",
+    Q("traction_limit", "1", "the lining's traction limit at rest: T_1/T_2 at the onset of slip", symbol="ρ",
       equation="rigid: e^{μα} (Euler–Eytelwein); voigt: Hajduk 1992 eq. (19) at rest, S_0 = T_2/n_head"),
-    Q("traction_limit_run", "1", "the traction limit while the ropes run steadily at v_max, at T_2",
+    Q("traction_limit_run", "1", "the traction limit while the ropes run steadily at v_max, at T_2", symbol="ρ_run",
       equation="rigid: e^{μα} − (e^{μα} − 1) q v²/T_2 (centrifugal force); voigt: Hajduk 1992 eq. (19), k = λ v/R"),
     Q("sigma_static", "1", "static anti-slip factor (ρ − 1) T_2/(T_1 − T_2), the least over the static states",
       equation="Chinese friction-hoist practice (antislip_cn)"),
@@ -76,18 +77,19 @@ OUTPUTS = (
 class WheelLining(Submodel):
     """The outputs of every lining; a variant gives its traction limits and its slip acceleration."""
 
-    #: where a variant's traction limits come from
-    limit_source: ClassVar[str] = ""
-    run_source: ClassVar[str] = ""
+    #: how a variant's slip acceleration is computed, and the tolerance it meets
+    slip_method: ClassVar[str] = ""
+    slip_tolerance: ClassVar[float | None] = None
     citations: ClassVar[tuple[str, ...]] = ("delavergne2003", "antislip_cn")
     quantities: ClassVar[tuple[Quantity, ...]] = (MU, ALPHA, D_WHEEL, V_MAX, F_R, *M_SHEAVE, *OUTPUTS)
 
-    def limit(self, v, T_2):
-        """Traction limit ρ = T_1/T_2 at rest for the low side's tension T_2 [-]."""
+    def limit(self, v, T_2, speed=0.0):
+        """Traction limit ρ = T_1/T_2 for the low side's tension T_2 [N], the ropes running steadily at
+        ``speed`` [m/s] (0: at rest) [-]."""
         raise NotImplementedError
 
-    def run_limit(self, v, T_2):
-        """Traction limit while the ropes run steadily at v_max [-]."""
+    def limit_equation(self, v, name: str, speed) -> Equation:
+        """The equation of ``traction_limit`` (speed 0) or ``traction_limit_run`` (speed v_max), at T_2."""
         raise NotImplementedError
 
     def slip(self, v, F_U, F_D, M_U, M_D):
@@ -116,19 +118,22 @@ class WheelLining(Submodel):
     def equations(self, v):
         static = self.static_rows(v)
         sigma = [r[4] for r in static]
-        T_1, T_2, rho = st.pick(sigma, *([r[i] for r in static] for i in (1, 2, 3)))
-        eqs = [Equation("T_1", v["T_1"] - T_1, f"{SRC}: the high side in the state of least σ"),
-               Equation("T_2", v["T_2"] - T_2, f"{SRC}: the low side in the state of least σ"),
+        T_1, T_2 = st.pick(sigma, [r[1] for r in static], [r[2] for r in static])
+        worst = "in the static end state of least σ (loaded at the bottom, at the top, empty)"
+        eqs = [Equation("T_1", v["T_1"] - T_1, f"{SRC}: the high side", method=f"max(T_L, T_E) {worst}"),
+               Equation("T_2", v["T_2"] - T_2, f"{SRC}: the low side", method=f"min(T_L, T_E) {worst}"),
                Equation("ratio_static", v["ratio_static"] - v["T_1"] / v["T_2"], f"{SRC}: T_1/T_2"),
-               Equation("traction_limit", v["traction_limit"] - rho, self.limit_source),
-               Equation("traction_limit_run", v["traction_limit_run"] - self.run_limit(v, v["T_2"]),
-                        self.run_source),
+               self.limit_equation(v, "traction_limit", 0.0),
+               self.limit_equation(v, "traction_limit_run", v["v_max"]),
                Equation("sigma_static", v["sigma_static"] - st.smallest(sigma),
-                        "anti-slip factor (antislip_cn): (ρ − 1) T_2/(T_1 − T_2), the least over the static states")]
+                        "anti-slip factor of Chinese practice (antislip_cn)",
+                        governing=v["sigma_static"] - kp.anti_slip_factor(v["T_1"], v["T_2"], v["traction_limit"]),
+                        method=f"the least over the static end states; T_1, T_2 and ρ {worst}")]
         dynamic = self.slip_rows(v)
-        for m in MANOEUVRES:
+        for m, text in MANOEUVRES.items():
             eqs.append(Equation(f"a_slip_{m}", v[f"a_slip_{m}"] - st.smallest([r[1][m] for r in dynamic]),
-                                f"{SRC}: koepe_slip.a_slip_{m}, the least over the end states ({self.variant})"))
+                                f"{SRC}: koepe_slip.a_slip_{m} ({text})", method=self.slip_method,
+                                tolerance=self.slip_tolerance))
         return eqs
 
     def where(self, values):
@@ -187,15 +192,18 @@ class RigidWheel(WheelLining):
 
     description = "rigid lining: Euler–Eytelwein, with the ropes on the wheel (mass, centrifugal force)"
     citations = (*WheelLining.citations, "euler_eytelwein")
-    limit_source = "Euler–Eytelwein, Hajduk 1992 eq. (8): e^{μα}"
-    run_source = f"{SRC}: the slip condition at a = 0, T_1 − q v² = e^{{μα}} (T_2 − q v²)"
+    slip_method = ("the least over the end states (both ends, loaded and empty, conveyance L in either "
+                   "compartment) of koepe_slip.slip_acceleration at v_max, each a closed form")
 
-    def limit(self, v, T_2):
-        return exp(v["mu"] * v["alpha"]) + 0.0 * T_2
-
-    def run_limit(self, v, T_2):
-        E, c = exp(v["mu"] * v["alpha"]), ks.centrifugal_tension(v["n_head"] * v["q_head"], v["v_max"])
+    def limit(self, v, T_2, speed=0.0):
+        E, c = exp(v["mu"] * v["alpha"]), ks.centrifugal_tension(v["n_head"] * v["q_head"], speed)
         return (E * (T_2 - c) + c) / T_2
+
+    def limit_equation(self, v, name, speed):
+        if name == "traction_limit":
+            return Equation(name, v[name] - exp(v["mu"] * v["alpha"]), "Euler–Eytelwein, Hajduk 1992 eq. (8)")
+        return Equation(name, v[name] - self.limit(v, v["T_2"], speed),
+                        f"{SRC}: the slip condition at a = 0, T_1 − q v² = e^(μα) (T_2 − q v²)")
 
     def slip(self, v, F_U, F_D, M_U, M_D):
         return ks.slip_acceleration(F_U, F_D, M_U, M_D, v["mu"], v["alpha"], v["n_head"] * v["q_head"],
@@ -235,18 +243,27 @@ class VoigtWheel(WheelLining):
     description = "Voigt lining (Hajduk 1992): the lining's creep along the arc costs traction"
     citations = (*WheelLining.citations, "hajduk1992")
     quantities = (*WheelLining.quantities, *VOIGT)
-    limit_source = "Hajduk 1992, eq. (19) at rest (fully crept), S_0 = T_2/n_head"
-    run_source = "Hajduk 1992, eq. (19) at v_max, k = λ v_max/R, S_0 = T_2/n_head"
+    slip_method = (f"the least over the end states (both ends, loaded and empty, conveyance L in either "
+                   f"compartment) of Newton's method on eq. (19) at rest (koepe_lining.voigt_slip_residual) "
+                   f"from its monotone start, {NEWTON_STEPS} steps, the last below 1e-12 in ln(T_D/F_D)")
+    slip_tolerance = kl.STEP_TOL
 
-    def _ratio(self, v, T_2, speed):
+    def _terms(self, v, T_2, speed):
+        """(μ, α, q_R, k_R, q_T, k_T) of eq. (19) for the slack side T_2/n_head at ``speed``."""
+        R, per_rope = v["D"] / 2.0, T_2 / v["n_head"]
+        return (v["mu"], v["alpha"], v["Q_R"] * per_rope, kl.creep_parameter(v["lambda_R"], speed, R),
+                v["Q_T"] * per_rope, kl.creep_parameter(v["lambda_T"], speed, R))
+
+    def limit(self, v, T_2, speed=0.0):
         return kl.voigt_traction_ratio(T_2, v["n_head"], v["mu"], v["alpha"], v["D"] / 2.0, speed, v["Q_R"],
                                        v["lambda_R"], v["Q_T"], v["lambda_T"])
 
-    def limit(self, v, T_2):
-        return self._ratio(v, T_2, 0.0)
-
-    def run_limit(self, v, T_2):
-        return self._ratio(v, T_2, v["v_max"])
+    def limit_equation(self, v, name, speed):
+        where = "at rest (fully crept)" if name == "traction_limit" else "at v_max, k = λ v_max/R"
+        return Equation(name, v[name] - self.limit(v, v["T_2"], speed),
+                        f"Hajduk 1992, eq. (19) {where}, S_0 = T_2/n_head",
+                        governing=hj.tension_ratio_residual(v[name], *self._terms(v, v["T_2"], speed)),
+                        method=hj.NEWTON_METHOD)
 
     def slip(self, v, F_U, F_D, M_U, M_D):
         C = kl.lining_compliance(v["alpha"], v["D"] / 2.0, 0.0, v["Q_R"], v["lambda_R"], v["Q_T"], v["lambda_T"])
