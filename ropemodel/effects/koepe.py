@@ -22,7 +22,15 @@ Effects and variants
 ``brake``       ``none`` (default); ``window`` — the emergency brake's admissible deceleration (koepe_brake).
 
 Valid ranges (each quantity's ``low``/``high``) are physical domains: an end from physics where there is
-one, otherwise a factor of ten or more beyond the field's largest installations (:data:`DOMAINS`).
+one (a count of ropes at least 1, a mass or length not negative), otherwise a factor of ten or more beyond
+the field's largest installations: winding distance to 40 km (ten times the deepest shafts, about 4 km);
+head-rope length and tail loop to 1 km; masses from 1 g to 1000 t (ten times the heaviest conveyances with
+their payloads, about 100 t; the machine's equivalent mass to 10^4 t); 1 to 100 ropes (1 to 10 in use);
+1 g/m to 1 t/m a rope (the heaviest hoisting and balance ropes weigh about 30 kg/m); friction 1e-3 to 10 and
+wrap 1e-3 rad to ten turns (e^{μα} then stays a double); wheels 1 mm to 100 m (ten times the largest Koepe
+wheels); speeds to 100 m/s (five times the fastest hoists); forces to 10^9 N; decelerations to 100 m/s² (ten
+g); the lining's compliance to 1 /N and retardation time to 1000 s (Hajduk's linings: 1e-6 to 1e-4 /N,
+milliseconds to seconds).
 """
 
 from __future__ import annotations
@@ -38,21 +46,6 @@ from ropemodel.quantity import Quantity
 MODEL = "koepe"
 PRACTICE = "standard mine-hoisting practice (docs/physics.md §7)"
 JUDGEMENT = "engineering judgement around the issue's example (905 m wind, 29.6 t conveyances, 22 t payload)"
-
-#: where each domain's ends come from
-DOMAINS = {
-    "shaft": "0 to 40 km: ten times the deepest shafts (about 4 km)",
-    "head": "0 to 1 km: ten times the tallest headframes and wheel-to-collar distances",
-    "mass": "1 g to 10^6 kg: ten times the heaviest conveyances with their payloads (about 100 t)",
-    "ropes": "1 to 100: friction hoists carry 1 to 10 ropes per side",
-    "rope mass": "1 g/m to 1 t/m: ten times the heaviest hoisting and balance ropes (about 30 kg/m)",
-    "friction": "1e-3 to 10: below lubricated steel (0.05) to above soft rubber (about 4)",
-    "wrap": "1e-3 rad to ten turns (a Koepe wheel wraps half a turn; a double wrap about a turn)",
-    "wheel": "1 mm to 100 m: ten times the largest Koepe wheels (about 10 m)",
-    "speed": "0 to 100 m/s: five times the fastest mine hoists (about 20 m/s)",
-    "force": "0 to 10^9 N: ten times the heaviest rope-hauled loads",
-}
-
 
 def Q(name, unit, description, display=None, **kw) -> Quantity:
     """Shorthand for a Koepe quantity."""

@@ -33,7 +33,6 @@ import math
 from typing import ClassVar
 
 import numpy as np
-import pandas as pd
 
 from ropemodel._math import exp, fabs, fmax, fmin, if_else
 from ropemodel.effects import koepe_states as st
@@ -148,6 +147,8 @@ class WheelLining(Submodel):
         return out
 
     def frames(self, values, scene):
+        import pandas as pd        # only where a table is made: the command line starts without it
+
         static = pd.DataFrame([{"state": r[0].state.name, "T_L [kN]": r[0].T_L / 1e3, "T_E [kN]": r[0].T_E / 1e3,
                                 "T_1/T_2 [-]": r[1] / r[2], "traction limit [-]": r[3], "sigma [-]": r[4]}
                                for r in self.static_rows(values)])
