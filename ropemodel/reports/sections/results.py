@@ -113,8 +113,11 @@ def check_rows(margins: dict, quantities: dict, scene=None, where=None):
 
 def checks_html(margins: dict, quantities: dict, scene=None, where=None):
     """A verdict line and the table of every margin in ``margins`` (SI), each with its rule (see "Rules") and
-    where its worst case is (``where``: margin name → text)."""
+    where its worst case is (``where``: margin name → text); nothing when there is none (no verdict over no
+    checks)."""
     rows, classes, failed = check_rows(margins, quantities, scene, where)
+    if not rows:
+        return ""
     if failed:
         line = page.verdict(False, f"{len(failed)} of {len(rows)} checks FAIL: {', '.join(failed)}")
     else:
