@@ -108,27 +108,33 @@ def cases(n_positions: int) -> Cases:
 def slip_limits(c: Cases, v, Q_R, Q_T, lam) -> dict[str, np.ndarray]:
     """Voigt lining: manoeuvre → a_slip [m/s²], shape (cases, speeds); v [m/s] a 1-d array."""
     out = {}
-    for name, (F_U, F_D, M_U, M_D) in ks.manoeuvre_sides(c.T_L, c.T_E, c.M_L, c.M_E).items():
-        col = (lambda a: np.asarray(a)[:, None])
-        out[name] = np.asarray(kl.voigt_slip_acceleration(col(F_U), col(F_D), col(M_U), col(M_D), N_HEAD, MU,
-                                                          ALPHA, R, np.asarray(v)[None, :], Q_R, lam, Q_T, lam))
+    for name, sides in ks.manoeuvre_sides(c.T_L, c.T_E, c.M_L, c.M_E).items():
+        F_U, F_D, M_U, M_D = (np.asarray(a)[:, None] for a in sides)
+        out[name] = np.asarray(kl.voigt_slip_acceleration(F_U, F_D, M_U, M_D, N_HEAD, MU, ALPHA, R,
+                                                          np.asarray(v)[None, :], Q_R, lam, Q_T, lam))
     return out
 
 
 def rigid_limits(c: Cases, v, arc: bool) -> dict[str, np.ndarray]:
     """Euler–Eytelwein: manoeuvre → a_slip [m/s²], shape (cases, speeds); with the arc's rope if ``arc``."""
-    fns = {"hoist_accel": ks.a_slip_hoist_accel, "hoist_decel": ks.a_slip_hoist_decel,
-           "lower_accel": ks.a_slip_lower_accel, "lower_decel": ks.a_slip_lower_decel}
-    q = N_HEAD * Q_HEAD if arc else 0.0
-    return {name: np.asarray(f(c.T_L[:, None], c.T_E[:, None], c.M_L[:, None], c.M_E[:, None], MU, ALPHA,
-                               q_arc=q, R=R, v=np.asarray(v)[None, :]) + 0.0 * np.asarray(v)[None, :])
-            for name, f in fns.items()}
+    out, v, q = {}, np.asarray(v)[None, :], N_HEAD * Q_HEAD if arc else 0.0
+    for name, sides in ks.manoeuvre_sides(c.T_L, c.T_E, c.M_L, c.M_E).items():
+        F_U, F_D, M_U, M_D = (np.asarray(a)[:, None] for a in sides)
+        out[name] = np.broadcast_to(ks.slip_acceleration(F_U, F_D, M_U, M_D, MU, ALPHA, q, R, v), (len(c.y_L), v.size))
+    return out
+
+
+def edges(c: Cases, direction: str, d_slip) -> tuple:
+    """The window [low, high] [m/s²] (``koepe_slip.braking_window``): low the rule's d_min or the deceleration
+    without brake, the larger over the wind; high the slip limit d_slip (the least over the wind)."""
+    s = 1.0 if direction == "hoisting" else -1.0
+    d_free = float(np.max(ks.coasting_deceleration(c.T_L, c.T_E, c.M_L + c.M_E, s)))
+    return ks.braking_window(d_slip, D_MIN, d_free=d_free)
 
 
 def floor(c: Cases, direction: str) -> float:
-    """Lower edge of the window [m/s²]: the rule's d_min or the coasting deceleration, the larger over the wind."""
-    s = 1.0 if direction == "hoisting" else -1.0
-    return max(D_MIN, float(np.max(ks.coasting_deceleration(c.T_L, c.T_E, c.M_L + c.M_E, s))))
+    """Lower edge of the window [m/s²] (:func:`edges`)."""
+    return float(edges(c, direction, math.inf)[0])
 
 
 def ceiling_at_rest(c: Cases, E: float, direction: str) -> float:
@@ -161,7 +167,7 @@ def measure(c: Cases, v: np.ndarray) -> tuple[pd.DataFrame, pd.DataFrame]:
                     "rigid [m/s2]": rigid[name].min(axis=0), "rigid with arc rope [m/s2]": arc[name].min(axis=0),
                     "within Hajduk's assumption": lam * v / R <= 2 * math.pi - ALPHA}))
             for direction, name in BRAKING.items():
-                low, high, high_rigid = floor(c, direction), limits[name].min(axis=0), rigid[name].min(axis=0)
+                (low, high), high_rigid = edges(c, direction, limits[name].min(axis=0)), rigid[name].min(axis=0)
                 windows.append(pd.DataFrame({
                     "lining": label, "E [Pa]": E, "lambda [s]": lam, "v [m/s]": v, "direction": direction,
                     "low [m/s2]": low, "high [m/s2]": high, "high rigid [m/s2]": high_rigid,
@@ -246,8 +252,8 @@ def _window_panel(ax, window: pd.DataFrame, direction: str) -> None:
     ax.axhline(low, color="k", lw=1.0)
     ax.text(0.3, low, f" floor {low:.2f} m/s²", va="bottom", fontsize=7)
     _curves(ax, t, "high [m/s2]")
-    closed = t[~t["open"]]
-    ax.plot(closed["v [m/s]"], closed["high [m/s2]"], "x", color="k", ms=4, label="window empty")
+    closed = t[~t["open"]].iloc[::4 if len(t) > 200 else 1]
+    ax.plot(closed["v [m/s]"], closed["high [m/s2]"], "x", color="k", ms=3.5, label="window empty")
     ax.set_title(f"{direction}: emergency-brake window (upper edge per lining)", fontsize=9)
     ax.set_xlabel("rope speed v [m/s]")
     ax.legend(fontsize=7, loc="lower right")

@@ -121,11 +121,19 @@ def test_claims(study):
         want = (rigid_ceiling("lowering") - ceiling(E, 1.0, 0.0, "lowering")) / (rigid_ceiling("lowering") - 1.5)
         assert got == pytest.approx(want, rel=1e-9)
     assert round(100 * low_share, 1) == 1.5 and round(100 * soft_share, 1) == 15.5
+    assert round(rigid_ceiling("lowering"), 2) == 2.10
+    fast = s.loc[("K25-class, 920 MPa", "lowering"), "share taken at 20 m/s, lambda 0.35 s [-]"]
+    assert fast == pytest.approx((rigid_ceiling("lowering") - ceiling(920e6, 0.35, 20.0, "lowering"))
+                                 / (rigid_ceiling("lowering") - 1.5), rel=1e-9)
+    assert round(100 * fast, 2) == 0.97
+    assert s.loc[("rubber 65 Shore A, 5 MPa", "lowering"), "share taken at rest [-]"] > 1.0
     # the window closes at rest below E_c: the ceiling there meets the floor
     for direction, claim in (("lowering", 13.5e6), ("hoisting", 3.3e6)):
         E_c = s.loc[("K25-class, 920 MPa", direction), "E closing the window at rest [Pa]"]
         assert ceiling(E_c, 1.0, 0.0, direction) == pytest.approx(floor(direction), rel=1e-9)
         assert round(E_c, -5) == claim
+        if direction == "lowering":
+            assert round(90e6 / E_c, 1) == 6.7
     # rubber, λ = 3 s: the lowering window opens above 5.07 m/s
     v_open = s.loc[("rubber 65 Shore A, 5 MPa", "lowering"), "empty below [m/s], lambda 3 s"]
     assert ceiling(5e6, 3.0, v_open, "lowering") == pytest.approx(1.5, rel=1e-9)
