@@ -32,7 +32,9 @@ Inputs and their sources:
   h = 30 mm (assumed); contact width a = the rope's diameter, 46.4 mm for 8.6 kg/m of a 6x19 IWRC rope
   (EN 12385-4 via ropemodel's catalogue; the width is assumed).  Q_R = h/(E R² a), Q_T = μ/(G R a)
   (Hajduk 1992, eq. (3)): Q_T/Q_R = 2 μ (1 + ν) R/h ≈ 54, so the tangential compliance governs and h
-  hardly matters.
+  hardly matters.  As published, eq. (2)-(3) take the lining's shear strain itself as the rope's strain (no
+  factor h/R, unlike the radial term); were the rope to follow only the lining surface's shift h γ, Q_T would
+  be about R/h = 75 times smaller and so would the creep's effect.  The study uses the model as published.
 * retardation time λ (assumed, λ_R = λ_T: no measured value for a hoist lining was found): 0.01, 0.1 and
   0.35 s, inside Hajduk's assumption that the lining recovers while the wheel turns through the free angle,
   λ <= (2π − α) R/v (0.35 s at 20 m/s); 3 s beyond it, dotted where λ v/R > 2π − α.

@@ -53,8 +53,9 @@ Use::
     h = example_hoist(N=8, reel=30.0)          # or Hoist(H=..., ...): the fields' units are in its docstring
     run = simulate(h, y_L0=800.0, v0=-10.0, wheel=constant_deceleration(-10.0, 1.8, 0.5), t_end=8.0)
     run.frame()    # t [s], x [m], v [m/s], v_w [m/s], a [m/s2], a_w, T_L [N], T_E [N], F_w [N], F_f [N],
-                   # y_L [m], y_E [m], v_L [m/s], mode (0 stick, ±1 slipping toward E/L), W_brake, D_damping,
-                   # D_friction, energy [J]
+                   # y_L, y_E [m] (the conveyances' depths below their upper positions, stretch included),
+                   # v_L [m/s] (loaded conveyance, + up), mode (0 stick, ±1 slipping toward E/L),
+                   # W_brake, D_damping, D_friction, energy [J]
     run.events     # [(t [s], "slip toward L" | "slipping toward L" | "relative speed 0" | "stick" | "rest"), ...]
 
 The initial state is the steady state at v0 [m/s] (+: hoisting; 0: at rest) with the loaded conveyance y_L0 [m]
@@ -187,6 +188,14 @@ def simulate(h: Hoist, y_L0: float, v0: float, wheel: Wheel, t_end: float, stop:
              method: str = "DOP853", rtol: float = 1e-9, atol: float = 1e-10, max_step: float = np.inf) -> Run:
     """Integrate from the steady state at v0 [m/s] (+: hoisting) with the loaded conveyance at y_L0 [m] below its
     upper position, to t_end [s] or, with stop = "slip" / "rest", to the first slip or to the wheel at rest."""
+    bad = [problem for problem, wrong in (
+        (f"y_L0 = {y_L0} m must lie in [0, H = {h.H}] m", not 0 <= y_L0 <= h.H),
+        (f"t_end = {t_end} s must be > 0", not t_end > 0),
+        (f"stop = {stop!r} must be 'end', 'slip' or 'rest'", stop not in ("end", "slip", "rest")),
+        (f"wheel.kind = {wheel.kind!r} must be 'force' or 'kinematic'", wheel.kind not in ("force", "kinematic")))
+        if wrong]
+    if bad:
+        raise ValueError("; ".join(bad))
     me = mesh(h, y_L0, v0)
     s, t, mode = initial_state(h, me, v0), 0.0, 0
     ts, ys, modes, events = [np.array([0.0])], [s[:, None]], [np.array([0])], []

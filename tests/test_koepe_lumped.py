@@ -197,6 +197,9 @@ def test_bad_input_names_every_problem():
         Hoist(H=-1.0, H_head=56.7, m_conveyance=0.0, m_payload=0.0, n_head=4, q_head=8.6, EA_head=1e8, mu=0.25,
               alpha=math.pi, R=2.25, J=0.0, N=0)
     assert all(f"{name} = " in str(err.value) for name in ("H", "m_conveyance", "N"))
+    with pytest.raises(ValueError) as err:
+        simulate(example_hoist(), 1000.0, 0.0, Wheel("torque", lambda t, v: 0.0), t_end=0.0, stop="never")
+    assert all(name in str(err.value) for name in ("y_L0", "t_end", "stop", "wheel.kind"))
     with pytest.raises(ValueError, match="reel"):
         mesh(example_hoist(reel=200.0), 800.0)
     h = example_hoist(N=2, reel=1.0)
