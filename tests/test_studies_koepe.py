@@ -9,6 +9,7 @@ by brentq; the window's floor max(d_min, (T_L − T_E)/(M_L + M_E)) over the win
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 from _studies import load_study
 from scipy.optimize import brentq
@@ -59,7 +60,8 @@ def rigid_ceiling(direction):
 def floor(direction):
     if direction == "lowering":
         return 1.5
-    return max(1.5, max((lambda t: (t[0] - t[1]) / ((t[0] + t[1]) / G))(tensions(y, p)) for y in Y for p in (M_P, 0)))
+    coasting = [(T_L - T_E) / ((T_L + T_E) / G) for T_L, T_E in (tensions(y, p) for y in Y for p in (M_P, 0.0))]
+    return max(1.5, max(coasting))
 
 
 @pytest.fixture(scope="module")
@@ -67,7 +69,6 @@ def study(tmp_path_factory):
     mod = load_study("koepe_lining")
     out = tmp_path_factory.mktemp("koepe_lining")
     summ = mod.main(out, fast=True)
-    import pandas as pd
     return mod, summ, pd.read_csv(out / "koepe_lining_window.csv"), pd.read_csv(out / "koepe_lining.csv"), out
 
 
