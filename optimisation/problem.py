@@ -193,6 +193,15 @@ def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
     return scene.built.inputs_of() | ramps, chosen
 
 
+def rope_problem(scene) -> str | None:
+    """Why sizing cannot choose ``scene``'s rope (a rope given by its weight, no catalogue to choose from), or
+    None."""
+    if scene.effects.get("rope") == "given":
+        return ("sizing chooses the rope diameter: it needs [effects] rope = \"catalogue\" or a named construction "
+                "such as \"6x36-IWRC\" (the scene has rope = \"given\")")
+    return None
+
+
 class SizingProblem:
     """The NLP of winch sizing for one scene (model ``winch``).
 
@@ -207,9 +216,8 @@ class SizingProblem:
 
     def __init__(self, scene: Scene):
         scene = prepare(scene)
-        if scene.effects.get("rope") == "given":
-            raise InputError("sizing chooses the rope diameter: it needs [effects] rope = \"catalogue\" or a named "
-                             "construction such as \"6x36-IWRC\" (the scene has rope = \"given\")")
+        if (why := rope_problem(scene)) is not None:
+            raise InputError(why)
         self.scene = scene
         #: no drum diameter given: the drum check becomes a result, D = D_ratio_min * d (the least drum)
         self.least_drum = "D" in scene.absent

@@ -63,6 +63,23 @@ def test_a_static_route_scene_is_asked_only_for_its_ramp_then_accepted(tmp_path,
     assert {"t_ramp", "t_end", "rope_damping", "m_t", "G_m", "alpha_2"} <= names and "x_m" in sets
 
 
+@pytest.mark.parametrize("name, asked", [
+    ("winch_sizing_fig9", ["t_ramp"]),
+    ("winch_sizing_voigt", ["t_ramp"]),
+    ("winch_sizing_paper_rope", ['rope = "given"', "t_ramp"]),     # both at once, not one after the other
+])
+def test_shipped_sizing_scenes_are_asked_for_everything_at_once(name, asked, capsys):
+    """Each shipped winch sizing scene has no ramp: ``size --dynamic`` names every missing item in one error
+    (exit 2, one line each, nothing on stdout), before any computation."""
+    assert main(["size", name, "--dynamic"]) == 2
+    out = capsys.readouterr()
+    assert out.out == "" and "Traceback" not in out.err
+    problems = [ln for ln in out.err.splitlines() if ln.strip() and not ln.startswith("error: 2 problems")]
+    assert len(problems) == len(asked)
+    for line, word in zip(problems, asked):
+        assert word in line
+
+
 def test_static_optimum_slips_or_overloads_in_a_start(scene):
     """The static optimum (every static check met) fails in the simulated upward start from the return sheave:
     the reason for dynamic sizing."""
@@ -114,3 +131,13 @@ def test_sweep_refuses_structural_parameters(tmp_path, capsys):
     assert main(["sweep", str(scene_file), "--dynamic", "--vary", "G_m=440kN:480kN:2", "-o", str(out)]) == 2
     err = capsys.readouterr().err
     assert "cannot vary t_end" in err and "needs --sizing" in err and "Traceback" not in err
+
+
+def test_an_inextensible_rope_states_only_the_defaults_it_reads(tmp_path):
+    """The route with an inextensible rope: no element to damp (rope_damping is no default used), no oscillation
+    (t_end is the ramp and half a ramp more: 6 s for the 4 s ramp)."""
+    path = tmp_path / "rigid.toml"
+    path.write_text(route3.SCENE.replace('power = "drive"\n', 'power = "drive"\nrope_elasticity = "rigid"\n'))
+    sc = transient_scene(load_sizing(path, emit=False))
+    assert "rope_damping" not in sc.defaults and {"x_m", "v_eps", "t_end"} <= set(sc.defaults)
+    assert sc.parameters["t_end"] == pytest.approx(6.0, rel=1e-12)

@@ -25,7 +25,7 @@ import dataclasses
 from optimisation.design import solve_best
 from optimisation.dynamic.manoeuvres import Manoeuvre, manoeuvre_scene
 from optimisation.dynamic.positions import candidates
-from optimisation.problem import D_OPTIONAL, SIZED, SizingProblem
+from optimisation.problem import D_OPTIONAL, SIZED, SizingProblem, rope_problem
 from optimisation.problem import reads as static_reads
 from ropemodel.dynamics.assemble import chosen, transient_parts
 from ropemodel.dynamics.smooth import slowest_period
@@ -48,11 +48,15 @@ def transient_scene(scene):
     parameter the transient needs and cannot default, one line each."""
     if _made(scene):
         return scene
+    problems = [why for why in [rope_problem(scene)] if why is not None]      # all at once with the transient's
     try:
         sc = scene.with_effects(EFFECTS, optional=SIZED + D_OPTIONAL + ("t_end",))
     except InputError as e:
-        raise InputError(problems=[f"dynamic sizing: {p}" for p in e.problems]) from None
-    defaults = {k: why for k, why in sc.defaults.items() if k not in SIZED}
+        problems += [f"dynamic sizing: {p}" for p in e.problems]
+    if problems:
+        raise InputError(problems=problems) from None
+    read = reads(sc)[0] | {"x_m"}      # a default nothing reads is no default used (an inextensible rope's damping)
+    defaults = {k: why for k, why in sc.defaults.items() if k not in SIZED and k in read}
     if "x_m" in defaults:
         defaults["x_m"] = X_M_NOTE
     if "t_end" in sc.parameters:
