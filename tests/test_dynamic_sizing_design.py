@@ -140,16 +140,17 @@ def test_no_dynamic_design_is_named_in_the_users_terms(tmp_path, capsys):
 
 
 def test_human_output_states_each_margins_unit(design):
-    """The text of ``size --dynamic``: static margins as static sizing prints them (display units: a ratio
-    is "-", the stroke margin in mm), checks through a manoeuvre in their own unit (N, m or "-") and where the
-    load is at their least margin."""
+    """The text of ``size --dynamic``: every check listed at the design, each row its value, unit, verdict and
+    rule; static margins as static sizing prints them (display units: a ratio is "-", the stroke margin in mm),
+    checks through a manoeuvre in their own unit (N, m or "-") and where the load is at their least margin."""
     import re
 
     from ropemodel.cli._size_dynamic import design_text
 
-    row = re.compile(r"^(?P<name>\S+( @ [a-z ]+)?)\s+(?P<value>\S+)\s+(?P<unit>\S+)\s+(?P<verdict>ok|FAILS)"
-                     r"(\s+(?P<rest>.*))?$")
+    row = re.compile(r"^(?P<name>\S+(?: @ [a-z]+(?: [a-z0-9]+)*)?)\s+(?P<value>[-+0-9.e]+)\s+(?P<unit>\S+)\s+"
+                     r"(?P<verdict>ok|FAILS)(?:\s+(?P<rest>.*))?$")
     lines = {m["name"]: m for m in map(row.match, design_text(design).splitlines()) if m}
+    assert set(lines) == set(design.margins)
     q = design.scene.built.quantities
     stroke = lines["stroke_margin_up"]
     assert stroke["unit"] == "mm"
@@ -157,4 +158,9 @@ def test_human_output_states_each_margins_unit(design):
     assert lines["safety_margin_up"]["unit"] == "-" and q["safety_margin_up"].display_unit == "1"
     assert lines["slip_margin_fwd @ upward start"]["unit"] == "N"
     safety = lines["safety_margin @ upward start"]
-    assert safety["unit"] == "-" and "; load at x_m = " in safety["rest"]
+    assert safety["unit"] == "-" and safety["rest"].startswith("n_rope: ")
+    manoeuvres = {m["manoeuvre"] for m in design.manoeuvres}
+    for name, m in lines.items():
+        assert m["verdict"] == "ok"
+        if name.split(" @ ")[-1] in manoeuvres:     # where the load is at its least margin
+            assert "; load at x_m = " in m["rest"], name
