@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ropemodel.dynamics.history import _finite
+from ropemodel.dynamics.history import finite_summary
 from ropemodel.errors import SolveError
 from ropemodel.views.plotting import axes, finish
 from ropemodel.views.records import SimulationViews
@@ -125,7 +125,7 @@ class KoepeSimulation(SimulationViews):
         return dict(self.summary)
 
     def to_json(self) -> str:
-        return json.dumps(_finite(self.summary), indent=2, allow_nan=False)
+        return json.dumps(finite_summary(self.summary), indent=2, allow_nan=False)
 
     def report(self) -> str:
         """A readable account of the transient in kN, m, s."""
@@ -136,19 +136,16 @@ class KoepeSimulation(SimulationViews):
         for p in self.system.parts:
             if p.order < 10:
                 lines += p.report(s)
-        lines += [f"  T_L (loaded side) at the wheel: start {s['T_L_start'] / 1e3:9.2f} kN, max {s['T_L_max'] / 1e3:9.2f}"
-                  f" kN at t = {s['t_T_L_max']:.3f} s, min {s['T_L_min'] / 1e3:9.2f} kN at t = {s['t_T_L_min']:.3f} s",
-                  f"  T_E (other side) at the wheel:  start {s['T_E_start'] / 1e3:9.2f} kN, max {s['T_E_max'] / 1e3:9.2f}"
-                  f" kN at t = {s['t_T_E_max']:.3f} s, min {s['T_E_min'] / 1e3:9.2f} kN at t = {s['t_T_E_min']:.3f} s",
+        lines += [_side_line(s, "T_L", "T_L (loaded side)"), _side_line(s, "T_E", "T_E (other side) "),
                   f"  least tension in the head ropes {s['T_min'] / 1e3:.2f} kN at t = {s['t_T_min']:.3f} s",
-                  f"  slip margin: start {s['slip_margin_start'] / 1e3:.2f} kN, least {s['slip_margin_min'] / 1e3:.2f} kN"
-                  f" at t = {s['t_worst']:.3f} s (the worst instant: T_L {w['T_L'] / 1e3:.2f} kN, T_E "
-                  f"{w['T_E'] / 1e3:.2f} kN, ropes at {w['v_rope']:.3g} m/s, {w['a_rope']:.3g} m/s², loaded "
-                  f"conveyance at y = {w['y_L']:.1f} m)"]
-        rest = f"at rest at t = {s['t_rest']:.3f} s" if s["t_rest"] is not None else \
-            f"at {s['v_wheel_end']:.4g} m/s at t = {s['t_end']:.3f} s"
-        lines.append(f"  wheel {rest}; ropes ran {s['run']:.3f} m; largest wheel force {s['F_wheel_max'] / 1e3:.2f} kN, "
-                     f"largest rope acceleration {s['a_rope_max']:.3f} m/s²")
+                  f"  slip margin: start {s['slip_margin_start'] / 1e3:.2f} kN, least "
+                  f"{s['slip_margin_min'] / 1e3:.2f} kN at t = {s['t_worst']:.3f} s (the worst instant: T_L "
+                  f"{w['T_L'] / 1e3:.2f} kN, T_E {w['T_E'] / 1e3:.2f} kN, ropes at {w['v_rope']:.3f} m/s, "
+                  f"{w['a_rope']:.3f} m/s², loaded conveyance at y = {w['y_L']:.1f} m)"]
+        rest = (f"at rest at t = {s['t_rest']:.3f} s" if s["t_rest"] is not None
+                else f"at {s['v_wheel_end']:.4g} m/s at t = {s['t_end']:.3f} s")
+        lines.append(f"  wheel {rest}; ropes ran {s['run']:.3f} m; largest wheel force "
+                     f"{s['F_wheel_max'] / 1e3:.2f} kN, largest rope acceleration {s['a_rope_max']:.3f} m/s²")
         for p in self.system.parts:
             if p.order >= 10:
                 lines += p.report(s)
@@ -165,3 +162,9 @@ class KoepeSimulation(SimulationViews):
         for i, side in enumerate(("T_L", "T_E")):
             ax.plot(h["t [s]"], h[f"{side} [N]"] / 1e3, color=f"C{i}", label=side)
         return finish(ax, f"{self.scene.name}: {self.summary.get('dynamics', 'transient')}", "t [s]", "tension [kN]")
+
+
+def _side_line(s: dict, side: str, label: str) -> str:
+    return (f"  {label} at the wheel: start {s[f'{side}_start'] / 1e3:9.2f} kN, "
+            f"max {s[f'{side}_max'] / 1e3:9.2f} kN at t = {s[f't_{side}_max']:.3f} s, "
+            f"min {s[f'{side}_min'] / 1e3:9.2f} kN at t = {s[f't_{side}_min']:.3f} s")

@@ -22,11 +22,12 @@ Rigid-body mechanics for the nominal run and duration (the rigid hoist: every ma
 from __future__ import annotations
 
 import math
+from typing import cast
 
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.koepe import MODEL, Q, tail_terms
 from ropemodel.effects.koepe_brake import QUANTITIES as BRAKE_WINDOW
-from ropemodel.effects.koepe_transient.profile import Phase
+from ropemodel.effects.koepe_transient.profile import KoepeProfile, Phase
 from ropemodel.effects.transient.base import Switch, TransientSubmodel
 from ropemodel.errors import InputError
 from ropemodel.papers import koepe as kp
@@ -68,6 +69,11 @@ class WheelLaw:
         return a, M_w * a + F_f
 
 
+def law_of(setup) -> WheelLaw:
+    """The law that moves the wheel in this transient (the profile's choice, :mod:`.profile`)."""
+    return cast(KoepeProfile, setup.part("dynamics")).wheel_law
+
+
 def rigid_mass(nums: dict, tail, y_L: float):
     """(T_L, T_E, M_total) of the rigid hoist with the loaded conveyance at y_L [m]: its static tensions [N] and
     every mass that moves [kg] (both sides T/g, the sheaves, the ropes on the wheel, the machine)."""
@@ -86,7 +92,7 @@ class BrakeControl(TransientSubmodel):
 
     @property
     def active(self) -> bool:
-        return self.setup.part("dynamics").wheel_law is self
+        return law_of(self.setup) is self
 
     def free_deceleration(self, setup, y_L: float) -> float:
         """The rigid hoist's deceleration [m/s²] without drive or brake at y_L (koepe_slip.coasting_deceleration)."""

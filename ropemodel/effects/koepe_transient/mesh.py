@@ -63,21 +63,27 @@ def fits(span: float, reel: float, N: int) -> bool:
     return N == 1 or span / N + 2 * reel < span
 
 
-def element_lengths(p: dict, y_L: float, N: int, reel: float):
-    """(top, delta, lengths): the top element span/N + 2·reel (at most the span), the others sharing the rest."""
+def element_lengths(p: dict, y_L: float, N: int, reel: float, grows: int = -1):
+    """(top, delta, lengths): the top element span/N + 2·reel (at most the span), the others sharing the rest.
+
+    The span that lengthens in the manoeuvre (``grows``: 0 side L, 1 side E, −1 neither) keeps a top element of
+    span/N where 2·reel more does not fit: its column only grows (span/(2N) is left for a run back)."""
     sp = spans(p, y_L)
+    reels = np.array([0.0 if k == grows and not fits(s, reel, N) else reel for k, s in enumerate(sp)])
     bad = [f"the {side} head-rope span ({s:.4g} m) is too short for {N} elements and {reel:.4g} m of rope run over "
-           f"the wheel: start the conveyance further from the end of the wind (y_start), shorten t_end, or fewer "
-           f"[numerics] segments" for side, s in zip(("loaded side's", "other side's"), sp) if not fits(s, reel, N)]
+           f"the wheel (the nominal manoeuvre's run and a margin): start the conveyance further from the end of the "
+           f"wind (y_start), shorten t_end, brake harder, or fewer [numerics] segments"
+           for side, s, r in zip(("loaded side's", "other side's"), sp, reels) if not fits(s, r, N)]
     if bad:
         raise InputError(problems=bad)
-    top = np.minimum(sp / N + 2 * reel, sp)
+    top = np.minimum(sp / N + 2 * reels, sp)
     delta = (sp - top) / max(N - 1, 1)
     lengths = np.hstack([top[:, None], np.repeat(delta[:, None], N - 1, axis=1)])
     return top, delta, lengths
 
 
-def build_mesh(p: dict, y_L: float, v0: float, reel: float, N: int, resistance: float = 0.0) -> KoepeMesh:
+def build_mesh(p: dict, y_L: float, v0: float, reel: float, N: int, resistance: float = 0.0,
+               grows: int = -1) -> KoepeMesh:
     """The mesh in steady motion at v0 [m/s] (+: hoisting) with the loaded conveyance at depth y_L [m].
 
     p: SI floats H, H_head, m_conveyance, m_payload, n_head, q_head, EA_head, n_tail, q_tail, h_loop;
@@ -85,7 +91,7 @@ def build_mesh(p: dict, y_L: float, v0: float, reel: float, N: int, resistance: 
     against a rising conveyance).  The tail loop's side lengths depend on the stretched depths, so the steady
     elongations are iterated to a fixed point (a contraction of ratio ρ g/k: converged to 1e-13 of the depth).
     """
-    top, delta, lengths = element_lengths(p, y_L, N, reel)
+    top, delta, lengths = element_lengths(p, y_L, N, reel, grows)
     q, nEA = p["n_head"] * p["q_head"], p["n_head"] * p["EA_head"]
     m = q * (lengths + np.hstack([lengths[:, 1:], np.zeros((2, 1))])) / 2
     m[:, -1] += p["m_conveyance"]

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 from collections.abc import Callable
 
 from ropemodel.effects.base import REGISTRY, Submodel, define_effect, register
@@ -101,6 +101,8 @@ class KoepeProfile(TransientSubmodel):
     uses: ClassVar[tuple[str, ...]] = ("travel", "head_elasticity", "wheel_contact")
     #: the wheel's speed at t = 0 as a fraction of v_max
     initial_fraction = 0.0
+    #: what moves the wheel (:class:`~ropemodel.effects.koepe_transient.control.WheelLaw`), set when bound
+    wheel_law: Any = None
 
     def equations(self, v):
         super().equations(v)

@@ -66,7 +66,8 @@ class HeadRopeSegments(TransientSubmodel):
         p.update(zip(("n_tail", "q_tail", "h_loop"), (float(x) for x in tail_terms(self, nums))))
         v0 = float(setup.speed0)
         resistance = float(nums["F_r"]) * (1.0 if v0 > 0 else -1.0 if v0 < 0 else 0.0)
-        self.mesh = mh.build_mesh(p, prof.y_start, v0, prof.reel, setup.options["segments"], resistance)
+        grows = 1 if setup.direction > 0 else 0          # hoisting lengthens side E's span, lowering side L's
+        self.mesh = mh.build_mesh(p, prof.y_start, v0, prof.reel, setup.options["segments"], resistance, grows)
 
     def states(self):
         n = 2 * self.mesh.N
@@ -173,7 +174,8 @@ class HeadRopeSegments(TransientSubmodel):
 
     def summary(self, run):
         h, ends = run.history, event_table(run.events, ("slack", "run_out"))
-        return {"slack": any(e["event"] == "slack" for e in ends), "run_out": any(e["event"] == "run_out" for e in ends),
+        names = {e["event"] for e in ends}
+        return {"slack": "slack" in names, "run_out": "run_out" in names,
                 "t_stopped": ends[0]["t"] if ends else None, "n_nodes": 2 * self.mesh.N,
                 "segments": self.mesh.N, "T_min": float(h["T_min [N]"].min()),
                 "t_T_min": float(h["t [s]"].iloc[int(h["T_min [N]"].to_numpy().argmin())])}

@@ -27,7 +27,7 @@ import casadi as ca
 
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.koepe import MODEL
-from ropemodel.effects.koepe_transient.control import M_MACHINE
+from ropemodel.effects.koepe_transient.control import M_MACHINE, law_of
 from ropemodel.effects.transient.base import State, Switch, TransientSubmodel
 from ropemodel.errors import InputError
 
@@ -80,7 +80,8 @@ class WheelContact(TransientSubmodel):
     def slip_acceleration(self, v, sign: int):
         """ẍ with g_h = 0 for the high side h (sign −1: L, +1: E): exact in one Newton step for a constant ρ."""
         a = ca.SX.sym("a")
-        r = self.margins(v, *self.tensions(v, a), a)[0 if sign < 0 else 1]
+        T_L, T_E = self.tensions(v, a)
+        r = self.margins(v, T_L, T_E, a)[0 if sign < 0 else 1]
         dr = ca.jacobian(r, a)
         x = ca.SX(0.0)
         for _ in range(NEWTON_STEPS if ca.depends_on(self.ratio(a), a) else 1):
@@ -88,7 +89,7 @@ class WheelContact(TransientSubmodel):
         return x
 
     def publish(self, v, mode):
-        law, S, M_w = self.setup.part("dynamics").wheel_law, v["S"], self.values["m_machine"]
+        law, S, M_w = law_of(self.setup), v["S"], self.values["m_machine"]
         if mode == "stick":
             M = M_w + v["m_arc"] + v["m_col"][0] + v["m_col"][1]
             a, F_w = law.stick(v, v["A"][1] + S[1] - v["A"][0] - S[0], M)
@@ -145,7 +146,8 @@ class WheelContact(TransientSubmodel):
                 start = None
         if start is not None:
             slips.append(_episode(start, None, float(run.history["slip [m]"].iloc[-1])))
-        return {"slip": bool(slips), "slip_events": slips, "slip_distance": float(abs(run.history["slip [m]"].iloc[-1]))}
+        return {"slip": bool(slips), "slip_events": slips,
+                "slip_distance": float(abs(run.history["slip [m]"].iloc[-1]))}
 
     def report(self, s):
         lines = []
@@ -159,5 +161,5 @@ class WheelContact(TransientSubmodel):
 def _episode(start, end, slip_end=None):
     slip_end = end.values["slip [m]"] if end is not None else slip_end
     return {"t_start": float(start.t), "t_end": None if end is None else float(end.t),
-            "distance": abs(slip_end - start.values["slip [m]"]), "toward": start.name[-1],
+            "distance": float(abs(slip_end - start.values["slip [m]"])), "toward": start.name[-1],
             "a_onset": float(start.values["a_rope [m/s^2]"])}
