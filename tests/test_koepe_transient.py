@@ -94,6 +94,7 @@ def test_the_slip_report(slipping):
     assert s["slip"] and first["toward"] == "E" and first["t_start"] == pytest.approx(event(sim, "slip_E").t)
     assert first["distance"] == pytest.approx(abs(event(sim, "stick").values["slip [m]"]), rel=1e-12)
     assert s["slip_margin_min"] <= 1e-6 * s["T_L_start"]          # the margin is 0 while it slips
+    assert s["t_worst"] == first["t_start"] and abs(s["worst"]["slip_margin"]) <= 1e-6 * s["T_L_start"]
     assert s["energy_residual"] < 1e-7
 
 
@@ -235,3 +236,13 @@ def test_the_transient_leaves_the_static_results_alone():
     dynamic = rm.run("koepe_braking").values
     for name in ("T_1", "T_2", "sigma_static", "a_slip_hoist_decel", "brake_margin_hoist"):
         assert dynamic[name] == static[name]
+
+
+def test_the_readme_numbers_of_koepe_braking():
+    """README, "Elastic ropes in braking and starting": the stop, the peak and the worst instant, to the digits
+    it prints."""
+    s = simulate("koepe_braking", progress=False).summary
+    assert round(s["t_rest"], 3) == 4.157 and round(s["run"], 2) == 21.66
+    assert round(s["T_L_max"] / 1e3, 1) == 956.5 and s["t_T_L_max"] > s["t_rest"]
+    assert round(s["slip_margin_min"] / 1e3, 1) == 75.3 and round(s["slip_margin_start"] / 1e3, 1) == 544.6
+    assert round(s["t_worst"], 3) == 5.217 and not s["slip"]

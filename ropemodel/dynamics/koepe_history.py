@@ -16,6 +16,8 @@ from ropemodel.views.records import SimulationViews
 #: the instant's columns named in the summary at the worst instant
 INSTANT = {"T_L [N]": "T_L", "T_E [N]": "T_E", "v_rope [m/s]": "v_rope", "a_rope [m/s^2]": "a_rope",
            "y_L [m]": "y_L", "slip_margin [N]": "slip_margin"}
+#: the events where the ropes start to slip on the wheel
+SLIP_EVENTS = ("slip_L", "slip_E")
 
 
 class KoepeSimulation(SimulationViews):
@@ -83,6 +85,10 @@ class KoepeSimulation(SimulationViews):
         for p in parts:
             if p.order >= 10:
                 out.update(p.summary(self))
+        onset = next((e for e in self.events if e.name in SLIP_EVENTS), None)
+        if onset is not None:                            # the worst instant is where the ropes start to slip
+            out.update({"t_worst": float(onset.t),
+                        "worst": {name: float(onset.values[col]) for col, name in INSTANT.items()}})
         masses: dict[str, float] = {}
         for p in parts:
             masses.update({k: float(v) for k, v in p.moving_masses().items()})
@@ -102,7 +108,7 @@ class KoepeSimulation(SimulationViews):
             out.update({f"{side}_max": float(col.max()), f"t_{side}_max": float(t[col.argmax()]),
                         f"{side}_min": float(col.min()), f"t_{side}_min": float(t[col.argmin()])})
         margin = h["slip_margin [N]"].to_numpy()
-        i = int(margin.argmin())
+        i = int(margin.argmin())          # without slip the least margin; with slip its onset (_summarise)
         out.update({"slip_margin_start": float(margin[0]), "slip_margin_min": float(margin[i]),
                     "t_worst": float(t[i]),
                     "worst": {name: float(h[col].iloc[i]) for col, name in INSTANT.items()}})

@@ -10,7 +10,7 @@ Modules: :mod:`.profile` (``dynamics``, ``travel``: what the transient is, where
 :mod:`.control` (``brake_control``: the brake's law; the drive ramp of a start), :mod:`.mesh` (the head ropes
 cut into elements, the tail loop), :mod:`.ropes` (``head_elasticity``: the elastic head ropes and the tail
 ropes' mass), :mod:`.wheel` (``wheel_contact``: stick and slip on the wheel, the wheel's inertia).
-The physics, with every assumption, is docs/physics.md §7.5.
+The physics, with every assumption, is docs/physics.md §7, elastic ropes.
 """
 
 from __future__ import annotations

@@ -2,7 +2,8 @@
 
 Floats only (numpy): the mesh is the transient's structure.  Sides: row 0 is side L (the loaded conveyance), row 1
 side E (the other); depths are positive downward from the wheel's tangent points; x is the rope run over the
-wheel from side L to side E [m] (x > 0: the loaded conveyance rises).  docs/physics.md §7.5 states the model:
+wheel from side L to side E [m] (x > 0: the loaded conveyance rises).  The model (docs/physics.md §7, elastic
+ropes):
 
 * each side's n_head ropes are one span of axial stiffness n_head·EA_head, from the tangent point to the
   conveyance, H_head + y long (:func:`ropemodel.papers.koepe.head_rope_length`), cut into N elements;

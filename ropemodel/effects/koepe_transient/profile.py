@@ -148,12 +148,19 @@ class KoepeProfile(TransientSubmodel):
         return max(0.0, mh.least_span(reel, N) - float(self.setup.numbers["H_head"]))
 
     def summary(self, run):
+        y = self.y_start - run.history["x [m]"].to_numpy()         # where the loaded conveyance is, ropes rigid
+        H = float(self.setup.numbers["H"])
         return {"dynamics": self.variant, "y_start": self.y_start, "y_start_source": self.y_source,
-                "travel_nominal": self.travel_nominal, "reel": self.reel}
+                "travel_nominal": self.travel_nominal, "reel": self.reel,
+                "overwind": float(max(-y.min(), y.max() - H, 0.0))}
 
     def report(self, s):
-        return [f"  loaded conveyance at y = {s['y_start']:.6g} m below its upper position at the start "
-                f"({s['y_start_source']}); nominal run {s['travel_nominal']:.4g} m"]
+        lines = [f"  loaded conveyance at y = {s['y_start']:.6g} m below its upper position at the start "
+                 f"({s['y_start_source']}); nominal run {s['travel_nominal']:.4g} m"]
+        if s["overwind"] > 0:
+            lines.append(f"  OVERWIND: a conveyance runs {s['overwind']:.3g} m beyond an end of the wind (start it "
+                         f"further from the end: y_start)")
+        return lines
 
 
 @register(MODEL, "dynamics", "braking")

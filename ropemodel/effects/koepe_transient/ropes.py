@@ -16,9 +16,9 @@ the rope carried onto the rigid arc, acts on the arc (O(T²/EA); it makes the en
 
 Tail ropes (ρ = n_tail q_tail per metre; effect ``tail_ropes``): inextensible, a free loop of negligible turn
 hanging from the conveyances, side lengths ℓ_t = (z_other − z_own + H + 2 h_loop)/2.  Lagrange's equations of the
-loop (not in the Koepe texts; docs/physics.md §7.5) add to each conveyance the mass ρ ℓ_t and the downward
+loop (not in the Koepe texts; docs/physics.md §7, elastic ropes) add to each conveyance the mass ρ ℓ_t and the downward
 force ρ (g ℓ_t + w²), w = (ż_L − ż_E)/2 the loop's speed along itself.  Their elasticity is left out: the loop
-hangs free (no mass below it), so its stretch carries no load but its own weight; docs/physics.md §7.5.
+hangs free (no mass below it), so its stretch carries no load but its own weight; docs/physics.md §7, elastic ropes.
 
 The shaft resistance F_r acts on the loaded conveyance against its speed, smoothed as F_r tanh(v/v_eps).  The
 terminal events ``slack`` (a tension reaches 0: the linear rope model ends there) and ``run_out`` (a top

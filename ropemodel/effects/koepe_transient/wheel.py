@@ -12,7 +12,7 @@ written for each side):
 ``lining = "voigt"`` Hajduk's (1992) eq. (19) at rest (:meth:`ropemodel.effects.koepe_wheel.VoigtWheel.limit`,
 the lining fully crept: the least it holds).  The Voigt lining's creep along the arc in time (Hajduk's arc ODE)
 is not in the transient, and its arc-inertia term uses the Euler–Eytelwein form with ρ: both say so in
-docs/physics.md §7.5.
+docs/physics.md §7, elastic ropes.
 
 Modes ``stick`` (the wheel and the ropes on it move together: the wheel's law gives ẍ with every mass moving
 with the wheel, its inertia m_machine = J/R² included), ``slip_L`` and ``slip_E`` (slipping toward the high side:
