@@ -68,10 +68,12 @@ class KoepeSimulation(SimulationViews):
         self.events = events
         run_out = next((e for e in events if e.name == "run_out"), None)
         if run_out is not None:
-            reel = self.setup.part("dynamics").reel
-            raise SolveError(f"at t = {run_out.t:.4g} s the ropes ran more than the {reel:.4g} m over the wheel the "
-                             f"mesh allows (the conveyance ran further than the nominal manoeuvre: a slip or a "
-                             f"long t_end); give a shorter t_end")
+            prof = self.setup.part("dynamics")
+            slipped = next((f"; the ropes started to slip on the wheel at t = {e.t:.4g} s" for e in events
+                            if e.name in SLIP_EVENTS), "")
+            raise SolveError(f"at t = {run_out.t:.4g} s the ropes ran more than the {prof.reel:.4g} m over the wheel "
+                             f"the mesh allows (the nominal manoeuvre runs {prof.travel_nominal:.4g} m){slipped}: "
+                             f"the results beyond are not computed; give a t_end before {run_out.t:.4g} s")
         self.summary = self._summarise()
 
     def _summarise(self) -> dict:
