@@ -21,7 +21,7 @@ from importlib.resources import files
 
 import numpy as np
 import pytest
-from _koepe_lumped import brake, constant_deceleration, example_hoist, mesh, steady_force
+from _koepe_lumped import brake, constant_deceleration, drive_ramp, example_hoist, mesh, steady_force
 from _koepe_lumped import simulate as lumped
 
 import ropemodel as rm
@@ -241,6 +241,25 @@ def test_a_start_follows_the_drive_ramp():
     rigid = kp.side_tensions(905.0, 29.6e3, 22e3, 905.0, 56.7, 4, 8.6, 2, 15.5)
     assert 0 < rigid[0] - s["T_L_start"] < 1e-3 * rigid[0]     # the loop follows the stretched ropes: O(T/EA)
     assert s["energy_residual"] < 1e-7
+
+
+def test_a_start_agrees_with_the_lumped_model():
+    """A start from rest mid-shaft, hoisting, 0.8 m/s² reached in 1 s, for 3 s: the tensions at the wheel at the
+    ramp's knot (t = 1 s) and at the end, and over the run."""
+    sim = simulate(scene({"a_drive": 0.8, "t_jerk": 1.0, "t_end": 3.0, "y_start": 500.0}, dynamics="start"),
+                   progress=False)
+    s, h = sim.summary, sim.history
+    hoist = example_hoist(EA_head=EA, J=M_MACHINE * R * R, tau=TAU, N=s["segments"], reel=s["reel"])
+    run = lumped(hoist, 500.0, 0.0, drive_ramp(10.0, 0.8, 1.0), t_end=3.0, method="LSODA", rtol=1e-10, atol=1e-10,
+                 max_step=STEP)
+    f = run.frame()
+    for t in (1.0, 3.0):
+        ours, theirs = (d.iloc[int(np.argmin(np.abs(d["t [s]"] - t)))] for d in (h, f))
+        for side in ("T_L", "T_E"):
+            assert rel(ours[f"{side} [N]"], theirs[f"{side} [N]"]) < 1e-6
+    for side in ("T_L", "T_E"):
+        interpolated = np.interp(h["t [s]"], f["t [s]"], f[f"{side} [N]"])
+        assert np.max(np.abs(interpolated - h[f"{side} [N]"])) < 1e-5 * s[f"{side}_start"]
 
 
 def test_simulate_on_the_command_line(capsys):
