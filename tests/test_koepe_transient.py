@@ -277,6 +277,7 @@ def test_simulate_on_the_command_line(capsys):
     (["simulate", "koepe_example"], "has no transient"),
     (["simulate", "koepe_braking", "--set", "t_apply=-1 s"], "t_apply"),
     (["simulate", "koepe_braking", "--set", "m_machine=0 kg"], "m_machine"),
+    (["simulate", "koepe_braking", "--set", "y_start=2000 m", "--set", "t_apply=-1 s"], "y_start = 2000 m is below"),
 ])
 def test_bad_input_exits_2(capsys, args, words):
     assert main(args) == 2

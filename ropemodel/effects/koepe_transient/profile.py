@@ -30,7 +30,6 @@ from ropemodel.effects.base import REGISTRY, Submodel, define_effect, register
 from ropemodel.effects.koepe import MODEL, Q
 from ropemodel.effects.koepe_transient import mesh as mh
 from ropemodel.effects.transient.base import TransientSubmodel
-from ropemodel.errors import InputError
 from ropemodel.quantity import Quantity
 
 define_effect(MODEL, "dynamics", "none", "time-domain transient with elastic head ropes: none, braking or start")
@@ -130,18 +129,22 @@ class KoepeProfile(TransientSubmodel):
         t_end = nums.get("t_end", math.inf)
         self.t_end = float(t_end) if math.isfinite(t_end) else duration + SETTLE
         travel += law.final_speed * max(self.t_end - duration, 0.0) * float(nums["v_max"])
-        N, H = setup.options["segments"], float(nums["H"])
+        N = setup.options["segments"]
         self.reel = mh.reel_for(travel)
         given = nums.get("y_start", math.inf)
         if math.isfinite(given):
-            if given > H:
-                raise InputError(f"y_start = {given:g} m is below the lower end of the wind, H = {H:g} m: "
-                                 f"valid 0 <= y_start <= H")
             self.y_start, self.y_source = float(given), "given"
         else:
             self.y_start, self.y_source = self.start_position(travel, self.reel, N)
         setup.phases = [ph for ph in law.phases(setup, self.t_end) if ph.t1 > ph.t0]
-        self.travel_nominal, self.duration = travel, duration
+        self.travel_nominal = travel
+
+    def rules(self, values):
+        y, H = values.get("y_start"), values.get("H")
+        if y is not None and H is not None and math.isfinite(y) and y > H:
+            return [f"y_start = {y:g} m is below the lower end of the wind, H = {H:g} m: valid 0 <= y_start <= H "
+                    f"(leave it out to start at the end of the wind)"]
+        return []
 
     def _room(self, reel: float, N: int) -> float:
         """Depth [m] the conveyance whose span shortens needs below its upper position for the mesh's run."""
