@@ -115,7 +115,8 @@ def continuous_optimum(problem, static_xs, record: Refinement | None = None, say
     ended infeasible and the least-violation problem found a design)."""
     start = factored_start(problem, static_xs)
     problem = problem.screened(start)
-    problem, sol = solve_refined(problem, start, record=record, others=fallback_starts(problem, static_xs))
+    problem, sol = solve_refined(problem, start, record=record, others=fallback_starts(problem, static_xs),
+                                 screen=False)
     if sol.feasible:
         return problem, sol, None
     diagnosis, x_least = diagnose_dynamic(problem, sol.xs, say)

@@ -51,12 +51,12 @@ def dynamic_sizing_sweep(scene, vary=None, *, points=None, progress: bool | None
         for i in range(pts.n):
             values = {k: float(chunk[k][i]) for k in pts.names}
             p = problem.p_of(values)
-            start = prev
+            start, screen = prev, True
             if start is None:
                 start = _first_start(problem, p)
-                problem = problem.screened(start, p) if start is not None else problem
+                problem, screen = (problem.screened(start, p), False) if start is not None else (problem, True)
             if start is not None:
-                problem, sol = solve_refined(problem, start, p=p)
+                problem, sol = solve_refined(problem, start, p=p, screen=screen)
                 iterations[i], seconds[i] = sol.iterations, sol.seconds
                 if sol.feasible:
                     _confirm(problem, sol.xs, values)
