@@ -141,3 +141,20 @@ def test_an_inextensible_rope_states_only_the_defaults_it_reads(tmp_path):
     sc = transient_scene(load_sizing(path, emit=False))
     assert "rope_damping" not in sc.defaults and {"x_m", "v_eps", "t_end"} <= set(sc.defaults)
     assert sc.parameters["t_end"] == pytest.approx(6.0, rel=1e-12)
+
+
+def test_no_catalogue_size_says_the_drum_check_fails_at_the_next_size():
+    """winch_sizing_voigt with a 4 s ramp: its continuous dynamic optimum, 52.96 mm, is under the drum's limit
+    D / D_ratio_min = 1.6 m / 30 = 53.3 mm, so the next catalogue size, 54 mm, breaks D / d >= 30 whatever
+    the pretension and stroke: the answer says so, and what alone would help (D >= 30 * 54 mm = 1.62 m)."""
+    from types import SimpleNamespace
+
+    from optimisation.dynamic.design import DynamicDesign, why_no_size
+
+    scene = load_sizing("winch_sizing_voigt", emit=False)
+    D, ratio = scene.parameters["D"], scene.parameters["D_ratio_min"]
+    assert D / ratio == pytest.approx(0.05333, abs=1e-5) and D / 0.054 < ratio
+    design = DynamicDesign(scene, False, message="no catalogue diameter")
+    why_no_size(SimpleNamespace(scene=scene), 0.05296, design)
+    assert "the next size up, 54 mm, already fails the static checks" in design.message
+    assert "drum_margin" in design.message and f"D >= {ratio * 54:g} mm" in design.message

@@ -246,4 +246,20 @@ def _catalogue(problem, sol, design: DynamicDesign, say) -> DynamicDesign:
         return design
     design.message = (f"no catalogue diameter from {d_star * 1e3:.4g} mm up keeps every check through the "
                       f"manoeuvres (the largest is {ropes.diameters()[-1] * 1e3:g} mm)")
+    why_no_size(problem, d_star, design)
     return design
+
+
+def why_no_size(problem, d_star: float, design: DynamicDesign) -> None:
+    """Add to ``design.message`` what fails when the next catalogue size up fails the static checks alone
+    (measured: winch_sizing_voigt with a 4 s ramp, continuous d = 52.96 mm under the drum's limit
+    D / D_ratio_min = 53.33 mm, so 54 mm and up fail D / d >= 30 whatever the pretension and stroke)."""
+    above = [d for d in ropes.diameters() if d >= d_star - 1e-9]
+    if not above:
+        return
+    static = SizingProblem(problem.scene)
+    diag = diagnose(static, fix_d=above[0])
+    if not diag.feasible:
+        design.diagnosis = diag
+        design.message += (f"; the next size up, {above[0] * 1e3:g} mm, already fails the static checks: "
+                           + diag.text(static.units))
