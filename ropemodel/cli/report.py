@@ -94,16 +94,20 @@ def main(args) -> int:
         with status(f"report of {ctx.scene.name}: computing and drawing"):
             report = build(ctx)
         writers = ((html, lambda p: _write_html(p, report.html)), (pdf, lambda p: _write_pdf(p, report.html, exe)))
+        written: list[Path] = []
         for path, write in writers:
             if path is None:
                 continue
+            kept = f"; {written[0]} was written" if written else "; nothing was written"
             try:
                 write(path)
             except OSError as exc:
-                raise OutputError(f"cannot write {path}: {cause(exc)}; nothing was written") from None
+                raise OutputError(f"cannot write {path}: {cause(exc)}{kept}") from None
             except OutputError as exc:   # the browser could not print
-                raise OutputError(f"cannot write {path}: {exc}") from None
-            print(f"wrote {path}")
+                raise OutputError(f"cannot write {path}: {exc}{kept if written else ''}") from None
+            written.append(path)
+    for path in written:
+        print(f"wrote {path}")
     for line in report.verdicts:
         print(line)
     for name, why in report.incomplete:
