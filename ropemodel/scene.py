@@ -233,6 +233,7 @@ def from_toml(text: str, source: str | None = None, optional=(), emit: bool = Tr
     """Parse and validate a scene from TOML text (see :func:`from_dict`)."""
     if "\x00" in text:
         raise InputError(f"{source or 'scene'} is a binary file, not TOML text")
+    text = text.removeprefix("\ufeff")   # the byte-order mark Windows editors write before UTF-8 text
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

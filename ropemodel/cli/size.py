@@ -81,7 +81,7 @@ def main(args) -> int:
         from ropemodel.cli import _size_dynamic
 
         return _size_dynamic.main(scene, args, _num)
-    if args.find:
+    if args.find is not None:
         raise InputError("--find needs --dynamic (size --dynamic --find t_ramp)")
     with status(f"sizing {scene.name}: rope, pretension and stroke"):
         design = size(scene, method=args.discrete or DEFAULT_DISCRETE)

@@ -127,10 +127,14 @@ class Rope(TransientSubmodel):
 
     def check_start(self, out: dict) -> None:
         """A rope slack at the start is bad input (not a transient to simulate)."""
-        T0 = out["T_min [N]"]
-        if T0 < 0:
+        # at rest the tensioner holds F_nwl/2 on each side of the return sheave (Krauze et al. 2025, eq. (12)-(13));
+        # the rigid rope's T_min holds only the drum's tangent points
+        T0 = min(out["T_min [N]"], 0.5 * float(self.setup.numbers["F_nwl"]))
+        zero = 1e-9 * self.setup.f_scale     # a tension within round-off of 0 is none: the rope is slack
+        if T0 <= zero:
             hints = "".join(p.slack_hint for p in self.setup.parts.values())
-            raise InputError(f"the rope is slack at the start (least tension {T0 / 1e3:.3g} kN){hints}: raise F_nwl "
+            shown = T0 / 1e3 if abs(T0) > zero else 0.0
+            raise InputError(f"the rope is slack at the start (least tension {shown:.3g} kN){hints}: raise F_nwl "
                              f"(now {self.setup.numbers['F_nwl'] / 1e3:g} kN) or check the stroke")
 
     def summary(self, run):
