@@ -50,7 +50,7 @@ import casadi as ca
 import numpy as np
 
 from ropemodel.effects.winch_checks import margin_names
-from ropemodel.errors import InputError
+from ropemodel.errors import InputError, Problems
 from ropemodel.problem import Problem
 from ropemodel.scene import Scene
 
@@ -167,9 +167,27 @@ def prepare(scene) -> Scene:
     if "t_ramp" in scene.unused or scene.effects.get("dynamics") == "trip":   # size through a trip's ramps
         effects.update(dynamics="trip", inertia="rigid", power="drive")
     optional = SIZED + (D_OPTIONAL if scene.effects.get("lining", "none") in D_OPTIONAL_LININGS else ())
+    if scene.effects.get("rope") == "given":
+        _refuse_given_rope(scene, effects, optional)
     if all(scene.effects.get(k) == v for k, v in effects.items()) and not (set(scene.absent) - set(optional)):
         return scene
     return scene.with_effects(effects, optional=optional)
+
+
+def _refuse_given_rope(scene, effects: dict, optional) -> None:
+    """:class:`InputError`: sizing chooses d, so it needs a rope construction; with it, every other problem
+    the scene would still have (e.g. a missing rope_grade or n_rope), at once."""
+    from ropemodel.effects import effects_of
+
+    named = [v for v in effects_of("winch")["rope"].variants if v not in ("given", "catalogue")]
+    usual = "6x36-IWRC" if "6x36-IWRC" in named else named[0]     # the README's sizing scene's
+    found = Problems()
+    found.add(f"sizing chooses the rope diameter d, so it needs a rope construction, not the rope given as q_l and "
+              f"q_lw (rope = \"given\"): set [effects] rope = \"{usual}\" or another of {', '.join(named)}, or "
+              f"\"catalogue\" with rope_K, rope_W and rope_C")
+    with found.collect():
+        scene.with_effects({**effects, "rope": usual}, optional=optional)
+    found.raise_if_any()
 
 
 class SizingProblem:
@@ -186,9 +204,6 @@ class SizingProblem:
 
     def __init__(self, scene: Scene):
         scene = prepare(scene)
-        if scene.effects.get("rope") == "given":
-            raise InputError("sizing chooses the rope diameter: it needs [effects] rope = \"catalogue\" or a named "
-                             "construction such as \"6x36-IWRC\" (the scene has rope = \"given\")")
         self.scene = scene
         #: no drum diameter given: the drum check becomes a result, D = D_ratio_min * d (the least drum)
         self.least_drum = "D" in scene.absent

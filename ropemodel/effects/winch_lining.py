@@ -82,6 +82,8 @@ class NoLining(Submodel):
     """Drum traction off: no slip check is built."""
 
     description = "no traction check"
+    #: no friction engagement between rope and drum (the other linings have it)
+    friction = False
 
     def transient_traction(self, values):
         """No friction engagement: the transient's rope is fixed to the drum (no traction ratio, no slip)."""

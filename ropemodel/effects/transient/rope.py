@@ -50,6 +50,8 @@ class Rope(TransientSubmodel):
     citations = ("krauze2025",)
     quantities: ClassVar[tuple[Quantity, ...]] = (V_EPS,)
     order = 10
+    #: the rope stretches (what a contact compliance in series needs)
+    elastic: ClassVar[bool] = True
     structural = ("L_u", "L_ul", "x_m")
 
     def bind(self, setup):
@@ -188,6 +190,7 @@ class RopeRigid(Rope):
     F_nwl sets the loop tension, F_nwl/2 at each tangent point of the return sheave."""
 
     description = "inextensible rope, one degree of freedom"
+    elastic = False
 
     def bind(self, setup):
         tensioner = setup.part("tensioner")
