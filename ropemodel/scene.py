@@ -87,6 +87,8 @@ class Scene:
     raw: dict = field(default_factory=dict, repr=False, compare=False)
     #: the route's structure (``[[route]]``): per segment, whether it gives its own mu_winding
     route: tuple[bool, ...] = ()
+    #: SI values of the parameters in ``unused`` (in their domain, and meeting the rules)
+    unused_values: dict[str, float] = field(default_factory=dict, repr=False, compare=False)
 
     @cached_property
     def built(self) -> Model:
@@ -102,14 +104,12 @@ class Scene:
         model, found = self.built, Problems()
         params, origin_of = dict(self.parameters), dict(self.origin)
         defaults = dict(self.defaults)
-        unused, notes = dict(self.unused), []
+        unused, notes, spare = dict(self.unused), [], dict(self.unused_values)
         for name, value in values.items():
             if name in model.universe and name not in model.symbols:
                 with found.collect():
-                    model_q = model.universe[name]
-                    model_q.to_si(value, bare)
-                    unused[name] = " or ".join(model.owners(name)) or "no effect of this model"
-                    notes.append(f"{name} is not used: it belongs to {unused[name]}")
+                    tables.note_unused(model, name, model.universe[name].to_si(value, bare), unused, spare, found,
+                                       notes)
                 continue
             problem = tables.settable(model, name, origin)
             if problem:
@@ -119,11 +119,11 @@ class Scene:
                 params[name] = model.quantities[name].to_si(value, bare)
                 origin_of[name] = origin
                 defaults.pop(name, None)
-        for problem in model.problems({k: v for k, v in params.items() if k in model.parameters}):
+        for problem in model.problems({**spare, **{k: v for k, v in params.items() if k in model.parameters}}):
             found.add(problem)
         found.raise_if_any()
         notes += [w for k in values if k in model.parameters for w in [model.quantities[k].unusual(params[k])] if w]
-        out = replace(self, parameters=params, origin=origin_of, defaults=defaults, unused=unused,
+        out = replace(self, parameters=params, origin=origin_of, defaults=defaults, unused=unused, unused_values=spare,
                       absent=tuple(a for a in self.absent if a not in values),
                       warnings=self.warnings + tuple(notes))
         out.__dict__["built"] = model
@@ -276,16 +276,17 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
         found.raise_if_any()
     route, route_values = tables.read_route(data, effects, given, found)
     model = Model(model_name, effects, tables.options(numerics, route, "L_ul" in given))
-    params, checks, unused, origin = tables.read_parameters(model, given, bare, found, notes)
+    spare: dict[str, float] = {}
+    params, checks, unused, origin = tables.read_parameters(model, given, bare, found, notes, spare)
     tables.route_parameters(model, route_values, bare, params, origin, found)
     if values:
-        tables.set_values(model, values, values_bare, values_origin, params, origin, unused, found, notes)
+        tables.set_values(model, values, values_bare, values_origin, params, origin, unused, found, notes, spare)
     defaults, absent = tables.fill_missing(model, params, origin, tuple(optional), found)
-    for problem in model.problems(params):
+    for problem in model.problems({**spare, **params}):   # an unused value meets the rules too (x_m <= L_u)
         found.add(problem)
     scene = Scene(str(name if name is not None else source or "unnamed"), model_name, effects, params, numerics,
                   source, defaults, unused, checks, absent, tuple(notes), origin, digest,
-                  {k: v for k, v in data.items()}, route)
+                  {k: v for k, v in data.items()}, route, spare)
     scene.__dict__["built"] = model
     _verify_checks(scene, found)
     found.raise_if_any()

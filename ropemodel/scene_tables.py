@@ -140,8 +140,9 @@ def read_numerics(model: str, given: dict, found: Problems) -> dict:
     return out
 
 
-def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes: list):
-    """SI values of the given parameters; checks (computed quantities given); unused ones."""
+def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes: list, spare: dict):
+    """SI values of the given parameters; checks (computed quantities given); unused ones (their SI values
+    into ``spare``: checked against their domain and the rules like any value)."""
     params, checks, unused, origin = {}, {}, {}, {}
     quantities = model.universe
     for key, value in given.items():
@@ -164,15 +165,27 @@ def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes
             if note:
                 notes.append(note)
         else:
-            owners = model.owners(key)
-            unused[key] = " or ".join(owners) or "no effect of this model"
-            notes.append(f"{key} is not used: it belongs to {unused[key]}")
+            note_unused(model, key, si, unused, spare, found, notes)
     return params, checks, unused, origin
 
 
+def note_unused(model: Model, key: str, si: float, unused: dict, spare: dict, found: Problems, notes: list) -> None:
+    """A valid parameter the chosen effects do not use: a warning naming the variants that would use it.
+    A value outside its physical domain is an error all the same (no effect could use it)."""
+    problem = model.universe[key].range_problem(si)
+    if problem:
+        found.add(f"{problem}; {key} is not used by this scene's effects, but no value outside its valid range "
+                  f"is accepted")
+        return
+    unused[key] = " or ".join(model.owners(key)) or "no effect of this model"
+    spare[key] = si
+    notes.append(f"{key} is not used: it belongs to {unused[key]}")
+
+
 def set_values(model: Model, values: Mapping, bare: str, origin_label: str, params: dict, origin: dict,
-                unused: dict, found: Problems, notes: list) -> None:
-    """Parameters set on top of the file (``--set``): they replace the file's values."""
+               unused: dict, found: Problems, notes: list, spare: dict) -> None:
+    """Parameters set on top of the file (``--set``): they replace the file's values (an unused one's in
+    ``spare``)."""
     for key, value in values.items():
         problem = settable(model, key, origin_label)
         if problem and not (key in model.universe and key not in model.symbols):
@@ -186,8 +199,7 @@ def set_values(model: Model, values: Mapping, bare: str, origin_label: str, para
             origin[key] = f"{origin_label} (refused)"
             continue
         if key not in model.parameters:
-            unused[key] = " or ".join(model.owners(key)) or "no effect of this model"
-            notes.append(f"{key} is not used: it belongs to {unused[key]}")
+            note_unused(model, key, si, unused, spare, found, notes)
             continue
         params[key], origin[key] = si, origin_label
         note = q.unusual(si)

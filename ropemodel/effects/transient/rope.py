@@ -29,6 +29,7 @@ from typing import ClassVar
 
 import casadi as ca
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.transient.base import MODEL, State, Switch, TransientSubmodel, event_table
 from ropemodel.effects.transient.chain import build_elastic, build_rigid
@@ -39,9 +40,13 @@ from ropemodel.quantity import Quantity
 define_effect(MODEL, "rope_elasticity", "segments", "rope model of the transient: rigid, spring or segments")
 
 V_EPS = Quantity("v_eps", "m/s", "speed scale of the smoothed Coulomb resistance tanh(v/v_eps)", "m/s",
-                 default=0.01, warn_high=0.1, guess=0.01, low=0.0, low_open=True, positive=True)
+                 default=0.01, warn_high=0.1, guess=0.01, positive=True,
+                 **dom.domain(1e-9, 100.0, "1 nm/s (Coulomb's law to the integrator's tolerance) to the fastest "
+                                           "haulage"))
 ROPE_DAMPING = Quantity("rope_damping", "s", "Kelvin-Voigt retardation time c/k of the rope (zeta = tau omega / 2)",
-                        "s", low=0.0, default=0.05, warn_high=1.0, guess=0.05)
+                        "s", default=0.05, warn_high=1.0, guess=0.05,
+                        **dom.domain(0.0, 100.0, "0 to 100 s: a damping ratio tau omega/2 of 100 even for a rope's "
+                                                 "slowest modes (omega about 2 rad/s), an overdamped creep"))
 
 
 class Rope(TransientSubmodel):
