@@ -104,7 +104,8 @@ class Scene:
         model, found = self.built, Problems()
         params, origin_of = dict(self.parameters), dict(self.origin)
         defaults = dict(self.defaults)
-        unused, notes, spare = dict(self.unused), [], dict(self.unused_values)
+        unused, spare = dict(self.unused), dict(self.unused_values)
+        notes: list[str] = []
         for name, value in values.items():
             if name in model.universe and name not in model.symbols:
                 with found.collect():

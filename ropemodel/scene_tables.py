@@ -143,7 +143,10 @@ def read_numerics(model: str, given: dict, found: Problems) -> dict:
 def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes: list, spare: dict):
     """SI values of the given parameters; checks (computed quantities given); unused ones (their SI values
     into ``spare``: checked against their domain and the rules like any value)."""
-    params, checks, unused, origin = {}, {}, {}, {}
+    params: dict[str, float] = {}
+    checks: dict[str, Check] = {}
+    unused: dict[str, str] = {}
+    origin: dict[str, str] = {}
     quantities = model.universe
     for key, value in given.items():
         if key not in quantities:
