@@ -68,19 +68,21 @@ D_OPTIONAL_LININGS = ("none", "rigid")
 D_OPTIONAL = ("D",)
 
 
-#: ratio checks written multiplied out in the NLP (same sign as the margin while the rope is taut, which
+#: ratio checks written as force differences in the NLP (same sign as the margin while the rope is taut, which
 #: the taut/slack checks ensure; no pole where F_C crosses 0, so IPOPT never meets an infinite margin)
 RATIO_FORMS = ("safety_margin", "slip_margin")
 
 
 def _nlp_form(name: str, out: dict, args: dict):
     """The constraint g >= 0 of check ``name`` in the NLP: rope safety F_min − n_rope·F_C [N], no slip
-    F_S·traction − n_slip·F_C [N]; every other margin as it is."""
+    F_S − n_slip·F_C/traction [N] (the tension the unwinding rope needs; divided by the traction e^{μα} > 0,
+    not multiplied: a drum of much friction has a traction of 10^20 and more, whose product scaled the
+    constraint out of IPOPT's reach); every other margin as it is."""
     way = name.rsplit("_", 1)[1]
     if name.startswith("safety_margin"):
         return out["F_min"] - args["n_rope"] * out[f"F_C_{way}"]
     if name.startswith("slip_margin"):
-        return out[f"F_S_{way}"] * out[f"traction_{way}"] - args["n_slip"] * out[f"F_C_{way}"]
+        return out[f"F_S_{way}"] - args["n_slip"] * out[f"F_C_{way}"] / out[f"traction_{way}"]
     return out[name]
 
 
@@ -190,6 +192,18 @@ def _refuse_given_rope(scene, effects: dict, optional) -> None:
     found.raise_if_any()
 
 
+def _check_work(scene, where: list) -> None:
+    """The NLP's size on a route, every check at every state through every segment, against its budget."""
+    from ropemodel import budget
+
+    segments = len(scene.route)
+    if segments:
+        budget.check("route sizing", len(where) * segments,
+                     f"sizing on a route of {segments} segments checks every check at {len(where)} load positions, "
+                     f"each through the {segments} segments: an NLP of {len(where)} x {segments}",
+                     "join neighbouring segments of nearly the same inclination")
+
+
 class SizingProblem:
     """The NLP of winch sizing for one scene (model ``winch``).
 
@@ -205,14 +219,15 @@ class SizingProblem:
     def __init__(self, scene: Scene):
         scene = prepare(scene)
         self.scene = scene
+        #: where the checks are made: the load on every segment of a route, and a trip's ramps (:func:`states`)
+        self.states = states(scene)
+        _check_work(scene, self.states)
         #: no drum diameter given: the drum check becomes a result, D = D_ratio_min * d (the least drum)
         self.least_drum = "D" in scene.absent
         self.problem = Problem(scene, {"drum_margin": 0.0}, ["D"]) if self.least_drum else Problem(scene)
         fun = self.problem.function
         self.params = [k for k in self.problem.knowns if k not in VARIABLES and k not in self.problem.given]
         self.p0 = np.array([scene.parameters[k] for k in self.params], dtype=float)
-        #: where the checks are made: the load on every segment of a route, and a trip's ramps (:func:`states`)
-        self.states = states(scene)
         margins = margin_names(self.problem.unknowns)
         self.constraints = [_label(c, st) for st in self.states for c in margins if _applies(c, st, self.states)]
         q = scene.built.quantities
