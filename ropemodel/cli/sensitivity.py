@@ -36,6 +36,13 @@ def add_arguments(parser) -> None:
                         help="Sobol indices of the sizing optimum (d, F_nwl, stroke) instead of the outputs")
 
 
+def _sized() -> tuple[str, ...]:
+    """What sizing chooses itself (d, F_nwl, stroke) and the drum it may leave out: a sizing scene needs none."""
+    from optimisation.problem import D_OPTIONAL, SIZED
+
+    return SIZED + D_OPTIONAL
+
+
 def _num(v):
     return None if isinstance(v, float) and math.isnan(v) else v
 
@@ -64,7 +71,7 @@ def main(args) -> int:
     else:
         refuse_without(args, "--sobol ranges", "samples", "seed", "sizing")
     plot = check_plot(args.plot) if args.plot is not None else None   # before any work
-    scene = scene_from_args(args)
+    scene = scene_from_args(args, optional=_sized() if args.sizing else ())
     if ranges:
         if args.sizing:
             from optimisation.sweep import sizing_function
@@ -81,7 +88,7 @@ def main(args) -> int:
             print(json.dumps([{k: _num(v) for k, v in r.items()} for r in frame.to_dict("records")], indent=1))
         else:
             print(f"Sobol indices, N = {args.samples} base samples (95 % bootstrap half-widths)")
-            print(frame.to_string(index=False, float_format=lambda x: f"{x:.3f}"))
+            print(frame.to_string(index=False, float_format=lambda x: f"{x:.3f}", na_rep="-"))   # not defined: -
         return 0
     frame = elasticities(scene, outputs=outputs, parameters=parameters)
     if plot is not None:
