@@ -16,7 +16,10 @@ from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import VARIABLES, SizingProblem
 from optimisation.sensitivity import sensitivities
 from ropemodel.papers import en12385 as ropes
+from ropemodel.rules.apply import with_rule_terms
+from ropemodel.rules.describe import summary as rules_summary
 from ropemodel.scene import Scene
+from ropemodel.views.design import DesignViews
 
 #: default way to pick a catalogue diameter, chosen on the evidence of studies/discrete_design.py:
 #: on 30 random scenes bonmin returned the same design as next-size-up every time it finished,
@@ -27,8 +30,9 @@ BONMIN_TIMEOUT = 60.0
 
 
 @dataclass
-class Design:
-    """Result of :func:`size`.  Values SI; ``feasible`` False when no design exists."""
+class Design(DesignViews):
+    """Result of :func:`size`.  Values SI; ``feasible`` False when no design exists.  In Jupyter it shows
+    the design and every check as a table with units; ``to_frame()`` gives it as a DataFrame."""
 
     scene: Scene
     feasible: bool
@@ -67,6 +71,9 @@ class Design:
                                  "relax_alone": self.diagnosis.alone, "elastic": self.diagnosis.elastic,
                                  "where": self.diagnosis.where.strip(), "needs": self.diagnosis.needs}
         out["message"] = self.message
+        rules = rules_summary(self.scene)
+        if rules:
+            out["rules"] = rules
         return out
 
 
@@ -177,7 +184,7 @@ def size(scene: Scene | str | os.PathLike, method: str = DEFAULT_DISCRETE, with_
     design.margins_continuous = problem.margins(sol.xs)
     design.lexicographic_ok = sol.lexicographic_ok
     if with_sensitivities:
-        design.sensitivities = sensitivities(problem, sol)
+        design.sensitivities = with_rule_terms(problem.scene, sensitivities(problem, sol))
     d_star = design.continuous["d"]
     if method == "bonmin":
         disc = discrete.bonmin_with_timeout(problem, BONMIN_TIMEOUT, x0=sol.xs)

@@ -299,7 +299,9 @@ class SizingProblem:
     def p_of(self, values: dict | None = None) -> np.ndarray:
         """Parameter vector with SI ``values`` overriding the scene's."""
         p = self.p0.copy()
-        for k, v in (values or {}).items():
+        values = dict(values or {})
+        values.update(self.scene.rule_values({**self.scene.parameters, **values}, values))   # rules follow L_u
+        for k, v in values.items():
             p[self.params.index(k)] = v
         return p
 

@@ -84,6 +84,13 @@ class Problem:
             if n in model.outputs:
                 with found.collect():
                     self.given_values[n] = model.quantities[n].to_si(v, bare)
+        for n in find:
+            held = scene.ruled_by(n)
+            if held:
+                found.add(f"--find {n}: {n} sets {', '.join(held)} through the scene's rule set "
+                          f"({'; '.join(scene.basis(p) for p in held)}); an inverse solve holds every other "
+                          f"parameter, so {', '.join(held)} would stay at its value for this scene's {n}: override "
+                          f"it in [rules] with its reason to solve with it fixed, or sweep {n} instead")
         found.raise_if_any()
         self.given, self.find = given, find
         self.unknowns = [o for o in model.outputs if o not in given] + find
@@ -104,6 +111,7 @@ class Problem:
         missing = [k for k in self.knowns if k not in out]
         if missing:
             raise InputError(f"no value given for {', '.join(missing)}")
+        out.update(self.scene.rule_values(out, values or {}))   # a rule's length changed: its factor follows
         return out
 
     def solve(self, values: Mapping | None = None) -> Result:
@@ -150,6 +158,8 @@ class Problem:
         base = self.inputs({k: v for k, v in columns.items() if not isinstance(v, np.ndarray)})
         arrays = {k: np.broadcast_to(np.asarray(columns[k], dtype=float), (n,)) for k in self.knowns
                   if isinstance(columns.get(k), np.ndarray)}
+        arrays.update({k: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for k, v in
+                       self.scene.rule_values({**base, **arrays}, arrays).items()})
         constants = {k: base[k] for k in self.knowns if k not in arrays}
         out = evaluate_columns(self.function, arrays, constants, threads=parallel)
         return {u: out[u] for u in self.unknowns}

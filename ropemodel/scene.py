@@ -13,6 +13,8 @@
     mu_pl = 0.05               # a bare number only for a dimensionless quantity
     [numerics]                 # solver options, where the model has any
     rtol = 1e-8
+    [report]                   # the filed report: document, revision, sign-off (ropemodel.scene_report)
+    revision = "A"
 
 Loading collects *every* problem before it raises one :class:`~ropemodel.errors.InputError`
 that lists them all (one line each): unknown names (with the nearest valid name), a key in
@@ -42,10 +44,14 @@ from importlib import resources
 from pathlib import Path
 
 from ropemodel import scene_tables as tables
+from ropemodel.scene_report import Filing, read_report
 from ropemodel.core.compile import forward_of
 from ropemodel.core.model import Model
 from ropemodel.effects import all_quantities, effects_of, models, resolve_effects
 from ropemodel.errors import InputError, Problems, suggest
+from ropemodel.rules import apply as rules_apply
+from ropemodel.rules import describe as rules_describe
+from ropemodel.views.scene import SceneViews
 
 EXAMPLE = "krauze2025_fig9"
 
@@ -55,8 +61,8 @@ class SceneWarning(UserWarning):
 
 
 
-@dataclass(frozen=True)
-class Scene:
+@dataclass(frozen=True, repr=False)
+class Scene(SceneViews):
     """A validated scene.  ``parameters`` are SI floats; ``effects`` have defaults filled in.
 
     Attributes
@@ -87,6 +93,10 @@ class Scene:
     raw: dict = field(default_factory=dict, repr=False, compare=False)
     #: the route's structure (``[[route]]``): per segment, whether it gives its own mu_winding
     route: tuple[bool, ...] = ()
+    #: the rule set of ``[rules]`` applied to this scene (:class:`ropemodel.rules.apply.Applied`), or None
+    rules: rules_apply.Applied | None = None
+    #: the filed report's data, ``[report]`` (:class:`ropemodel.scene_report.Filing`), or None
+    filing: Filing | None = None
     #: SI values of the parameters in ``unused`` (in their domain, and meeting the rules)
     unused_values: dict[str, float] = field(default_factory=dict, repr=False, compare=False)
 
@@ -120,6 +130,9 @@ class Scene:
                 params[name] = model.quantities[name].to_si(value, bare)
                 origin_of[name] = origin
                 defaults.pop(name, None)
+        if self.rules is not None:
+            with found.collect():
+                params.update(rules_apply.refresh(self.rules, params, origin_of, values))
         for problem in model.problems({**spare, **{k: v for k, v in params.items() if k in model.parameters}}):
             found.add(problem)
         found.raise_if_any()
@@ -138,8 +151,35 @@ class Scene:
         data = {k: dict(v) if isinstance(v, dict) else v for k, v in self.raw.items()}
         data["effects"] = {**data.get("effects", {}), **effects}
         scene = from_dict(data, self.source, optional=optional, emit=emit, digest=self.digest)
-        overrides = {k: v for k, v in self.parameters.items() if self.origin.get(k) not in ("scene", "default")}
+        read_again = ("scene", "default", rules_apply.FROM_RULE, rules_apply.FROM_OVERRIDE)
+        overrides = {k: v for k, v in self.parameters.items() if self.origin.get(k) not in read_again}
         return scene.with_values(overrides) if overrides else scene
+
+    def basis(self, parameter: str) -> str:
+        """Where ``parameter``'s value comes from: a rule (set, clause, formula, status), an override and its
+        reason, a default, or "user-given"."""
+        return rules_describe.basis(self, parameter)
+
+    def check_basis(self, check: str) -> str:
+        """The rule a design check applies (``check``: a margin name), or "user-given" ("-": no factor)."""
+        return rules_describe.check_basis(self, check)
+
+    def rule_values(self, values: Mapping, changed) -> dict:
+        """The values the rule set gives again where its inputs among ``changed`` take ``values`` (floats,
+        numpy arrays or CasADi expressions); {} without a rule set or when no rule input changed."""
+        if self.rules is None:
+            return {}
+        return self.rules.derive(values, changed, self.ruled())
+
+    def ruled(self) -> list[str]:
+        """The parameters whose value the rule set gives (not overridden, not set by hand)."""
+        return [p for p, o in self.origin.items() if o == rules_apply.FROM_RULE]
+
+    def ruled_by(self, name: str) -> list[str]:
+        """The parameters the rule set gives from ``name`` (e.g. ``["n_rope"]`` for the route's ``L_u``)."""
+        if self.rules is None:
+            return []
+        return [p for p in self.ruled() if name in self.rules.inputs_of(p, self.parameters)]
 
     def required(self) -> list[str]:
         """Parameters this scene must be given (no default)."""
@@ -282,12 +322,14 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
     tables.route_parameters(model, route_values, bare, params, origin, found)
     if values:
         tables.set_values(model, values, values_bare, values_origin, params, origin, unused, found, notes, spare)
+    rules = rules_apply.read_rules(data, model, params, origin, given, found)
+    filing = read_report(data, found)
     defaults, absent = tables.fill_missing(model, params, origin, tuple(optional), found)
     for problem in model.problems({**spare, **params}):   # an unused value meets the rules too (x_m <= L_u)
         found.add(problem)
     scene = Scene(str(name if name is not None else source or "unnamed"), model_name, effects, params, numerics,
                   source, defaults, unused, checks, absent, tuple(notes), origin, digest,
-                  {k: v for k, v in data.items()}, route, spare)
+                  {k: v for k, v in data.items()}, route, rules, filing, spare)
     scene.__dict__["built"] = model
     _verify_checks(scene, found)
     found.raise_if_any()

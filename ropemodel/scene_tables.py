@@ -21,7 +21,7 @@ from ropemodel.effects import effects_of, misplaced, models, numerics_of
 from ropemodel.errors import InputError, Problems, suggest
 from ropemodel.units import last_digit, split_value, to_si
 
-TABLES = ("scene", "effects", "parameters", "numerics", "route")
+TABLES = ("scene", "effects", "parameters", "numerics", "route", "rules", "report")
 #: keys of a ``[[route]]`` segment → the parameter each becomes (``{i}``: the segment's number from the drive)
 ROUTE_KEYS = {"length": "L_{i}", "inclination": "alpha_{i}", "mu_winding": "mu_w{i}"}
 SCENE_KEYS = ("name", "model", "description")

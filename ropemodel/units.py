@@ -46,6 +46,7 @@ _FORCE = _dim((_M, 1), (_L, 1), (_T, -2))
 #: unit name → (factor to SI, dimension, takes an SI prefix)
 UNITS: dict[str, tuple[float, tuple[int, ...], bool]] = {
     "m": (1.0, _L, True),
+    "ft": (0.3048, _L, False),                               # international foot (US rules write lengths in ft)
     "g": (1e-3, _M, True),
     "t": (1e3, _M, False),                                   # tonne
     "s": (1.0, _T, True),

@@ -97,7 +97,8 @@ def odd_values(action) -> list[tuple[str, str]]:
     if action.type is int:
         return [("0", "0"), ("-1", "-1"), ("2^63", str(2**63)), ("a fraction", "1.5"), ("text", "many"),
                 ("empty", "")]
-    return [("empty", ""), ("commas only", ",,"), ("a space", " "), ("a NUL", "a\x00b"), ("5000 characters", "x" * 5000)]
+    return [("empty", ""), ("commas only", ",,"), ("a space", " "), ("a NUL", "a\x00b"),
+            ("5000 characters", "x" * 5000)]
 
 
 def single_cases() -> list[Case]:

@@ -62,7 +62,7 @@ def test_inverse_problem_elasticities_match_finite_differences(fig9):
 
 def test_closed_form_elasticities(fig9):
     e = elasticities(fig9).set_index(["output", "parameter"])["elasticity"]
-    assert e["N_p_up", "v_pj"] == pytest.approx(1.0, abs=1e-14)   # N_p = (F_C - F_S) v / eta
+    assert e["N_p_up", "v_pj"] == pytest.approx(1.0, abs=1e-14)   # N_p_up = (F_C - F_S) v / eta (motoring)
     assert e["N_p_up", "eta"] == pytest.approx(-1.0, abs=1e-14)
     assert e["dF_up", "q_lw"] == pytest.approx(1.0, abs=1e-14)    # every elongation is q_lw * force
     p = fig9.parameters

@@ -56,16 +56,18 @@ def _text(design) -> str:
         lines.append("")
         lines.append("active constraints: " + ", ".join(design.active))
         for k, v in design.power.items():
-            lines.append(f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}")
+            sign = q[k].sign_text(v)   # a drive power: motoring (> 0) or braking (< 0)
+            lines.append(f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}" + (f"  {sign}" if sign else ""))
         if design.least_drum is not None:
             lines.append(f"{'D_min':<12}{q['D'].to_display(design.least_drum):>14.6g}  {q['D'].display_unit}"
                          f"  (no drum diameter given: the least drum, D_ratio_min d)")
         lines.append("")
-        lines.append(f"{'check margin':<22}{'value':>14}  unit")
+        lines.append(f"{'check margin':<22}{'value':>14}  {'unit':<6}{'':<6}rule")
         for k, v in design.margins.items():
             unit = "-" if q[k].display_unit == "1" else q[k].display_unit
             shown = q[k].to_display(v) if abs(v) > 1e-9 else 0.0  # an active check prints as 0, not -8.9e-13
-            lines.append(f"{k:<22}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS'}")
+            lines.append(f"{k:<22}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS':<6}"
+                         f"{design.scene.check_basis(k)}")
     lines.append("")
     lines.append(design.message)
     return "\n".join(lines)

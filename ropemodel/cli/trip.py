@@ -6,7 +6,8 @@ from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn
 from ropemodel.errors import InputError
 
 NAME = "trip"
-HELP = "a whole trip along the route: forces, drive power, energy drawn and returned, RMS power, stroke needed"
+HELP = ("a whole trip along the route: forces, drive power (> 0 motoring, < 0 braking), energy drawn while "
+        "motoring and returned (or dissipated) while braking, RMS power, stroke needed")
 
 
 def add_arguments(parser) -> None:

@@ -14,7 +14,9 @@ Krauze et al. (2025) give eq. (23) (least stroke ΔF) and the rule D >= 30 d (th
 introduction, "Drum diameter D is selected based on rope diameter d, ensuring
 compliance with minimum conditions D >= 30d"): hence the default D_ratio_min = 30.
 The safety factor n_rope has no default: it is set by the code of practice that
-applies (mine haulage regulations differ by country and duty).
+applies (mine haulage regulations differ by country and duty): typed, or given by
+a rule set in the scene's [rules] (ropemodel.rules; the checks read their factors
+the same way either way, and each check names where its factor comes from).
 """
 
 from __future__ import annotations
@@ -52,6 +54,7 @@ class NoChecks(Submodel):
     """Design checks off."""
 
     description = "no design checks"
+    missing = ("No design checks (rope safety, slack rope, stroke, drum diameter): choose checks = \"design\".",)
 
 
 @register(MODEL, "checks", "design")
@@ -73,19 +76,19 @@ class DesignChecks(Submodel):
         Q("F_S_min", "N", "least tension allowed in either rope (unwinding F_S and winding F_C)", "kN", **dom.FORCE,
           default=0.0, default_note="no least tension given: the ropes need only stay taut (> 0)"),
         STROKE,
-        Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", default=30.0,
+        Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", default=30.0, symbol="(D/d)_min",
           **dom.domain(1.0, 1e4, "at least 1 (a drum around its rope); rules ask 18 to 120"),
           equation=f"{SRC}, introduction: D >= 30 d"),
         *per_direction("safety_margin", "1", "margin of rope safety F_min/(n_rope F_C) - 1 (>= 0 passes)",
-                       equation="F_min / (n_rope F_C) - 1"),
+                       symbol="m_safety", equation="rope safety check, F_min / F_C ≥ n_rope (not in the paper)"),
         *per_direction("slack_margin", "N", "margin against a slack unwinding rope F_S - F_S_min (>= 0 passes)",
-                       "kN", equation="F_S - F_S_min"),
+                       "kN", symbol="m_slack", equation="slack-rope check of the unwinding rope (not in the paper)"),
         *per_direction("taut_margin", "N", "margin against a slack winding rope F_C - F_S_min (>= 0 passes; "
-                       "when lowering on a gentle slope the winding rope can go slack)", "kN",
-                       equation="F_C - F_S_min"),
-        *per_direction("stroke_margin", "m", "stroke left over stroke - dF (>= 0 passes)", "mm",
+                       "when lowering on a gentle slope the winding rope can go slack)", "kN", symbol="m_taut",
+                       equation="slack-rope check of the winding rope (not in the paper)"),
+        *per_direction("stroke_margin", "m", "stroke left over stroke - dF (>= 0 passes)", "mm", symbol="m_stroke",
                        equation=f"stroke - dF, {SRC} eq. (23)"),
-        Q("drum_margin", "1", "margin of the drum D/(D_ratio_min d) - 1 (>= 0 passes)",
+        Q("drum_margin", "1", "margin of the drum D/(D_ratio_min d) - 1 (>= 0 passes)", symbol="m_drum",
           equation=f"D / (D_ratio_min d) - 1, {SRC} introduction"),
     )
 
@@ -95,25 +98,25 @@ class DesignChecks(Submodel):
             eqs += [
                 Equation(f"safety_margin_{way}",
                          v["n_rope"] * v[f"F_C_{way}"] * (v[f"safety_margin_{way}"] + 1.0) - v["F_min"],
-                         "F_min / (n_rope F_C) - 1", formula="m = F_min / (n_rope F_C) − 1"),
+                         "rope safety check, F_min / F_C ≥ n_rope (not in the paper)"),
                 Equation(f"slack_margin_{way}", v[f"slack_margin_{way}"] - (v[f"F_S_{way}"] - v["F_S_min"]),
-                         "F_S - F_S_min", formula="m = F_S − F_S_min"),
+                         "slack-rope check of the unwinding rope (not in the paper)"),
                 Equation(f"taut_margin_{way}", v[f"taut_margin_{way}"] - (v[f"F_C_{way}"] - v["F_S_min"]),
-                         "F_C - F_S_min", formula="m = F_C − F_S_min"),
+                         "slack-rope check of the winding rope (not in the paper)"),
                 Equation(f"stroke_margin_{way}", v[f"stroke_margin_{way}"] - (v["stroke"] - v[f"dF_{way}"]),
-                         "stroke - dF", formula="m = stroke − ΔF"),
+                         "stroke check against eq. (23)"),
             ]
         eqs.append(Equation("drum_margin", v["D_ratio_min"] * v["d"] * (v["drum_margin"] + 1.0) - v["D"],
-                            "D / (D_ratio_min d) - 1", formula="m = D / (D_ratio_min d) − 1"))
+                            "drum check, the introduction's D ≥ 30 d with D_ratio_min"))
         return eqs
 
     def frames(self, values, scene):
-        return {"design checks": checks_frame(values, scene.built.quantities)}
+        return {"design checks": checks_frame(values, scene.built.quantities, scene.check_basis)}
 
 
-def checks_frame(values: dict, quantities: dict):
+def checks_frame(values: dict, quantities: dict, basis=None):
     """Table of every margin present in ``values`` (a pandas DataFrame): check, direction, margin
-    (display unit), pass/fail."""
+    (display unit), pass/fail, and the rule its factor comes from (``basis(margin name) -> text``)."""
     import pandas as pd
 
     text = {base: t for base, t, _ in CHECKS}
@@ -123,5 +126,5 @@ def checks_frame(values: dict, quantities: dict):
         q = quantities[n]
         unit = "-" if q.display_unit == "1" else q.display_unit
         rows.append({"check": text[base], "direction": way or "-", "margin": q.to_display(values[n]),
-                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO"})
-    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass"])
+                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO", "rule": basis(n) if basis else "-"})
+    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass", "rule"])

@@ -10,6 +10,7 @@ from ropemodel.errors import RopeModelError, require
 from ropemodel.reports import page
 from ropemodel.reports.context import Context
 from ropemodel.reports.registry import sections
+from ropemodel.reports.sections.document import running_header, title
 from ropemodel.reports.sections.scene import stamp, version
 
 
@@ -66,8 +67,8 @@ def report(scene: str | os.PathLike, values: dict | None = None, method: str | N
     >>> r = rm.report("example")
     >>> "190.949" in r.html and r.incomplete == []       # F_C_up of Fig. 9, kN
     True
-    >>> r.shown[:4]
-    ['scene', 'inputs', 'equations', 'results']
+    >>> r.shown[:5]
+    ['document', 'scene', 'inputs', 'basis', 'equations']
     """
     from ropemodel.reports.context import load
 
@@ -89,7 +90,7 @@ def build(ctx: Context) -> Report:
             html = page.error(f"Not computed: {exc}")
         parts.append((s.name, s.title, html))
         report.shown.append(s.name)
-    report.html = page.page(f"Design report: {ctx.scene.name}", version(), stamp(ctx), parts)
+    report.html = page.page(title(ctx), version(), stamp(ctx), parts, running_header(ctx))
     report.verdicts = verdicts(ctx)
     return report
 

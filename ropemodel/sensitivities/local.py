@@ -50,6 +50,9 @@ def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, o
     P = ca.MX.sym("p", len(parameters))
     args = {k: ca.MX(x[k]) for k in problem.knowns}
     args.update({k: P[i] for i, k in enumerate(parameters)})
+    ruled = problem.scene.ruled()      # a factor a rule gives follows its length, plus its own change
+    for k, v in problem.scene.rule_values(args, [p for p in parameters if p not in ruled]).items():
+        args[k] = v + (args[k] - x[k])
     res = fun.call(args)
     Y = ca.vertcat(*[res[o] for o in outputs])
     f = ca.Function("elasticity_jacobian", [P], [Y, ca.jacobian(Y, P)])

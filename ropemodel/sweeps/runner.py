@@ -40,6 +40,7 @@ from ropemodel.sweeps.points import MAX_AXIS, Points, grid, table
 from ropemodel.sweeps.store import ChunkStore, complete_rows, discard_parts, read_output
 from ropemodel.sweeps.validate import check_ranges, check_rules
 from ropemodel.units import label
+from ropemodel.views.records import SweepFileViews
 
 if TYPE_CHECKING:
     from ropemodel.scene import Scene
@@ -65,7 +66,7 @@ class SweepInterrupted(KeyboardInterrupt):
 
 
 @dataclass
-class SweepFile(os.PathLike):
+class SweepFile(SweepFileViews, os.PathLike):
     """What ``sweep(..., collect=False)`` returns: the output file (path-like) and what it holds.
 
     status: ``"written"`` (computed now, or resumed) or ``"complete"`` (found finished: nothing computed).
@@ -321,13 +322,14 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
     fun = problem.function
     order = list(varied) + [k for k in problem.knowns if k not in varied]
     syms = {k: ca.MX.sym(k) for k in problem.knowns}
-    res = fun.call(syms)
+    args = {**syms, **problem.scene.rule_values(syms, varied)}   # a swept length carries its rule's factor
+    res = fun.call(args)
     outs = [res[o] for o in outputs]
     names = list(outputs)
     roundtrip = {}
     if problem.given:
         forward = Problem(problem.scene).function
-        params = {k: syms[k] if k in syms else res[k] for k in problem.model.parameters}
+        params = {k: args[k] if k in args else res[k] for k in problem.model.parameters}
         back = forward.call(params)
         for g in problem.given:
             roundtrip[f"roundtrip_{g}"] = g

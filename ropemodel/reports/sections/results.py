@@ -85,8 +85,9 @@ def frame_html(title: str, frame):
     return html + page.table(list(map(str, frame.columns)), rows, kinds=["num"] * len(frame.columns))
 
 
-def check_rows(margins: dict, quantities: dict):
-    """(rows, row classes, failed names) of a checks table: margin name, check, direction, margin, verdict."""
+def check_rows(margins: dict, quantities: dict, scene=None):
+    """(rows, row classes, failed names) of a checks table: margin name, check, direction, margin, verdict and
+    the rule the check applies (its factor's provenance in ``scene``)."""
     text = {base: t for base, t, _ in CHECKS}
     rows, classes, failed = [], [], []
     for n in margins_of(margins):
@@ -94,22 +95,23 @@ def check_rows(margins: dict, quantities: dict):
         base, way = (n.rsplit("_", 1) if _DIR.match(n) else (n, "-"))
         ok = v >= 0
         rows.append([n, text.get(base, quantities[n].description), way,
-                     page.show(quantities[n], 0.0 if abs(v) < ZERO else v), "pass" if ok else "FAIL"])
+                     page.show(quantities[n], 0.0 if abs(v) < ZERO else v), "pass" if ok else "FAIL",
+                     scene.check_basis(n) if scene is not None else "-"])
         classes.append("pass" if ok else "fail")
         if not ok:
             failed.append(n)
     return rows, classes, failed
 
 
-def checks_html(margins: dict, quantities: dict):
-    """A verdict line and the table of every margin in ``margins`` (SI)."""
-    rows, classes, failed = check_rows(margins, quantities)
+def checks_html(margins: dict, quantities: dict, scene=None):
+    """A verdict line and the table of every margin in ``margins`` (SI), each with its rule (see "Rules")."""
+    rows, classes, failed = check_rows(margins, quantities, scene)
     if failed:
         line = page.verdict(False, f"{len(failed)} of {len(rows)} checks FAIL: {', '.join(failed)}")
     else:
         line = page.verdict(True, f"All {len(rows)} checks pass.")
-    return line + page.table(["margin", "check", "direction", "margin value", "result"], rows,
-                             kinds=["name", "", "", "num", ""], row_class=classes, cls="checks")
+    return line + page.table(["margin", "check", "direction", "margin value", "result", "rule"], rows,
+                             kinds=["name", "", "", "num", "", ""], row_class=classes, cls="checks")
 
 
 def _has_checks(ctx) -> bool:
@@ -127,4 +129,5 @@ def checks(ctx):
                                             "\"Sizing\")" if ctx.sizing else ""))
     html = page.fragment("<p>Every check {{ w }}: a margin ≥ 0 passes. Ratio margins are fractions "
                          "(0.1: 10 % to spare), the others in the quantity's unit.</p>", w=where)
-    return html + checks_html({n: result.values[n] for n in margins_of(result.outputs)}, result.model.quantities)
+    return html + checks_html({n: result.values[n] for n in margins_of(result.outputs)}, result.model.quantities,
+                              result.scene)

@@ -1,7 +1,7 @@
 """Section "sensitivity": what matters most, as tornado charts of the elasticities of a few headline results.
 
 Headline results are the ones a designer sizes with: the rope force F_C, the tensioner's stroke need
-ΔF and the drive power N_p of a winch (the direction with the larger value), the tension S of a
+ΔF and the drive power N_p of a winch (the direction with the larger magnitude), the tension S of a
 sheave, the stiffness K and the rotation of a capstan drive.  A model with none of them shows the
 results that depend on the most inputs.
 """

@@ -43,5 +43,5 @@ def sizing(ctx):
     if extra:
         html += page.table(["quantity", "value", "meaning"], extra, kinds=["name", "num", ""])
     html += page.fragment("<h3>Checks at the recommended design</h3>")
-    html += checks_html({k: v for k, v in design.margins.items() if k in q}, q)   # the static checks
+    html += checks_html({k: v for k, v in design.margins.items() if k in q}, q, design.scene)   # static checks
     return html + page.fragment('<p class="note">{{ m }}</p>', m=design.message)
