@@ -63,7 +63,7 @@ def check(name: str, count: float, what: str, fix: str) -> None:
     """:class:`InputError` if ``count`` exceeds budget ``name`` (and budgets are not lifted).
 
     what: the job and how it was counted (``"t_end = 1e+06 s at sim_dt = 0.02 s"``); fix: how to make it
-    smaller (``"raise sim_dt or shorten t_end"``)."""
+    smaller (``"take a larger sim_dt, or shorten t_end"``)."""
     b = BUDGETS[name]
     if _LIFTED or count <= b.limit:
         return

@@ -21,7 +21,7 @@ from _fuzz import CAPSTAN_DATA, FAIL, INPUT, Case, base_case, builtin, drop_key,
 SOUND = frozenset({0})
 LONG = "a" * 5000
 #: every command that writes a file: (command, its output option, suffix, argv before it, base scene or None)
-OUTPUTS = (("curve", "-o", ".csv", [], None), ("simulate", "-o", ".csv", [], None), ("trip", "-o", ".csv", [], None),
+OUTPUTS = (("curve", "-o", ".csv", ["--to", "100N", "-n", "5"], None), ("simulate", "-o", ".csv", [], None), ("trip", "-o", ".csv", [], None),
            ("sweep", "-o", ".csv", ["--vary", "alpha_u=5deg:20deg:3"], None),
            ("sweep", "-o", ".csv", ["--vary", "G_m=400kN,467kN", "--sizing"], "winch_sizing_fig9"),
            ("report", "-o", ".html", [], None), ("report", "--pdf", ".pdf", [], None),

@@ -83,5 +83,5 @@ def _check_work(t_end: float, dt: float) -> None:
 
     rows = t_end / dt + 1
     budget.check("history", rows, f"a transient of {t_end:.6g} s at [numerics] sim_dt = {dt:g} s",
-                 "raise sim_dt, or shorten t_end (a trip: its route or t_ramp)")
+                 "take a larger sim_dt, or shorten t_end (a trip: its route or t_ramp)")
     check_size(int(min(rows, 2**62)), HISTORY_COLUMNS, what="a transient's history is kept in memory")

@@ -141,7 +141,7 @@ class Rope(TransientSubmodel):
         if T0 <= zero:
             hints = "".join(p.slack_hint for p in self.setup.parts.values())
             shown = T0 / 1e3 if abs(T0) > zero else 0.0
-            raise InputError(f"the rope is slack at the start (least tension {shown:.3g} kN){hints}: raise F_nwl "
+            raise InputError(f"the rope is slack at the start (least tension {shown:.3g} kN){hints}: increase F_nwl "
                              f"(now {self.setup.numbers['F_nwl'] / 1e3:g} kN) or check the stroke")
 
     def summary(self, run):
