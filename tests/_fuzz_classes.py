@@ -21,7 +21,8 @@ from _fuzz import CAPSTAN_DATA, FAIL, INPUT, Case, base_case, builtin, drop_key,
 SOUND = frozenset({0})
 LONG = "a" * 5000
 #: every command that writes a file: (command, its output option, suffix, argv before it, base scene or None)
-OUTPUTS = (("curve", "-o", ".csv", ["--to", "100N", "-n", "5"], None), ("simulate", "-o", ".csv", [], None), ("trip", "-o", ".csv", [], None),
+OUTPUTS = (("curve", "-o", ".csv", ["--to", "100N", "-n", "5"], None), ("simulate", "-o", ".csv", [], None),
+           ("trip", "-o", ".csv", [], None),
            ("sweep", "-o", ".csv", ["--vary", "alpha_u=5deg:20deg:3"], None),
            ("sweep", "-o", ".csv", ["--vary", "G_m=400kN,467kN", "--sizing"], "winch_sizing_fig9"),
            ("report", "-o", ".html", [], None), ("report", "--pdf", ".pdf", [], None),
@@ -80,7 +81,8 @@ def domain_cases() -> list[Case]:
     return cases
 
 
-def _route(n: int, length: str) -> str:
+def route_scene(n: int, length: str) -> str:
+    """The Fig. 9 sizing scene on a route of ``n`` segments of ``length`` each."""
     segments = "".join(f'[[route]]\nlength = "{length}"\ninclination = "{5 + i % 7} deg"\n' for i in range(n))
     head = builtin("winch_sizing_fig9").split("[parameters]")
     params = drop_key(drop_key("[parameters]" + head[1], "parameters", "L_u"), "parameters", "L_ul")
@@ -97,7 +99,7 @@ def budget_cases() -> list[Case]:
             Case("sensitivity", "budget", "--samples 2^20",
                  *base_case("sensitivity", argv=["--sobol", "G_m=400kN:467kN", "--samples", str(2**20)]),
                  words=("evaluations", "--no-limit")),
-            Case("size", "budget", "a route of 60 segments of 1 m", *base_case("size", _route(60, "1 m")),
+            Case("size", "budget", "a route of 60 segments of 1 m", *base_case("size", route_scene(60, "1 m")),
                  words=("segment evaluations", "--no-limit"))]
     return rows
 

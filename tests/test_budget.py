@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from _fuzz_classes import route_scene
 from ropemodel import budget
 from ropemodel.cli import main
 
@@ -48,31 +49,12 @@ def test_a_large_sobol_study_is_refused_with_its_evaluations(capsys):
     assert f"{n * (d + 2):,} evaluations" in _error(capsys)
 
 
-def _route(n: int) -> str:
-    segments = "".join(f'[[route]]\nlength = "1 m"\ninclination = "{5 + i % 7} deg"\n' for i in range(n))
-    return f'''[effects]
-route = "segments"
-rope = "6x36-IWRC"
-lining = "rigid"
-{segments}
-[parameters]
-mu_pm = 0.05
-mu_pl = 0.05
-G_m = "467 kN"
-rope_grade = "1770 N/mm^2"
-rope_E = "100 kN/mm^2"
-mu_d = 0.2
-alpha_d = "540 deg"
-n_rope = 4.5
-'''
-
-
 @pytest.mark.parametrize("n, refused", [(50, False), (51, True)])
 def test_sizing_on_a_route_is_counted_by_its_segments(n, refused, tmp_path, capsys):
     """n segments: the load on each (n positions), each through the n segments: n^2 segment evaluations; 50
     segments are the budget's 2500 exactly."""
     scene = tmp_path / "route.toml"
-    scene.write_text(_route(n))
+    scene.write_text(route_scene(n, "1 m"))
     if not refused:   # the NLP is built (not solved): at the budget it is not refused
         from optimisation.problem import SizingProblem, load_sizing
 
