@@ -91,9 +91,9 @@ def argv_of(case, d) -> list[str]:
     return [a.replace("{d}", str(d)) for a in case.argv]
 
 
-def check_clean(code: int, out: str, err: str, codes, words=()) -> None:
+def check_clean(code: int, out: str, err: str, codes, words=(), typed: bool = True) -> None:
     """The contract of a failure (see the module docstring); ``words``: each must be in the message (a tuple
-    of words: one of them)."""
+    of words: one of them); ``typed``: the input holds a NaN or an inf the message may quote."""
     assert code in codes, f"exit {code}, expected {sorted(codes)}\nstdout: {out[:2000]}\nstderr: {err[:2000]}"
     assert out == "", f"something printed on stdout: {out[:2000]}"
     lines = err.splitlines()
@@ -103,6 +103,8 @@ def check_clean(code: int, out: str, err: str, codes, words=()) -> None:
     assert len(lines) <= MAX_LINES, f"{len(lines)} lines on stderr:\n{err[:3000]}"
     for word in SOLVER_LOG:
         assert word not in err, f"{word!r} on stderr:\n{err[:3000]}"
+    bad = None if typed else NON_FINITE.search("\n".join(lines))
+    assert bad is None, f"{bad.group(0)!r} in the message:\n{err[:3000]}"
     for word in words:
         alternatives = word if isinstance(word, tuple) else (word,)
         assert any(w in err for w in alternatives), f"the message names none of {alternatives}:\n{err[:3000]}"
@@ -112,7 +114,7 @@ def check_sound(code: int, out: str, err: str, case, d) -> None:
     """The contract of a valid input: a result with no NaN or inf in it or in a file it wrote, only warnings
     on stderr; or a clean failure."""
     if code != 0:
-        check_clean(code, out, err, case.codes - {0}, case.words)
+        check_clean(code, out, err, case.codes - {0}, case.words, _typed(case))
         return
     assert out, f"exit 0 with nothing on stdout\nstderr: {err[:2000]}"
     bad = NON_FINITE.search(out)
@@ -160,7 +162,14 @@ def _run(case, tmp_path, capfd, monkeypatch):
 @pytest.mark.parametrize("case", [_param(i, c) for i, c in enumerate(CASES) if c.expect == "fail"])
 def test_bad_input_fails_cleanly(case, tmp_path, capfd, monkeypatch):
     code, out, err = _run(case, tmp_path, capfd, monkeypatch)
-    check_clean(code, out, err, case.codes, case.words)
+    check_clean(code, out, err, case.codes, case.words, _typed(case))
+
+
+def _typed(case) -> bool:
+    """Whether the case's own input holds a NaN or an inf (a message may quote it)."""
+    given = " ".join(case.argv) + " ".join(v.decode(errors="replace") for v in case.files.values()
+                                           if isinstance(v, bytes))
+    return NON_FINITE.search(given) is not None or "1e999" in given or "1" * 400 in given
 
 
 @pytest.mark.parametrize("case", [_param(i, c) for i, c in enumerate(CASES) if c.expect == "sound"])
@@ -185,7 +194,7 @@ def test_disk_that_fills(case, tmp_path):
     write_files(tmp_path, case.files)
     p = subprocess.run([sys.executable, "-m", "ropemodel", *argv_of(case, tmp_path)], capture_output=True,
                        text=True, cwd=tmp_path, timeout=600, preexec_fn=_fill(200))
-    check_clean(p.returncode, p.stdout, p.stderr, case.codes, case.words)
+    check_clean(p.returncode, p.stdout, p.stderr, case.codes, case.words, _typed(case))
     assert sorted(x.name for x in tmp_path.iterdir()) == sorted(case.files), list(tmp_path.iterdir())
 
 
@@ -233,3 +242,35 @@ def test_console_entry(case, tmp_path):
     p = subprocess.run([sys.executable, "-m", "ropemodel", *argv_of(case, tmp_path)], capture_output=True,
                        text=True, env=env, cwd=tmp_path, timeout=300)
     check_clean(p.returncode, p.stdout, p.stderr, case.codes)
+
+
+#: a closed pipe is fixed by another helper's branch (compose); strict: the mark goes when the fix lands
+CLOSED_PIPE_ELSEWHERE = "compose: a closed stdout ends quietly with exit 0 (ropemodel/cli/__init__.py)"
+
+
+#: the commands whose closed pipe the default suite tries (the rest with -m slow: each a process of its own)
+PIPED = ("run", "curve", "trip")
+
+
+def _piped(command: str):
+    marks = [pytest.mark.xfail(reason=CLOSED_PIPE_ELSEWHERE, strict=True)]
+    return pytest.param(command, marks=marks + ([] if command in PIPED else [pytest.mark.slow]))
+
+
+@pytest.mark.parametrize("command", [_piped(c) for c in BASES])
+def test_a_reader_that_stops_early(command, tmp_path):
+    """``ropemodel COMMAND ... | head -c0``: the reader closes the pipe before the command prints; the command ends
+    quietly with exit 0, as ``git log | head`` does (nothing on stderr)."""
+    from _fuzz import base_case
+
+    argv, files = base_case(command)
+    write_files(tmp_path, files)
+    argv = [a.replace("{d}", str(tmp_path)) for a in argv]
+    read, write = os.pipe()
+    p = subprocess.Popen([sys.executable, "-m", "ropemodel", *argv], stdout=write, stderr=subprocess.PIPE,
+                         cwd=tmp_path)
+    os.close(write)
+    os.close(read)        # the reader is gone before the command prints anything
+    err = p.stderr.read().decode(errors="replace")
+    code = p.wait(timeout=600)
+    assert (code, err) == (0, "")
