@@ -4,7 +4,6 @@ sensitivities — or, when no design exists, which checks conflict and by how mu
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -13,12 +12,12 @@ import numpy as np
 from optimisation import discrete
 from optimisation.infeasibility import Diagnosis, diagnose
 from optimisation.ipopt import Solution, solve_continuous
-from optimisation.problem import VARIABLES, SizingProblem
+from optimisation.problem import VARIABLES, SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
 from ropemodel.papers import en12385 as ropes
 from ropemodel.rules.apply import with_rule_terms
 from ropemodel.rules.describe import summary as rules_summary
-from ropemodel.scene import Scene
+from ropemodel.scene import Scene, SceneLike
 from ropemodel.views.design import DesignViews
 
 #: default way to pick a catalogue diameter, chosen on the evidence of studies/discrete_design.py:
@@ -117,7 +116,7 @@ def solve_best(problem: SizingProblem, p=None, x0=None) -> Solution:
     return sol
 
 
-def size(scene: Scene | str | os.PathLike, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
+def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
     """Size the winch of ``scene``: the lightest catalogue rope, then the least pretension, then the least stroke
     (Krauze et al. 2025: every design check of eq. (12)-(23) as a constraint; ``ropemodel size``).
 
@@ -161,10 +160,7 @@ def size(scene: Scene | str | os.PathLike, method: str = DEFAULT_DISCRETE, with_
     >>> design.active
     ['slip_margin_up', 'stroke_margin_up', 'd (catalogue size)']
     """
-    if not isinstance(scene, Scene):
-        from optimisation.problem import load_sizing
-
-        scene = load_sizing(scene, emit=False)
+    scene = load_sizing(scene, emit=False)
     problem = SizingProblem(scene)
     design = Design(problem.scene, False, method=method, units=dict(problem.units))
     sol = solve_best(problem)

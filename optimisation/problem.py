@@ -52,7 +52,7 @@ import numpy as np
 from ropemodel.effects.winch_checks import margin_names
 from ropemodel.errors import InputError, Problems
 from ropemodel.problem import Problem
-from ropemodel.scene import Scene
+from ropemodel.scene import Scene, SceneLike, SceneWarning, as_scene
 
 VARIABLES = ("d", "F_nwl", "stroke")
 W_F = 1e-3
@@ -114,13 +114,22 @@ def states(scene) -> list[State]:
         mids = [end - L / 2 for end, L in zip(ends, lengths)]
         out = [State(f"segment {j}", {"x_m": x, **steady}) for j, x in enumerate(mids, start=1)]
         far, near = {"x_m": mids[-1]}, {"x_m": mids[0]}
-    if scene.effects.get("dynamics") == "trip" and "a_h" in v:
+    if _ramps(scene):
         a = v["v_pj"] / v["t_ramp"]        # the same in a triangular profile (a route shorter than v_pj t_ramp)
         out += [State("start of an upward trip", {**far, "a_h": a}, ("up",)),
                 State("stop of an upward trip", {**near, "a_h": -a}, ("up",)),
                 State("start of a downward trip", {**near, "a_h": a}, ("down",)),
                 State("stop of a downward trip", {**far, "a_h": -a}, ("down",))]
     return out
+
+
+#: what the ramps' acceleration of the states is computed from (a = v_pj/t_ramp)
+RAMP_READS = ("v_pj", "t_ramp")
+
+
+def _ramps(scene) -> bool:
+    """True when the checks are also made in a trip's ramps (``dynamics = "trip"`` with the ramps' inertia)."""
+    return scene.effects.get("dynamics") == "trip" and "a_h" in scene.parameters
 
 
 def _label(check: str, state: State) -> str:
@@ -140,18 +149,18 @@ def _applies(check: str, state: State, all_states) -> bool:
     return state is all_states[0]
 
 
-def load_sizing(path, emit: bool = True) -> Scene:
-    """Load a scene file for sizing (:func:`prepare`): no starting design needed; warnings of the scene
-    as sizing reads it (``emit=False``: kept in ``scene.warnings`` for the caller to print)."""
+def load_sizing(scene: SceneLike, emit: bool = True) -> Scene:
+    """A scene read for sizing (:func:`prepare`): a :class:`~ropemodel.scene.Scene` as it is, or a TOML file or
+    built-in scene's name loaded with no starting design needed; the warnings of a scene loaded here
+    (``emit=False``: kept in ``scene.warnings`` for the caller to print)."""
     import warnings
 
-    from ropemodel.scene import SceneWarning, load
-
-    scene = prepare(load(path, optional=SIZED + D_OPTIONAL, emit=False))
-    if emit:
-        for note in scene.warnings:
+    loaded = as_scene(scene, optional=SIZED + D_OPTIONAL, emit=False)
+    prepared = prepare(loaded)
+    if emit and loaded is not scene:
+        for note in prepared.warnings:
             warnings.warn(note, SceneWarning, stacklevel=2)
-    return scene
+    return prepared
 
 
 def prepare(scene) -> Scene:
@@ -202,6 +211,18 @@ def _check_work(scene, where: list) -> None:
                      f"sizing on a route of {segments} segments checks every check at {len(where)} load positions, "
                      f"each through the {segments} segments: an NLP of {len(where)} x {segments}",
                      "join neighbouring segments of nearly the same inclination")
+
+
+def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
+    """What the sizing of the (prepared) ``scene`` is computed from (every check, the rope mass, the drive
+    power), and what it sets itself (name → how): the design variables, and the load position and
+    acceleration of each state the checks are made in (:func:`states`)."""
+    chosen = {k: "the sizing chooses it (a value given only starts the search)" for k in VARIABLES}
+    for st in states(scene):
+        for k in st.values:
+            chosen.setdefault(k, "the sizing makes its checks at every load position and manoeuvre itself")
+    ramps = set(RAMP_READS) if _ramps(scene) else set()
+    return scene.built.inputs_of() | ramps, chosen
 
 
 class SizingProblem:

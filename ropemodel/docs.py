@@ -1,4 +1,5 @@
-"""The README's reference tables, generated from the effect registry (``python -m ropemodel.docs``).
+"""The README's reference tables, generated from the effect registry, and the output of ``ropemodel run`` it
+shows (``python -m ropemodel.docs``).
 
 The README holds each table between ``<!-- generated: NAME -->`` and ``<!-- end: NAME -->``;
 :func:`render` returns the tables, :func:`update` rewrites them in a README, and a test checks
@@ -9,7 +10,9 @@ and ``outputs-MODEL`` (unit, meaning, equation), and ``rule-sets`` and ``rules``
 set and rule, with its source and status); the site's scene reference (``docs/scenes.md``) holds these
 and, per model, ``variants-MODEL`` (every variant of every effect: what it builds, its parameters, what
 it computes with each equation's source, its papers) and ``numerics-MODEL`` (the ``[numerics]``
-options).  ``python -m ropemodel.docs`` rewrites both files.
+options).  The README also shows what ``ropemodel run`` prints, ``run-example`` (:data:`OUTPUTS`: a
+command's output, computed only for a file that holds it).  ``python -m ropemodel.docs`` rewrites both
+files.
 """
 
 from __future__ import annotations
@@ -79,6 +82,18 @@ def outputs_table(model: str) -> str:
     return "\n".join(rows)
 
 
+def run_example() -> str:
+    """What ``ropemodel run`` prints (the built-in example, Krauze et al. 2025, Fig. 9), as a text block."""
+    from ropemodel.problem import run
+    from ropemodel.scene import load
+
+    return f"```text\n{run(load(emit=False)).table()}\n```"
+
+
+#: blocks of a command's output (the README's), computed only where a file holds them
+OUTPUTS = {"run-example": run_example}
+
+
 def variants_table(model: str) -> str:
     """Markdown: every variant of every effect of ``model``: what it builds, the parameters its equations
     use (or that it declares, for a transient variant), what it computes with each equation's source,
@@ -134,7 +149,7 @@ def rules_table() -> str:
 
 
 def render() -> dict[str, str]:
-    """Every generated table by its block name."""
+    """Every generated block by its name."""
     out = {"effects": effects_table(), "rule-sets": rule_sets_table(), "rules": rules_table()}
     for model in REGISTRY:
         out[f"parameters-{model}"] = parameters_table(model)
@@ -148,6 +163,7 @@ def render() -> dict[str, str]:
 def update(text: str) -> str:
     """``text`` with every generated block replaced by its current table (unknown blocks are an error)."""
     tables = render()
+    tables.update({name: block() for name, block in OUTPUTS.items() if f"<!-- generated: {name} -->" in text})
 
     def fill(m):
         if m["name"] not in tables:

@@ -25,7 +25,7 @@ from ropemodel.core.compile import forward_of, solver_of, structure_of
 from ropemodel.core.evaluate import evaluate_columns
 from ropemodel.errors import InputError, Problems, SolveError
 from ropemodel.result import Result
-from ropemodel.scene import Scene
+from ropemodel.scene import Scene, SceneLike, as_scene
 
 
 class Problem:
@@ -33,8 +33,9 @@ class Problem:
 
     Parameters
     ----------
-    scene : Scene
-        The validated scene; its parameter values are the defaults of every evaluation.
+    scene : Scene or str or Path
+        The validated scene; its parameter values are the defaults of every evaluation.  A TOML scene
+        file or a built-in scene's name is loaded first (:func:`ropemodel.load_scene`).
     given : dict or sequence of str
         Outputs whose values are given.  As a dict, name → value: a string with a unit
         (``"1000 mm"``), a pint Quantity, or a number (SI with ``bare="si"``, the default of the
@@ -58,8 +59,8 @@ class Problem:
         ill-posed choice (:class:`~ropemodel.errors.IllPosedError` names the variables), listed at once.
     """
 
-    def __init__(self, scene: Scene, given=(), find=(), bare: str = "si"):
-        self.scene = scene
+    def __init__(self, scene: SceneLike, given=(), find=(), bare: str = "si"):
+        self.scene = scene = as_scene(scene)
         model = self.model = scene.built
         given_values = dict(given) if isinstance(given, dict) else {}
         given, find = list(given), list(find)
@@ -296,13 +297,13 @@ def worst_position(scene: Scene, output: str = "F_C_up") -> float:
     return float(mids[int(np.argmax(values))])
 
 
-def run(scene: Scene, values: Mapping | None = None) -> Result:
+def run(scene: SceneLike, values: Mapping | None = None) -> Result:
     """Forward solve: every output of the scene from its parameters.
 
     Parameters
     ----------
-    scene : Scene
-        A loaded scene (:func:`ropemodel.load_scene`).
+    scene : Scene or str or Path
+        A loaded scene (:func:`ropemodel.load_scene`), a TOML scene file or the name of a built-in scene.
     values : dict, optional
         Parameters to override for this run: SI numbers, strings with units or pint Quantities.
 
@@ -328,13 +329,13 @@ def run(scene: Scene, values: Mapping | None = None) -> Result:
     return Problem(scene).solve(values)
 
 
-def solve(scene: Scene, given: Mapping, find: Sequence[str] | str, bare: str = "si") -> Result:
+def solve(scene: SceneLike, given: Mapping, find: Sequence[str] | str, bare: str = "si") -> Result:
     """Inverse solve: ``given`` outputs (name → value) in place of the ``find`` parameters.
 
     Parameters
     ----------
-    scene : Scene
-        A loaded scene.
+    scene : Scene or str or Path
+        A loaded scene (:func:`ropemodel.load_scene`), a TOML scene file or the name of a built-in scene.
     given : dict
         Output name → value: a string with a unit (``"1000 mm"``), a pint Quantity, or an SI number.
     find : str or sequence of str

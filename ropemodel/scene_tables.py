@@ -140,13 +140,14 @@ def read_numerics(model: str, given: dict, found: Problems) -> dict:
     return out
 
 
-def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes: list, spare: dict):
-    """SI values of the given parameters; checks (computed quantities given); unused ones (their SI values
-    into ``spare``: checked against their domain and the rules like any value)."""
+def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes: list):
+    """SI values of the given parameters; checks (computed quantities given); unused ones (who would use
+    them, and their SI values: in their domain, as any value)."""
     params: dict[str, float] = {}
     checks: dict[str, Check] = {}
     unused: dict[str, str] = {}
     origin: dict[str, str] = {}
+    kept: dict[str, float] = {}
     quantities = model.universe
     for key, value in given.items():
         if key not in quantities:
@@ -168,27 +169,31 @@ def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes
             if note:
                 notes.append(note)
         else:
-            note_unused(model, key, si, unused, spare, found, notes)
-    return params, checks, unused, origin
+            keep_unused(model, key, si, "scene", origin, unused, kept, notes, found)
+    return params, checks, unused, origin, kept
 
 
-def note_unused(model: Model, key: str, si: float, unused: dict, spare: dict, found: Problems, notes: list) -> None:
-    """A valid parameter the chosen effects do not use: a warning naming the variants that would use it.
-    A value outside its physical domain is an error all the same (no effect could use it)."""
+def keep_unused(model: Model, key: str, si: float, where: str, origin: dict, unused: dict, kept: dict,
+                notes: list, found: Problems) -> None:
+    """A valid parameter the chosen effects do not use: named (with the variants that would use it), its
+    value and origin kept for a command that switches effects.  A value outside its physical domain is an
+    error all the same (no effect could use it)."""
     problem = model.universe[key].range_problem(si)
     if problem:
         found.add(f"{problem}; {key} is not used by this scene's effects, but no value outside its valid range "
                   f"is accepted")
         return
     unused[key] = " or ".join(model.owners(key)) or "no effect of this model"
-    spare[key] = si
-    notes.append(f"{key} is not used: it belongs to {unused[key]}")
+    kept[key], origin[key] = si, where
+    note = f"{key} is not used: it belongs to {unused[key]}"
+    if note not in notes:
+        notes.append(note)
 
 
 def set_values(model: Model, values: Mapping, bare: str, origin_label: str, params: dict, origin: dict,
-               unused: dict, found: Problems, notes: list, spare: dict) -> None:
-    """Parameters set on top of the file (``--set``): they replace the file's values (an unused one's in
-    ``spare``)."""
+               unused: dict, found: Problems, notes: list, kept: dict) -> None:
+    """Parameters set on top of the file (``--set``, ``values=``): they replace the file's values (an unused
+    one is named in ``unused`` and its SI value kept in ``kept``)."""
     for key, value in values.items():
         problem = settable(model, key, origin_label)
         if problem and not (key in model.universe and key not in model.symbols):
@@ -202,7 +207,7 @@ def set_values(model: Model, values: Mapping, bare: str, origin_label: str, para
             origin[key] = f"{origin_label} (refused)"
             continue
         if key not in model.parameters:
-            note_unused(model, key, si, unused, spare, found, notes)
+            keep_unused(model, key, si, origin_label, origin, unused, kept, notes, found)
             continue
         params[key], origin[key] = si, origin_label
         note = q.unusual(si)

@@ -45,11 +45,11 @@ import numpy as np
 from ropemodel.errors import InputError
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
+from ropemodel.scene import Scene, SceneLike, as_scene
 from ropemodel.views.records import TripViews
 
 if TYPE_CHECKING:
     from ropemodel.effects.winch_braking import Braking
-    from ropemodel.scene import Scene
 
 #: samples of the history per phase (the summary does not depend on them)
 SAMPLES = 200
@@ -155,8 +155,9 @@ class Trip(TripViews):
 TRIP_EFFECTS = {"dynamics": "trip", "inertia": "rigid", "power": "drive"}
 
 
-def prepare(scene):
-    """The scene as a trip needs it (:data:`TRIP_EFFECTS`; a scene that says nothing of them works)."""
+def prepare(scene: Scene) -> Scene:
+    """The scene as a trip needs it (:data:`TRIP_EFFECTS`; a scene that says nothing of them works): read
+    again with those effects, every value it was given kept (:meth:`~ropemodel.scene.Scene.with_effects`)."""
     if scene.model != "winch":
         raise InputError(f"a trip is for winch scenes; this scene's model is {scene.model!r}")
     if all(scene.effects.get(k) == v for k, v in TRIP_EFFECTS.items()):
@@ -164,15 +165,25 @@ def prepare(scene):
     return scene.with_effects(TRIP_EFFECTS)
 
 
-def trip(scene: Scene, direction: str | None = None) -> Trip:
+def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
+    """What a trip of the (prepared) ``scene`` is computed from: the parameters of its forces and stroke in
+    both directions, the speed profile and the efficiency; and those it sets itself (name → how)."""
+    forces = [f"{f}_{d}" for f in ("F_C", "F_S", "dF") for d in ("up", "down")]
+    used = scene.built.inputs_of([f for f in forces if f in scene.built.defined_by]) | {"v_pj", "t_ramp", "eta"}
+    return used, {"x_m": "the trip moves the load along the whole route",
+                  "a_h": "the trip's ramps set the acceleration (v_pj/t_ramp)"}
+
+
+def trip(scene: SceneLike, direction: str | None = None) -> Trip:
     """The trip of a winch scene along its route (see the module docstring).
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or Path
         A winch scene with ``v_pj`` and ``t_ramp`` (and ``eta``, default 1), a straight route or a
-        route of ``[[route]]`` segments.  Its forces must include the ramps' inertia
-        (``inertia = "rigid"``); :func:`prepare` makes a scene so (what ``ropemodel trip`` does).
+        route of ``[[route]]`` segments; a TOML scene file or a built-in scene's name is loaded first.
+        It is read as a trip needs it (:func:`prepare`: the ramps' inertia in the forces, the drive's
+        power), whatever its own effects say; every value it was given is kept.
     direction : {"up", "down"}, optional
         The trip's direction; default the scene's ``travel`` effect, else up.
 
@@ -187,7 +198,7 @@ def trip(scene: Scene, direction: str | None = None) -> Trip:
     Raises
     ------
     InputError
-        Not a winch scene, no ramp inertia, a bad direction.
+        Not a winch scene, a bad direction, a missing speed or ramp time.
     SolveError
         A rope goes slack somewhere on the trip (the least F_nwl that keeps it taut is named).
 
@@ -211,12 +222,10 @@ def trip(scene: Scene, direction: str | None = None) -> Trip:
     """
     from ropemodel.problem import Problem
 
+    scene = prepare(as_scene(scene))
     direction = direction or scene.effects.get("travel", "up")
     if direction not in ("up", "down"):
         raise InputError(f"direction {direction!r}: a trip goes up or down")
-    if scene.effects.get("inertia") != "rigid":
-        raise InputError('a trip needs the ramps\' inertia in the forces: [effects] inertia = "rigid" '
-                         '(ropemodel trip sets it)')
     v = scene.parameters
     problem = Problem(scene)
     L_u = v["L_u"] if "L_u" in v else sum(_segment_lengths(v))

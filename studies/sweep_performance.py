@@ -251,7 +251,8 @@ def _plot(scale, mem, path):
     plt.close(fig)
 
 
-def main(out_dir=None, fast: bool = False) -> dict:
+def main(out_dir=None, fast: bool = False, publish: bool = True) -> dict:
+    """The study; ``publish=False`` keeps the full run's figure out of ``studies/figures/`` (for tests)."""
     out = Path(out_dir) if out_dir else ROOT / "studies" / "out" / NAME
     out.mkdir(parents=True, exist_ok=True)
     import pandas as pd
@@ -278,7 +279,7 @@ def main(out_dir=None, fast: bool = False) -> dict:
     if mem:
         pd.DataFrame(mem).to_csv(out / "memory.csv", index=False)
     _plot(scale, mem, out / f"{NAME}.png")
-    if not fast:
+    if not fast and publish:
         figures = ROOT / "studies" / "figures"
         figures.mkdir(exist_ok=True)
         _plot(scale, mem, figures / f"{NAME}.png")

@@ -81,3 +81,16 @@ def test_the_readmes_shortest_scenes_work(tmp_path):
                 assert simulate(rm.load_scene(f)).summary["t_end"] > 0
             else:
                 assert rm.run(rm.load_scene(f)).values
+
+
+def test_the_readmes_run_output_is_what_ropemodel_run_prints(capsys):
+    """The block the README shows under "The built-in example" is the command's output today, to the byte."""
+    import re
+
+    from ropemodel.cli import main
+
+    block = re.search(r"<!-- generated: run-example -->\n```text\n(.*?)\n```\n<!-- end: run-example -->",
+                      README.read_text(encoding="utf-8"), re.S)
+    assert block, "the README's run block is not marked <!-- generated: run-example -->"
+    assert main(["run"]) == 0
+    assert capsys.readouterr().out == block[1] + "\n"

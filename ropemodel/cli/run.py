@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ropemodel.cli._common import add_scene_arguments, scene_from_args
+from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn_unread
 from ropemodel.errors import InputError
 
 NAME = "run"
@@ -20,6 +20,7 @@ def main(args) -> int:
     from ropemodel.problem import run, worst_position
 
     scene = scene_from_args(args)
+    warn_unread(scene, "run")
     if args.worst:
         if scene.effects.get("route") != "segments":
             raise InputError("--worst needs a route of segments ([effects] route = \"segments\"): on the paper's "

@@ -12,7 +12,8 @@ from __future__ import annotations
 import json
 import math
 
-from ropemodel.cli._common import add_scene_arguments, name_list, named, refuse_without, scene_from_args
+from ropemodel.cli._common import (add_scene_arguments, name_list, named, refuse_without, scene_from_args,
+                                   sizing_scene_from_args, warn_unread)
 from ropemodel.errors import InputError
 from ropemodel.progress import status
 
@@ -34,13 +35,6 @@ def add_arguments(parser) -> None:
     parser.add_argument("--seed", type=int, default=None, help="seed of the Sobol sequence scrambling, 0 to 2**32 - 1")
     parser.add_argument("--sizing", action="store_true",
                         help="Sobol indices of the sizing optimum (d, F_nwl, stroke) instead of the outputs")
-
-
-def _sized() -> tuple[str, ...]:
-    """What sizing chooses itself (d, F_nwl, stroke) and the drum it may leave out: a sizing scene needs none."""
-    from optimisation.problem import D_OPTIONAL, SIZED
-
-    return SIZED + D_OPTIONAL
 
 
 def _num(v):
@@ -71,7 +65,11 @@ def main(args) -> int:
     else:
         refuse_without(args, "--sobol ranges", "samples", "seed", "sizing")
     plot = check_plot(args.plot) if args.plot is not None else None   # before any work
-    scene = scene_from_args(args, optional=_sized() if args.sizing else ())
+    scene = sizing_scene_from_args(args) if args.sizing and ranges else scene_from_args(args)
+    if outputs:
+        scene.built.check_names(outputs, "output")
+    if not (args.sizing and ranges):
+        warn_unread(scene, "sensitivity", scene.built.inputs_of(outputs) if outputs else None)
     if ranges:
         if args.sizing:
             from optimisation.sweep import sizing_function

@@ -14,7 +14,7 @@ from __future__ import annotations
 import json
 import math
 
-from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn
+from ropemodel.cli._common import add_scene_arguments, sizing_scene_from_args
 from ropemodel.errors import InputError
 from ropemodel.progress import status
 
@@ -23,7 +23,7 @@ HELP = "size the winch: least rope d, then least pretension F_nwl, then least st
 
 
 def add_arguments(parser) -> None:
-    add_scene_arguments(parser, optional=False)
+    add_scene_arguments(parser, optional=False, example="winch_sizing_fig9")
     parser.add_argument("--discrete", choices=("next-size-up", "bonmin"), default=None,
                         help="how to pick the catalogue diameter (default: next-size-up)")
     parser.add_argument("--dynamic", action="store_true",
@@ -75,10 +75,8 @@ def _text(design) -> str:
 
 def main(args) -> int:
     from optimisation.design import DEFAULT_DISCRETE, size
-    from optimisation.problem import D_OPTIONAL, SIZED, prepare
 
-    scene = prepare(scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False))
-    warn(scene.warnings)
+    scene = sizing_scene_from_args(args)
     if args.dynamic or scene.numerics.get("sizing") == "dynamic":
         from ropemodel.cli import _size_dynamic
 

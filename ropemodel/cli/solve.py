@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ropemodel.cli._common import add_scene_arguments, assignments, name_list, scene_from_args
+from ropemodel.cli._common import add_scene_arguments, assignments, name_list, scene_from_args, warn_unread
 from ropemodel.errors import InputError
 
 NAME = "solve"
@@ -24,6 +24,8 @@ def main(args) -> int:
     find = name_list(args.find, "--find", "q_lw")
     if not given and not find:
         raise InputError("solve needs --given NAME=VALUE and --find NAME (use 'run' for the forward problem)")
-    result = solve(scene_from_args(args), given, find, bare="refuse")
+    scene = scene_from_args(args)
+    warn_unread(scene, "solve", chosen={f: "solve finds it from the --given values" for f in find})
+    result = solve(scene, given, find, bare="refuse")
     print(result.to_json() if args.json else result.table())
     return 0

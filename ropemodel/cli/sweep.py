@@ -15,7 +15,8 @@ import json
 import sys
 from typing import cast
 
-from ropemodel.cli._common import add_scene_arguments, assignments, name_list, named, refuse_without, scene_from_args
+from ropemodel.cli._common import (add_scene_arguments, assignments, name_list, named, refuse_without, scene_from_args,
+                                   sizing_scene_from_args, warn_unread)
 from ropemodel.errors import InputError, Problems
 
 NAME = "sweep"
@@ -69,14 +70,17 @@ def main(args) -> int:
     if points is not None and vary:
         raise InputError("give either --vary grids or --points FILE, not both")
     if args.sizing:
-        return _sizing(scene_from_args(args), vary, points, args)
+        return _sizing(vary, points, args)
     given, find = _given(args.given), name_list(args.find, "--find", "q_lw")
-    outputs = name_list(args.outputs, "--outputs", "F_C_up,dF_up")
+    outputs = name_list(args.outputs, "--outputs", "F_C_up,dF_up") or None
     _check_roles(given, find, list(vary) + ([split_label(str(c))[0] for c in points.columns]
                                             if points is not None else []))
     scene = scene_from_args(args)
+    if outputs:
+        scene.built.check_names(outputs, "output")
+    warn_unread(scene, "this sweep", scene.built.inputs_of(outputs) if outputs else None)
     try:
-        written = sweep(scene, vary or None, outputs or None, points=points, given=given, find=find,
+        written = sweep(scene, vary or None, outputs, points=points, given=given, find=find,
                         out=args.output, chunk_size=CHUNK if args.chunk_size is None else args.chunk_size,
                         threads=args.threads, backend=args.backend or "auto", si=args.si,
                         errors="mark" if args.mark_failures else "raise",
@@ -128,8 +132,8 @@ def _summary(path, as_json: bool, rows: int, columns: list[str], status: str = "
         print(f"wrote {rows} points x {len(columns)} columns to {path}")
 
 
-def _sizing(scene, vary, points, args) -> int:
-    from optimisation.problem import prepare
+def _sizing(vary, points, args) -> int:
+    """The sizing optimum at every point; the scene read as sizing reads it (no starting design needed)."""
     from optimisation.sweep import sizing_sweep
     from ropemodel.progress import enabled
     from ropemodel.sweeps.files import OutputLock, check_output, write_frame
@@ -145,11 +149,12 @@ def _sizing(scene, vary, points, args) -> int:
                          "design, the first from the static one): leave --cold out")
     out = check_output(args.output)
     with OutputLock(out):
+        scene = sizing_scene_from_args(args)
         try:
             if args.dynamic:
                 from optimisation.dynamic.sweep import dynamic_sizing_sweep
 
-                frame = dynamic_sizing_sweep(prepare(scene), vary or None, points=points,
+                frame = dynamic_sizing_sweep(scene, vary or None, points=points,
                                              progress=enabled(False if args.no_progress else None))
             else:
                 frame = sizing_sweep(scene, vary or None, points=points, warm=not args.cold,

@@ -3,7 +3,6 @@ computed shows why, and is listed in :attr:`Report.incomplete`."""
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass, field
 
 from ropemodel.errors import RopeModelError, require
@@ -12,6 +11,7 @@ from ropemodel.reports.context import Context
 from ropemodel.reports.registry import sections
 from ropemodel.reports.sections.document import running_header, title
 from ropemodel.reports.sections.scene import stamp, version
+from ropemodel.scene import SceneLike
 
 
 @dataclass
@@ -32,14 +32,15 @@ def requirements() -> None:
     require("matplotlib", "report")
 
 
-def report(scene: str | os.PathLike, values: dict | None = None, method: str | None = None) -> Report:
+def report(scene: SceneLike, values: dict | None = None, method: str | None = None) -> Report:
     """The design report of a scene: one self-contained HTML page (``ropemodel report``).
 
     Parameters
     ----------
-    scene : str or Path
-        A scene TOML file or the name of a built-in scene (``"example"``: Krauze et al. 2025, Fig. 9).
-        A sizing scene (a winch with a catalogue rope) is sized, and the page reports the design.
+    scene : Scene or str or Path
+        A loaded scene, a scene TOML file or the name of a built-in scene (``"example"``: Krauze et al.
+        2025, Fig. 9).  A sizing scene (a winch with a catalogue rope) is sized, and the page reports
+        the design.
     values : dict, optional
         Parameters that replace or complete the file's, ``{name: value}`` (SI floats, strings with
         units, pint Quantities), checked with the file's.

@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
 
 import casadi as ca
 import numpy as np
@@ -27,10 +26,9 @@ import pandas as pd
 
 from ropemodel.errors import InputError, SolveError
 from ropemodel.problem import Problem
+from ropemodel.scene import SceneLike, as_scene
 from ropemodel.units import label
 
-if TYPE_CHECKING:
-    from ropemodel.scene import Scene
 
 ZERO_RTOL = 1e-12
 
@@ -66,15 +64,16 @@ def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, o
     return y, J, dict(zip(parameters, p0)), outputs
 
 
-def elasticities(scene: Scene, values: Mapping | None = None, outputs: Sequence[str] | None = None,
+def elasticities(scene: SceneLike, values: Mapping | None = None, outputs: Sequence[str] | None = None,
                  parameters: Sequence[str] | None = None, given: Mapping | Sequence[str] = (),
                  find: Sequence[str] = ()) -> pd.DataFrame:
     """Local sensitivities: elasticities ∂ln y/∂ln p of a scene's outputs, exact (CasADi's Jacobian).
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or Path
         The scene (:func:`ropemodel.load_scene`).
+        A TOML scene file or a built-in scene's name is loaded first (:func:`ropemodel.load_scene`).
     values : dict, optional
         Inputs that override the scene's, ``{name: value}`` (SI floats, strings with units or
         pint Quantities).
@@ -114,6 +113,7 @@ def elasticities(scene: Scene, values: Mapping | None = None, outputs: Sequence[
     1   alpha_u  190.9485     kN      0.7746
     2     mu_pm  190.9485     kN      0.1175
     """
+    scene = as_scene(scene)
     problem = Problem(scene, given, find)
     if parameters is None:
         x = problem.inputs(values)

@@ -18,10 +18,11 @@ import contextlib
 import hashlib
 import json
 import os
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -33,6 +34,7 @@ from ropemodel.core.evaluate import COMPILE_MIN, Job, evaluator
 from ropemodel.errors import InputError
 from ropemodel.progress import bar, enabled, status
 from ropemodel.problem import Problem
+from ropemodel.scene import SceneLike, SceneWarning, as_scene
 from ropemodel.sweeps.chunk import ChunkJob
 from ropemodel.sweeps.schedule import results
 from ropemodel.sweeps.files import OutputLock, check_disk, check_output, check_size
@@ -41,9 +43,6 @@ from ropemodel.sweeps.store import ChunkStore, complete_rows, discard_parts, rea
 from ropemodel.sweeps.validate import check_ranges, check_rules
 from ropemodel.units import label
 from ropemodel.views.records import SweepFileViews
-
-if TYPE_CHECKING:
-    from ropemodel.scene import Scene
 
 CHUNK = 65536  # points per chunk: ~20 MB of results for 40 columns
 ERRORS = ("raise", "mark")
@@ -84,7 +83,7 @@ class SweepFile(SweepFileViews, os.PathLike):
         return str(self.path)
 
 
-def sweep(scene: Scene, vary: Mapping | pd.DataFrame | None = None, outputs: Sequence[str] | None = None, *,
+def sweep(scene: SceneLike, vary: Mapping | pd.DataFrame | None = None, outputs: Sequence[str] | None = None, *,
           points: pd.DataFrame | None = None, given: Mapping | Sequence[str] = (), find: Sequence[str] = (),
           out: str | os.PathLike | None = None, chunk_size: int = CHUNK, executor: Any = None,
           threads: int | None = None, backend: str = "auto", si: bool = False, errors: str = "raise",
@@ -93,7 +92,8 @@ def sweep(scene: Scene, vary: Mapping | pd.DataFrame | None = None, outputs: Seq
 
     Parameters
     ----------
-    scene: a :class:`~ropemodel.scene.Scene`; inputs not varied keep its values.
+    scene: a :class:`~ropemodel.scene.Scene` (or a TOML scene file, or a built-in scene's name, loaded first);
+        inputs not varied keep its values.
     vary: ``{name: axis}`` — a grid, the product of the axes (``"5deg:45deg:1000"``,
         ``(0, 0.7, 100)``, a list of values; numbers are SI) — or a DataFrame of points.
     outputs: names of the outputs to compute (default: every unknown of the problem).
@@ -157,6 +157,7 @@ def sweep(scene: Scene, vary: Mapping | pd.DataFrame | None = None, outputs: Seq
     ...          progress=False).loc[0, "invalid"]
     'outside the model: F_S_up <= 0: the unwinding rope is slack (upward travel)'
     """
+    scene = as_scene(scene)
     _check_options(errors, chunk_size, collect, out, threads)
     show = enabled(progress)
     out = check_output(out) if out is not None else None
@@ -236,6 +237,8 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
     if pts.n == 0:
         raise InputError("no points to sweep")
     outputs = _outputs(problem, outputs, pts.names)
+    if not given and not find:
+        _idle(model, pts.names, outputs)
     check_size(pts.n, len(pts.names) + len(outputs) + 2 * (errors == "mark"), out=out, collect=collect)
     base = problem.inputs({**given_values, **{n: float(pts.values_of(n)[0]) for n in pts.names}})
     check_ranges(pts, inputs)
@@ -244,6 +247,17 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
     bounds = [(k * chunk_size, min(pts.n, (k + 1) * chunk_size)) for k in range(n_chunks)]
     signature = _signature(scene, problem, pts, base, outputs, chunk_size, si, errors)
     return _Plan(problem, pts, base, outputs, si, errors, bounds, signature)
+
+
+def _idle(model, names, outputs) -> None:
+    """A :class:`~ropemodel.scene.SceneWarning` naming the varied inputs no output of the sweep depends on."""
+    reads = model.inputs_of(outputs)
+    idle = [n for n in names if n not in reads]
+    if idle:
+        which = ", ".join(outputs) if len(outputs) <= 4 else "the outputs asked for"
+        warnings.warn(f"{', '.join(idle)} varied, but no output of this sweep ({which}) depends on "
+                      f"{'it' if len(idle) == 1 else 'them'}: the results do not change along "
+                      f"{'its' if len(idle) == 1 else 'their'} column", SceneWarning, stacklevel=3)
 
 
 def _found(plan: _Plan, out: Path, collect: bool):

@@ -104,8 +104,11 @@ def check_rows(margins: dict, quantities: dict, scene=None):
 
 
 def checks_html(margins: dict, quantities: dict, scene=None):
-    """A verdict line and the table of every margin in ``margins`` (SI), each with its rule (see "Rules")."""
+    """A verdict line and the table of every margin in ``margins`` (SI), each with its rule (see "Rules");
+    nothing when there is none (no verdict over no checks)."""
     rows, classes, failed = check_rows(margins, quantities, scene)
+    if not rows:
+        return ""
     if failed:
         line = page.verdict(False, f"{len(failed)} of {len(rows)} checks FAIL: {', '.join(failed)}")
     else:

@@ -42,6 +42,7 @@ def sizing(ctx):
                       "no drum diameter given: the least drum, D_ratio_min d"])
     if extra:
         html += page.table(["quantity", "value", "meaning"], extra, kinds=["name", "num", ""])
-    html += page.fragment("<h3>Checks at the recommended design</h3>")
-    html += checks_html({k: v for k, v in design.margins.items() if k in q}, q, design.scene)   # static checks
+    checks = checks_html({k: v for k, v in design.margins.items() if k in q}, q, design.scene)   # static checks
+    if checks:
+        html += page.fragment("<h3>Checks at the recommended design</h3>") + checks
     return html + page.fragment('<p class="note">{{ m }}</p>', m=design.message)

@@ -29,7 +29,8 @@ UNITS = ("m/s", "N", "W")
 
 
 def has_trip(ctx) -> bool:
-    e, given = ctx.scene.effects, {**ctx.scene.parameters, **ctx.scene.unused}   # a trip uses v_pj, t_ramp
+    """A winch scene about trips that gives the speed and the ramp time (used by its effects or not)."""
+    e, given = ctx.scene.effects, {**ctx.scene.parameters, **ctx.scene.unused_values}   # a trip uses v_pj, t_ramp
     return (ctx.scene.model == "winch" and (e.get("dynamics") == "trip" or e.get("route") == "segments")
             and "v_pj" in given and "t_ramp" in given)
 
