@@ -244,17 +244,12 @@ def test_console_entry(case, tmp_path):
     check_clean(p.returncode, p.stdout, p.stderr, case.codes)
 
 
-#: a closed pipe is fixed by another helper's branch (compose); strict: the mark goes when the fix lands
-CLOSED_PIPE_ELSEWHERE = "compose: a closed stdout ends quietly with exit 0 (ropemodel/cli/__init__.py)"
-
-
 #: the commands whose closed pipe the default suite tries (the rest with -m slow: each a process of its own)
 PIPED = ("run", "curve", "trip")
 
 
 def _piped(command: str):
-    marks = [pytest.mark.xfail(reason=CLOSED_PIPE_ELSEWHERE, strict=True)]
-    return pytest.param(command, marks=marks + ([] if command in PIPED else [pytest.mark.slow]))
+    return pytest.param(command, marks=[] if command in PIPED else [pytest.mark.slow])
 
 
 @pytest.mark.parametrize("command", [_piped(c) for c in BASES])
