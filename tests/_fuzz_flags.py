@@ -54,7 +54,8 @@ GOOD = {
                                "winch_sizing_fig9")},
     "trip": {"direction": (["--direction", "down"], False, None), "output": (["-o", "{d}/t.csv"], False, None)},
     "report": {"output": None, "pdf": (["--pdf", "{d}/r.pdf"], False, None),
-               "discrete": (["--discrete", "next-size-up"], False, None)},
+               "discrete": (["--discrete", "next-size-up"], False, None),
+               "format": (["--format", "json", "-o", "{d}/calc.json"], True, None)},
 }
 SKIP = ("help", "scene", "_main")
 

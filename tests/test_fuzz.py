@@ -110,9 +110,23 @@ def check_clean(code: int, out: str, err: str, codes, words=(), typed: bool = Tr
         assert any(w in err for w in alternatives), f"the message names none of {alternatives}:\n{err[:3000]}"
 
 
+def _check_answer(out: str, err: str) -> None:
+    """Exit 1 with something on stdout: no NaN or inf in it, only warnings and at most one error line on stderr,
+    no solver log."""
+    bad = NON_FINITE.search(out)
+    assert bad is None, f"{bad.group(0)!r} in the answer:\n{out[max(0, bad.start() - 500):bad.end() + 200]}"
+    others = [line for line in err.splitlines() if line and not line.startswith("warning: ")]
+    assert len(others) <= 1 and all(line.startswith("error: ") for line in others), err[:3000]
+    for word in SOLVER_LOG:
+        assert word not in out + err, f"{word!r} printed:\n{(out + err)[:3000]}"
+
+
 def check_sound(code: int, out: str, err: str, case, d) -> None:
     """The contract of a valid input: a result with no NaN or inf in it or in a file it wrote, only warnings
     on stderr; or a clean failure."""
+    if code == 1 and out:     # an answer that there is none (size's diagnosis), or a report not complete
+        _check_answer(out, err)
+        return
     if code != 0:
         check_clean(code, out, err, case.codes - {0}, case.words, _typed(case))
         return
@@ -167,8 +181,7 @@ def test_bad_input_fails_cleanly(case, tmp_path, capfd, monkeypatch):
 
 def _typed(case) -> bool:
     """Whether the case's own input holds a NaN or an inf (a message may quote it)."""
-    given = " ".join(case.argv) + " ".join(v.decode(errors="replace") for v in case.files.values()
-                                           if isinstance(v, bytes))
+    given = " ".join([*case.argv, *(v.decode(errors="replace") for v in case.files.values() if isinstance(v, bytes))])
     return NON_FINITE.search(given) is not None or "1e999" in given or "1" * 400 in given
 
 

@@ -255,10 +255,17 @@ def finite_column(col, series: pd.Series, what: str = "points column") -> np.nda
         raw = np.array([_float(v) for v in series], dtype=float)
     bad = np.flatnonzero(~np.isfinite(raw))
     if bad.size:
-        shown = repr(series.iloc[int(bad[0])])
         raise InputError(f"{what} {col!r}: row {int(bad[0]) + 1} is not a finite number "
-                         f"({shown[:40] + '...' if len(shown) > 40 else shown})")
+                         f"({_shown(series.iloc[int(bad[0])])})")
     return raw
+
+
+def _shown(value) -> str:
+    """A cell as a message shows it: an empty cell (read as NaN) as empty, the rest as written (40 characters)."""
+    if isinstance(value, (float, np.floating)) and math.isnan(value):
+        return "empty, or not a number"
+    text = str(value) if isinstance(value, (float, np.floating, int, np.integer)) else repr(value)
+    return text[:40] + "..." if len(text) > 40 else text
 
 
 def _float(value) -> float:
