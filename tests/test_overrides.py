@@ -134,6 +134,9 @@ def independent(scene, command: str, name: str) -> str | None:
     * An inextensible rope (``rope_elasticity = "rigid"``) has no elongation rate to damp (rope_damping),
       and the carriage of its tensioner never moves (m_t).
     * t_end does not matter to a transient that stopped before it (an event ended it).
+    * A Koepe brake's largest deceleration bounds its window only below the slip limits (the window's top is
+      min(a_slip_decel, a_brake_max), docs/physics.md §7): not given (unlimited) and nudged to 5 m/s², above
+      both slip limits, the window is the same.
 
     A report prints every input of every equation it shows: only what enters none of them (a transient's
     t_end) can leave it unchanged.
@@ -149,6 +152,10 @@ def independent(scene, command: str, name: str) -> str | None:
         alpha = v["alpha"] if "alpha" in v else v["alpha_d"]
         if alpha / (v["lambda"] * omega) > 40:
             return "Voigt lining at its elastic limit"
+    if name == "a_brake_max" and v[name] == math.inf and scene.model == "koepe":
+        r = rm.run(scene)
+        if max(r["a_slip_hoist_decel"], r["a_slip_lower_decel"]) < 5.0:
+            return "the brake's window is the slip limits' below 5 m/s²"
     if command == "simulate" and name == "n_slip":
         return "the static slip check's factor"
     if command == "simulate" and name == "eta":
@@ -233,14 +240,16 @@ def identified(scene):
 
 def solved(scene):
     """The inverse problem each model's README shows: the load from the stroke (winch), the friction from
-    the tension (sheave), the friction from the rotation (capstan); the given value is the base scene's."""
+    the tension (sheave), the friction from the rotation (capstan), the payload from the anti-slip factor
+    (koepe); the given value is the base scene's."""
     given, find = INVERSE[scene.model]
     base = rm.run(SCENES[NAMES[scene.name]])[given]
     result = rm.solve(scene, {given: base}, [find])
     return {k: result[k] for k in [*scene.built.outputs, find] if k != given}
 
 
-INVERSE = {"winch": ("dF_up", "G_m"), "sheave": ("S", "mu"), "capstan": ("delta_alpha", "mu")}
+INVERSE = {"winch": ("dF_up", "G_m"), "sheave": ("S", "mu"), "capstan": ("delta_alpha", "mu"),
+           "koepe": ("sigma_static", "m_payload")}
 
 
 def is_winch(scene):

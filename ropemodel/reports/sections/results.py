@@ -64,7 +64,8 @@ def results(ctx):
         html += page.table(["quantity", "down", "up", "meaning", "equation"], rows,
                            kinds=["name", "num", "num", "", ""], cls="pairs")
     if singles:
-        rows = [[n, page.show(q[n], values[n]), q[n].description, _source(model, n)] for n in singles]
+        rows = [[n, page.show(q[n], values[n]), _meaning(q[n].description, result.where.get(n)), _source(model, n)]
+                for n in singles]
         html += page.fragment("<h3>Single quantities</h3>")
         html += page.table(["quantity", "value", "meaning", "equation"], rows, kinds=["name", "num", "", ""],
                            cls="singles")
@@ -72,6 +73,11 @@ def results(ctx):
         if title not in SHOWN_ELSEWHERE:
             html += frame_html(title, frame)
     return html
+
+
+def _meaning(description: str, where: str | None) -> str:
+    """A quantity's meaning, and where its worst case is when it is taken at its worst."""
+    return f"{description}; worst case: {where}" if where else description
 
 
 def frame_html(title: str, frame):
@@ -85,16 +91,18 @@ def frame_html(title: str, frame):
     return html + page.table(list(map(str, frame.columns)), rows, kinds=["num"] * len(frame.columns))
 
 
-def check_rows(margins: dict, quantities: dict, scene=None):
-    """(rows, row classes, failed names) of a checks table: margin name, check, direction, margin, verdict and
-    the rule the check applies (its factor's provenance in ``scene``)."""
+def check_rows(margins: dict, quantities: dict, scene=None, where=None):
+    """(rows, row classes, failed names) of a checks table: margin name, check (and where its worst case is,
+    from ``where``), direction, margin, verdict and the rule the check applies (its factor's provenance in
+    ``scene``)."""
     text = {base: t for base, t, _ in CHECKS}
+    where = where or {}
     rows, classes, failed = [], [], []
     for n in margins_of(margins):
         v = margins[n]
         base, way = (n.rsplit("_", 1) if _DIR.match(n) else (n, "-"))
         ok = v >= 0
-        rows.append([n, text.get(base, quantities[n].description), way,
+        rows.append([n, _meaning(text.get(base, quantities[n].description), where.get(n)), way,
                      page.show(quantities[n], 0.0 if abs(v) < ZERO else v), "pass" if ok else "FAIL",
                      scene.check_basis(n) if scene is not None else "-"])
         classes.append("pass" if ok else "fail")
@@ -103,10 +111,11 @@ def check_rows(margins: dict, quantities: dict, scene=None):
     return rows, classes, failed
 
 
-def checks_html(margins: dict, quantities: dict, scene=None):
-    """A verdict line and the table of every margin in ``margins`` (SI), each with its rule (see "Rules");
-    nothing when there is none (no verdict over no checks)."""
-    rows, classes, failed = check_rows(margins, quantities, scene)
+def checks_html(margins: dict, quantities: dict, scene=None, where=None):
+    """A verdict line and the table of every margin in ``margins`` (SI), each with its rule (see "Rules") and
+    where its worst case is (``where``: margin name → text); nothing when there is none (no verdict over no
+    checks)."""
+    rows, classes, failed = check_rows(margins, quantities, scene, where)
     if not rows:
         return ""
     if failed:
@@ -133,4 +142,4 @@ def checks(ctx):
     html = page.fragment("<p>Every check {{ w }}: a margin ≥ 0 passes. Ratio margins are fractions "
                          "(0.1: 10 % to spare), the others in the quantity's unit.</p>", w=where)
     return html + checks_html({n: result.values[n] for n in margins_of(result.outputs)}, result.model.quantities,
-                              result.scene)
+                              result.scene, result.where)
