@@ -59,7 +59,7 @@ BASES = {
     # a new command: its base here gets every scene case; its own options in _fuzz_cli.option_cases
 }
 #: scenes run also through 'run', so that every model's tables and numerics are fuzzed
-EXTRA_RUN_SCENES = ("sheave_thirion", "capstan_li_experiment")
+EXTRA_RUN_SCENES = ("sheave_thirion", "capstan_li_experiment", "koepe_example")
 
 
 def base_case(command: str, scene_text: str | bytes | None = None, scene_path: str = "{d}/scene.toml",
