@@ -11,7 +11,8 @@
 * a UTF-8 byte-order mark in a scene, a points file and identification data (accepted);
 * messages that must name the actual fix;
 * valid inputs that were refused (dynamic sizing with the capstan drum contact, with mu_d = 5; sizing
-  sensitivities of the README's shortest sizing scene).
+  sensitivities of the README's shortest sizing scene; sizing on a short route of segments);
+* the classes again on the Koepe hoist (``model = "koepe"``).
 """
 
 from __future__ import annotations
@@ -188,7 +189,32 @@ def refused_valid_cases() -> list[Case]:
                  SOUND, expect="sound"),
             Case("sweep", "valid", "--sizing on the README's shortest sizing scene",
                  *base_case("sweep", shortest, argv=["--vary", "G_m=400kN,467kN", "--sizing", "-o", "{d}/o.csv"]),
-                 SOUND, expect="sound")]
+                 SOUND, expect="sound"),
+            Case("size", "valid", "a route of 5 segments of 1 m", *base_case("size", route_scene(5, "1 m")), SOUND,
+                 expect="sound")]
+
+
+def koepe_cases() -> list[Case]:
+    """The classes on the Koepe hoist (``model = "koepe"``) through the commands that take it: output paths,
+    1e308 with a unit (a rule set reads H: no rule value from a refused H), an unused value outside its
+    domain, a Sobol study above its budget, empty flags, a byte-order mark."""
+    text = builtin("koepe_example")
+    out = ["-o", "{d}/o.csv"]
+    rows = [("report", "-o 5000 characters", ["-o", LONG + ".html"], text, ("File name too long",)),
+            ("sweep", "-o 5000 characters", ["--vary", "H=500m,900m", "-o", LONG + ".csv"], text,
+             ("File name too long",)),
+            ("sweep", "--outputs ''", ["--vary", "H=500m,900m", *out, "--outputs", ""], text, ("--outputs",)),
+            ("sensitivity", "--samples 2^20", ["--sobol", "H=500m:900m", "--samples", str(2**20)], text,
+             ("evaluations", "--no-limit")),
+            ("run", "unused Q_R = 2 1/N outside its domain", [], set_value(text, "parameters", "Q_R", '"2 1/N"'),
+             ("Q_R",))]
+    rows += [("run", f"{key} = 1e308 {unit}", [], set_value(text, "parameters", key, f'"1e308 {unit}"'), (key,))
+             for key, unit in (("H", "m"), ("m_payload", "kg"), ("v_max", "m/s"), ("F_r", "N"))]
+    cases = [Case(c, "koepe", what, *base_case(c, scene, argv=argv), words=words)
+             for c, what, argv, scene, words in rows]
+    cases.append(Case("run", "koepe", "a Koepe scene with a BOM", *base_case("run", BOM + text.encode()), SOUND,
+                      expect="sound"))
+    return cases
 
 
 def _readme_block(first_line: str) -> str:
@@ -201,4 +227,4 @@ def _readme_block(first_line: str) -> str:
 
 def issue_cases() -> list[Case]:
     return (output_path_cases() + domain_cases() + budget_cases() + flag_cases() + bom_cases() + message_cases()
-            + refused_valid_cases())
+            + refused_valid_cases() + koepe_cases())

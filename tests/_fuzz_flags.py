@@ -30,9 +30,11 @@ GOOD = {
     "solve": {"given": None, "find": None},
     "size": {"discrete": (["--discrete", "bonmin"], False, None), "dynamic": (["--dynamic"], False, "dynamic"),
              "find": (["--dynamic", "--find", "t_ramp"], False, "dynamic")},
-    "curve": {"to": None, "n": None, "start": (["--from", "10N"], False, None), "display": (["--display"], False, None),
+    "curve": {"set": (["--set", "R=80mm"], False, None),      # a capstan scene: none of the winch's names
+              "to": None, "n": None, "start": (["--from", "10N"], False, None), "display": (["--display"], False, None),
               "output": (["-o", "{d}/c.csv"], False, None)},
-    "identify": {"data": None, "fit": (["--fit", "mu"], False, None), "sigma": (["--sigma", "0.01deg"], False, None)},
+    "identify": {"set": (["--set", "R=80mm"], False, None),
+                 "data": None, "fit": (["--fit", "mu"], False, None), "sigma": (["--sigma", "0.01deg"], False, None)},
     "simulate": {"output": (["-o", "{d}/h.csv"], False, None)},
     "sweep": {"vary": None, "output": None, "points": (["--points", "{d}/p.csv", "-o", "{d}/out.csv"], True, None),
               "outputs": (["--outputs", "F_C_up"], False, None),

@@ -29,11 +29,11 @@ through a real ``python -m ropemodel`` too, and the disk that fills in a real pr
 limit (exit 1, one line, nothing left beside the inputs).
 
 Counts (asserted by :func:`test_counts`; the README quotes them): see :data:`EXPECTED`.  The default
-suite runs every bad input and a sample of the valid ones (every tenth, the corners, the issue's own);
-``-m slow`` runs them all.  (A case that fails in a file someone else is changing goes in
-``OWNED_ELSEWHERE``: a strict xfail naming the fix it needs.)  A new command gets every case once its
-base is in ``BASES``; a new parameter once its Quantity is declared; a new option once ``_fuzz_flags.GOOD``
-says how it is used.
+suite runs the issue's classes, the output paths and the corners, and a sample of the generated families
+(every third bad input, every tenth valid one: :func:`_slow`); ``-m slow`` runs them all.  (A case that
+fails in a file someone else is changing goes in ``OWNED_ELSEWHERE``: a strict xfail naming the fix it
+needs.)  A new command gets every case once its base is in ``BASES``; a new parameter once its Quantity is
+declared; a new option once ``_fuzz_flags.GOOD`` says how it is used.
 """
 
 from __future__ import annotations
@@ -72,9 +72,12 @@ def all_cases():
 CASES = all_cases()
 DISK_FULL = disk_full_cases()
 #: cases per command, per kind and per expectation (a change to the generator changes these on purpose)
-EXPECTED = {}
-EXPECTED_KINDS = {}
-EXPECTED_OUTCOMES = {}
+EXPECTED = {"(none)": 5, "curve": 216, "identify": 210, "report": 291, "run": 682, "sensitivity": 355,
+            "simulate": 293, "size": 283, "solve": 259, "sweep": 537, "trip": 287}
+EXPECTED_KINDS = {"bom": 3, "budget": 4, "data": 65, "domain": 19, "edge": 1162, "flag": 285, "flag pair": 289,
+                  "flags": 17, "koepe": 10, "message": 6, "option": 253, "output": 108, "output read-only": 8,
+                  "scene": 1184, "valid": 5}
+EXPECTED_OUTCOMES = {"fail": 2399, "sound": 1019}
 
 
 def write_files(d, files: dict) -> None:
@@ -146,18 +149,25 @@ def check_sound(code: int, out: str, err: str, case, d) -> None:
 OWNED_ELSEWHERE: dict[tuple[str, str], str] = {}
 
 
+#: the kinds of the issue's classes (tests/_fuzz_classes.py) and of the output paths: all in the default suite
+DEFAULT_KINDS = ("output", "output read-only", "domain", "budget", "flags", "bom", "message", "valid", "koepe")
+
+
 def _slow(i: int, case) -> bool:
-    """A valid input outside the default sample: the default runs the corners, the issue's classes and every
-    tenth of the rest, except dynamic sizing (minutes each)."""
-    if "--dynamic" in case.argv:
+    """A case outside the default sample: the default runs the issue's classes, the output paths, the corners,
+    and every third bad input and every tenth valid one of the generated families; never dynamic sizing's
+    valid inputs (minutes each).  ``-m slow`` runs the rest."""
+    if "--dynamic" in case.argv and case.expect == "sound":
         return True
-    return case.kind in ("edge", "flag", "flag pair") and "every input" not in case.what and i % 10 != 0
+    if case.kind in DEFAULT_KINDS or "every input" in case.what:
+        return False
+    return i % (3 if case.expect == "fail" else 10) != 0
 
 
 def _param(i, case):
     reason = OWNED_ELSEWHERE.get((case.command, case.what))
     marks = [pytest.mark.xfail(reason=reason, strict=True)] if reason else []
-    if case.expect == "sound" and _slow(i, case):
+    if _slow(i, case):
         marks.append(pytest.mark.slow)
     return pytest.param(case, id=f"{case.command}-{case.kind}-{i}-{case.what[:120]}", marks=marks)
 
@@ -238,6 +248,16 @@ def test_counts():
     assert not missing_good(), "every option says how it is used (_fuzz_flags.GOOD)"
     assert (by_command, by_kind, by_outcome) == (EXPECTED, EXPECTED_KINDS, EXPECTED_OUTCOMES)
     assert total == sum(EXPECTED.values())
+
+
+def test_readme_states_the_count():
+    """The README's "Clean failure, always" quotes the fuzz's size: its cases, bad and valid."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    total, _, _, by_outcome = counts()
+    assert (f"{total:,} cases ({by_outcome['fail']:,} bad inputs, {by_outcome['sound']:,} valid inputs at the "
+            f"edges)") in " ".join(text.split())
 
 
 #: one case of each of these, through a real process
