@@ -118,6 +118,7 @@ def flag_cases() -> list[Case]:
              ("--given", "--vary")),
             ("sweep", "--find NAME and --vary NAME", ["--vary", "G_m=400kN,467kN", "--given", "F_C_up=190kN",
                                                       "--find", "G_m", *out], None, ("--find",)),
+            ("sweep", "--outputs NAME and --vary NAME", [*vary, *out, "--outputs", "alpha_u"], None, ("--outputs",)),
             ("sweep", "--cold without --sizing", [*vary, *out, "--cold"], None, ("--cold",)),
             ("sweep", "--dynamic without --sizing", [*vary, *out, "--dynamic"], None, ("--sizing",)),
             ("solve", "--find ''", ["--given", "dF_up=1000mm", "--find", ""], None, ("--find",)),

@@ -74,7 +74,7 @@ def main(args) -> int:
     given, find = _given(args.given), name_list(args.find, "--find", "q_lw")
     outputs = name_list(args.outputs, "--outputs", "F_C_up,dF_up") or None
     _check_roles(given, find, list(vary) + ([split_label(str(c))[0] for c in points.columns]
-                                            if points is not None else []))
+                                            if points is not None else []), outputs or [])
     scene = scene_from_args(args)
     if outputs:
         scene.built.check_names(outputs, "output")
@@ -105,9 +105,14 @@ def _given(items) -> dict[str, str | None]:
     return given
 
 
-def _check_roles(given: dict, find: list[str], varied: list[str]) -> None:
-    """A name has one role: given a value, varied, or found; every contradiction at once."""
+def _check_roles(given: dict, find: list[str], varied: list[str], outputs: list[str]) -> None:
+    """A name has one role: given a value, varied, found, or an output; every contradiction at once."""
     found = Problems()
+    for name in outputs:
+        if name in given or name in varied:
+            flag = "--given" if name in given else "--vary/--points"
+            found.add(f"--outputs {name} and {flag} {name}: {name} is an input of this sweep, not a result; leave "
+                      f"it out of --outputs or out of {flag}")
     for name in given:
         if given[name] is not None and name in varied:
             found.add(f"--given {name}={given[name]} and --vary/--points {name} both give {name}'s values: give "
