@@ -23,8 +23,8 @@ from __future__ import annotations
 import math
 
 from ropemodel._math import fmax, fmin
-from ropemodel.effects import koepe_states as st
 from ropemodel.effects import domains as dom
+from ropemodel.effects import koepe_states as st
 from ropemodel.effects.base import Equation, Submodel, register
 from ropemodel.effects.koepe import ALPHA, D_WHEEL, F_R, M_SHEAVE, MODEL, Q, partner, tail_terms, usual
 from ropemodel.papers import koepe as kp
@@ -45,10 +45,10 @@ QUANTITIES = (
     Q("m_machine", "kg", "mass equivalent to the wheel, the motor's rotor and the brake discs, J/R² (their moment "
       "of inertia about the wheel's axle over the wheel's radius squared)", "t",
       **dom.domain(0.0, 1e7, "0 to 10^4 t: far beyond a wheel, rotor and brake discs reduced to the rim "
-                                       "(tens of tonnes)"),
-      guess=2e4,
-      default=0.0, default_note="not given: left out; it can only lower the deceleration without brake, so the "
-                                "window's floor is on the safe side"),
+                             "(tens of tonnes)"),
+      guess=2e4, default=0.0,
+      default_note="not given: left out; it can only lower the deceleration without brake, so the window's floor "
+                   "is on the safe side"),
     *(q for d in DIRECTIONS for q in (
         Q(f"a_brake_low_{d}", "m/s^2", f"least admissible brake deceleration {DIRECTIONS[d][1]}", "m/s^2",
           equation=f"{SRC}: max(a_brake_min, d_free)"),

@@ -35,8 +35,8 @@ from typing import ClassVar
 import numpy as np
 
 from ropemodel._math import exp, fabs, fmax, fmin, if_else
-from ropemodel.effects import koepe_states as st
 from ropemodel.effects import domains as dom
+from ropemodel.effects import koepe_states as st
 from ropemodel.effects.base import Equation, Submodel, register
 from ropemodel.effects.koepe import (ALPHA, D_WHEEL, F_R, M_SHEAVE, MODEL, MU, V_MAX, Q, static_states,
                                      tail_terms, usual)
