@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ropemodel.cli._common import add_scene_arguments, assignments, scene_from_args, warn_unread
+from ropemodel.cli._common import add_scene_arguments, assignments, name_list, scene_from_args, warn_unread
 from ropemodel.errors import InputError
 
 NAME = "solve"
@@ -21,7 +21,7 @@ def main(args) -> int:
     from ropemodel.problem import solve
 
     given = assignments(args.given, "--given")
-    find = [n.strip() for item in args.find for n in item.split(",") if n.strip()]
+    find = name_list(args.find, "--find", "q_lw")
     if not given and not find:
         raise InputError("solve needs --given NAME=VALUE and --find NAME (use 'run' for the forward problem)")
     scene = scene_from_args(args)

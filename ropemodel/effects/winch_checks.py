@@ -21,6 +21,7 @@ the same way either way, and each check names where its factor comes from).
 
 from __future__ import annotations
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, STROKE, Q, per_direction
 from ropemodel.effects.winch_rope import D_ROPE, F_MIN
@@ -71,11 +72,12 @@ class DesignChecks(Submodel):
         D_ROPE,
         F_MIN,
         D_DRUM,
-        Q("n_rope", "1", "required safety factor of the rope F_min / F_C", low=1.0, guess=5.0),
-        Q("F_S_min", "N", "least tension allowed in either rope (unwinding F_S and winding F_C)", "kN", low=0.0,
+        Q("n_rope", "1", "required safety factor of the rope F_min / F_C", guess=5.0, **dom.FACTOR),
+        Q("F_S_min", "N", "least tension allowed in either rope (unwinding F_S and winding F_C)", "kN", **dom.FORCE,
           default=0.0, default_note="no least tension given: the ropes need only stay taut (> 0)"),
         STROKE,
-        Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", low=1.0, default=30.0, symbol="(D/d)_min",
+        Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", default=30.0, symbol="(D/d)_min",
+          **dom.domain(1.0, 1e4, "at least 1 (a drum around its rope); rules ask 18 to 120"),
           equation=f"{SRC}, introduction: D >= 30 d"),
         *per_direction("safety_margin", "1", "margin of rope safety F_min/(n_rope F_C) - 1 (>= 0 passes)",
                        symbol="m_safety", equation="rope safety check, F_min / F_C ≥ n_rope (not in the paper)"),

@@ -12,13 +12,14 @@ from __future__ import annotations
 
 import math
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.transient.base import MODEL, TransientSubmodel
 from ropemodel.quantity import Quantity
 
 define_effect(MODEL, "travel", "up", "direction of travel of the simulated transient (up: load hauled up)")
 
-X_M = Quantity("x_m", "m", "distance of the load from the drive along the winding rope", "m", low=0.0,
+X_M = Quantity("x_m", "m", "distance of the load from the drive along the winding rope", "m", **dom.ROUTE_POSITION,
                unlimited=True, unlimited_text="start of a trip", default=math.inf, guess=1000.0,
                default_note="not given: the start of a trip in the travel direction (upward: the load at the "
                             "return sheave, x_m = L_u; downward: at the drive, x_m = 0)")
