@@ -9,6 +9,9 @@ from typing import Any
 from ropemodel.errors import InputError
 from ropemodel.units import factor, to_si
 
+#: the extremes an output's worst case can be (:attr:`Quantity.worst`)
+SENSES = ("least", "largest")
+
 
 @dataclass(frozen=True)
 class Quantity:
@@ -32,6 +35,10 @@ class Quantity:
     guess: starting value for Newton when the quantity is an unknown of a nonlinear block.
     default: value used when a scene leaves the parameter out (``None``: required), with
         ``default_note`` saying why that value (reported wherever the default is used).
+    worst: which extreme of an output is its worst case where the load's place or the manoeuvre varies
+        (:mod:`ropemodel.envelope`): ``("least",)`` (a margin, a least tension), ``("largest",)`` (a rope
+        force, a stroke), or both (a signed power: largest motoring and largest braking); ``()``: none
+        (an intermediate quantity, given only at one place).
     """
 
     name: str
@@ -52,6 +59,11 @@ class Quantity:
     guess: float = 1.0
     default: float | None = None
     default_note: str = ""
+    worst: tuple[str, ...] = ()
+
+    def __post_init__(self):
+        if not set(self.worst) <= set(SENSES):
+            raise ValueError(f"{self.name}: worst must be among {SENSES}, got {self.worst}")
 
     @property
     def display_unit(self) -> str:

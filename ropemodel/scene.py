@@ -136,9 +136,11 @@ class Scene:
             raise InputError("this scene was not loaded from a file or dict; build it again with those effects")
         data = {k: dict(v) if isinstance(v, dict) else v for k, v in self.raw.items()}
         data["effects"] = {**data.get("effects", {}), **effects}
-        scene = from_dict(data, self.source, optional=optional, emit=emit, digest=self.digest)
         overrides = {k: v for k, v in self.parameters.items() if self.origin.get(k) not in ("scene", "default")}
-        return scene.with_values(overrides) if overrides else scene
+        scene = from_dict(data, self.source, optional=optional, emit=emit, digest=self.digest,
+                          values=overrides or None)
+        scene.origin.update({k: self.origin[k] for k in overrides if k in scene.origin})
+        return scene
 
     def required(self) -> list[str]:
         """Parameters this scene must be given (no default)."""

@@ -22,7 +22,7 @@ from ropemodel.trips import prepare, trip
 
 G = 9.80665
 SEGMENTS = [(400.0, 22.0, 0.06), (650.0, 9.0, None), (300.0, 3.0, None)]   # route_segments.toml
-LOAD = dict(G_m=467e3, q_l=80.0, F_nwl=20e3, mu_pm=0.05, mu_pl=0.05, v_pj=2.5, t_ramp=5.0, eta=0.85)
+LOAD = dict(G_m=467e3, q_l=80.0, F_nwl=30e3, mu_pm=0.05, mu_pl=0.05, v_pj=2.5, t_ramp=5.0, eta=0.85)
 
 
 def _forces(x, a, s):

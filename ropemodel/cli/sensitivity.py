@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 import math
 
-from ropemodel.cli._common import add_scene_arguments, named, scene_from_args
+from ropemodel.cli._common import add_at_argument, add_scene_arguments, named, worst_case_scene
 from ropemodel.errors import InputError
 from ropemodel.progress import status
 
@@ -32,6 +32,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--samples", type=int, default=1024,
                         help="Sobol base samples N, a power of two >= 4 (N*(D+2) evaluations; default 1024)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the Sobol sequence scrambling, 0 to 2**32 - 1")
+    add_at_argument(parser)
     parser.add_argument("--sizing", action="store_true",
                         help="Sobol indices of the sizing optimum (d, F_nwl, stroke) instead of the outputs")
 
@@ -57,7 +58,7 @@ def main(args) -> int:
         check_samples(args.samples, len(ranges))
         check_seed(args.seed)
     plot = check_plot(args.plot) if args.plot is not None else None   # before any work
-    scene = scene_from_args(args)
+    scene = worst_case_scene(args)
     outputs = _names(args.outputs) or None
     if ranges:
         if args.sizing:

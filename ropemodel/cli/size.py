@@ -44,6 +44,8 @@ def _num(v):
 
 
 def _text(design) -> str:
+    from ropemodel.envelope import where_text
+
     q = design.scene.built.quantities
     lines = [f"{design.scene.name}: sizing"]
     if design.continuous:
@@ -54,18 +56,23 @@ def _text(design) -> str:
             lines.append(f"{k:<12}{cat}{q[k].to_display(design.continuous[k]):>14.6g}  {q[k].display_unit}")
     if design.feasible:
         lines.append("")
-        lines.append("active constraints: " + ", ".join(design.active))
+        lines.append("active constraints:")
+        lines += [f"  {a}" for a in design.active]
         for k, v in design.power.items():
             lines.append(f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}")
+        for kind, e in design.drive.items():
+            lines.append(f"{'drive ' + kind:<16}{q['N_p_up'].to_display(e['value']):>10.6g}  "
+                         f"{q['N_p_up'].display_unit}  (largest; {where_text(e['where'], direction=True)})")
         if design.least_drum is not None:
             lines.append(f"{'D_min':<12}{q['D'].to_display(design.least_drum):>14.6g}  {q['D'].display_unit}"
                          f"  (no drum diameter given: the least drum, D_ratio_min d)")
         lines.append("")
-        lines.append(f"{'check margin':<22}{'value':>14}  unit")
+        lines.append(f"{'check margin':<22}{'value':>14}  {'unit':<6}{'':<6}where it is least")
         for k, v in design.margins.items():
             unit = "-" if q[k].display_unit == "1" else q[k].display_unit
             shown = q[k].to_display(v) if abs(v) > 1e-9 else 0.0  # an active check prints as 0, not -8.9e-13
-            lines.append(f"{k:<22}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS'}")
+            lines.append(f"{k:<22}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS':<6}"
+                         f"{where_text(design.governing.get(k))}")
     lines.append("")
     lines.append(design.message)
     return "\n".join(lines)

@@ -1,8 +1,12 @@
-"""``ropemodel solve SCENE --given NAME=VALUE ... --find NAME ...``: the inverse problem."""
+"""``ropemodel solve SCENE --given NAME=VALUE ... --find NAME ... [--at x_m=...]``: the inverse problem.
+
+Where the scene leaves the load's place or the manoeuvre open, each given output is met at its worst over
+every place and manoeuvre (a margin given as 0: the answer passes everywhere), and the answer names the case
+that governs it (:func:`ropemodel.envelope.solve`)."""
 
 from __future__ import annotations
 
-from ropemodel.cli._common import add_scene_arguments, assignments, scene_from_args
+from ropemodel.cli._common import add_at_argument, add_scene_arguments, assignments, worst_case_scene
 from ropemodel.errors import InputError
 
 NAME = "solve"
@@ -11,6 +15,7 @@ HELP = "solve a scene for parameters (--find) from given outputs (--given)"
 
 def add_arguments(parser) -> None:
     add_scene_arguments(parser, optional=False)
+    add_at_argument(parser)
     parser.add_argument("--given", action="append", metavar="NAME=VALUE", default=[],
                         help="an output with a known value, e.g. dF_up=1000mm")
     parser.add_argument("--find", action="append", metavar="NAME", default=[],
@@ -18,12 +23,12 @@ def add_arguments(parser) -> None:
 
 
 def main(args) -> int:
-    from ropemodel.problem import solve
+    from ropemodel.envelope import solve
 
     given = assignments(args.given, "--given")
     find = [n.strip() for item in args.find for n in item.split(",") if n.strip()]
     if not given and not find:
         raise InputError("solve needs --given NAME=VALUE and --find NAME (use 'run' for the forward problem)")
-    result = solve(scene_from_args(args), given, find, bare="refuse")
+    result = solve(worst_case_scene(args), given, find, bare="refuse")
     print(result.to_json() if args.json else result.table())
     return 0

@@ -4,12 +4,21 @@
 ``design``  margins (>= 0: the check passes):
 
     safety_margin_w = F_min / (n_rope · F_C_w) − 1     rope safety F_min / F_C >= n_rope
-    slack_margin_w  = F_S_w − F_S_min        [N]       unwinding rope never slack
-    taut_margin_w   = F_C_w − F_S_min        [N]       winding rope never slack (lowering on gentle slopes)
+    slack_margin_w  = F_S_w − F_S_min        [N]       unwinding rope taut at the drum
+    taut_margin_w   = F_C_w − F_S_min        [N]       winding rope taut at the drum (lowering on gentle slopes)
+    route_margin_w  = min(F_S_least_w, F_C_least_w) − F_S_min  [N]   both ropes taut along the route
+    sheave_margin   = F_nwl/2 − F_S_min      [N]       both ropes taut at the return sheave
     stroke_margin_w = stroke − ΔF_w          [m]       tensioner stroke covers eq. (23)
     drum_margin     = D / (D_ratio_min · d) − 1         drum D >= D_ratio_min · d (d the rope diameter)
 
 for each way of travel w in (up, down).  The no-slip check is the lining effect's ``slip_margin_w``.
+F_S_least_w and F_C_least_w are each rope side's least tension along the route, between the drum and the
+return sheave: at the route's joints and beside the load (:func:`ropemodel.papers.route.least_rope_tension`,
+docs/physics.md §4).  On a gentle slope, in a dip or while a lowering speeds up the tension can be least
+there, far below the forces at the drum.  The tension between two joints lies between theirs, so the least
+tension anywhere in the loop is that of its three places, the drum, along the route and the return sheave,
+and the checks hold each above F_S_min (each place once: a check never repeats another, which would make
+the sizing NLP degenerate).
 Krauze et al. (2025) give eq. (23) (least stroke ΔF) and the rule D >= 30 d (their
 introduction, "Drum diameter D is selected based on rope diameter d, ensuring
 compliance with minimum conditions D >= 30d"): hence the default D_ratio_min = 30.
@@ -19,11 +28,20 @@ applies (mine haulage regulations differ by country and duty).
 
 from __future__ import annotations
 
+from typing import Any
+
+
+from ropemodel._math import fmin
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
-from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, STROKE, Q, per_direction
+from ropemodel.effects.transient.travel import X_M
+from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, STROKE, Q, per_direction, slack_masks, slack_reasons
 from ropemodel.effects.winch_rope import D_ROPE, F_MIN
+from ropemodel.papers import route as rt
 
 SRC = "Krauze et al. 2025"
+LEAST = "least tension along the side, docs/physics.md §4 (not in the paper)"
+LEAST_SENSE = ("least",)
+LEAST_FORCES = ("F_S_least_up", "F_S_least_down", "F_C_least_up", "F_C_least_down")
 
 define_effect(MODEL, "checks", "none", "design checks with their margins: safety, slack, stroke, drum")
 
@@ -33,6 +51,8 @@ CHECKS = (
     ("slip_margin", "no slip on the drum (lining effect)", "1"),
     ("slack_margin", "unwinding rope not slack F_S >= F_S_min", "N"),
     ("taut_margin", "winding rope not slack F_C >= F_S_min", "N"),
+    ("route_margin", "both ropes taut along the route: least tension >= F_S_min", "N"),
+    ("sheave_margin", "both ropes taut at the return sheave: F_nwl/2 >= F_S_min", "N"),
     ("stroke_margin", "tensioner stroke >= dF", "m"),
     ("drum_margin", "drum D >= D_ratio_min d", "1"),
 )
@@ -69,26 +89,38 @@ class DesignChecks(Submodel):
         F_MIN,
         D_DRUM,
         Q("n_rope", "1", "required safety factor of the rope F_min / F_C", low=1.0, guess=5.0),
-        Q("F_S_min", "N", "least tension allowed in either rope (unwinding F_S and winding F_C)", "kN", low=0.0,
+        Q("F_S_min", "N", "least tension allowed anywhere in either rope (drum to return sheave)", "kN", low=0.0,
           default=0.0, default_note="no least tension given: the ropes need only stay taut (> 0)"),
+        X_M,
         STROKE,
         Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", low=1.0, default=30.0,
           equation=f"{SRC}, introduction: D >= 30 d"),
+        *per_direction("F_S_least", "N", "least tension of the unwinding rope along the route (at its joints, "
+                       "between the drum and the return sheave)", "kN", equation=LEAST, worst=LEAST_SENSE),
+        *per_direction("F_C_least", "N", "least tension of the winding rope along the route (at its joints and "
+                       "beside the load, between the drum and the return sheave)", "kN", equation=LEAST,
+                       worst=LEAST_SENSE),
         *per_direction("safety_margin", "1", "margin of rope safety F_min/(n_rope F_C) - 1 (>= 0 passes)",
-                       equation="F_min / (n_rope F_C) - 1"),
+                       equation="F_min / (n_rope F_C) - 1", worst=LEAST_SENSE),
         *per_direction("slack_margin", "N", "margin against a slack unwinding rope F_S - F_S_min (>= 0 passes)",
-                       "kN", equation="F_S - F_S_min"),
+                       "kN", equation="F_S - F_S_min", worst=LEAST_SENSE),
         *per_direction("taut_margin", "N", "margin against a slack winding rope F_C - F_S_min (>= 0 passes; "
                        "when lowering on a gentle slope the winding rope can go slack)", "kN",
-                       equation="F_C - F_S_min"),
+                       equation="F_C - F_S_min", worst=LEAST_SENSE),
+        *per_direction("route_margin", "N", "margin against a rope slack along the route min(F_S_least, "
+                       "F_C_least) - F_S_min (>= 0 passes)", "kN", equation="min(F_S_least, F_C_least) - F_S_min",
+                       worst=LEAST_SENSE),
         *per_direction("stroke_margin", "m", "stroke left over stroke - dF (>= 0 passes)", "mm",
-                       equation=f"stroke - dF, {SRC} eq. (23)"),
+                       equation=f"stroke - dF, {SRC} eq. (23)", worst=LEAST_SENSE),
+        Q("sheave_margin", "N", "margin against a slack rope at the return sheave F_nwl/2 - F_S_min (>= 0 passes)",
+          "kN", equation="F_nwl/2 - F_S_min", worst=LEAST_SENSE),
         Q("drum_margin", "1", "margin of the drum D/(D_ratio_min d) - 1 (>= 0 passes)",
-          equation=f"D / (D_ratio_min d) - 1, {SRC} introduction"),
+          equation=f"D / (D_ratio_min d) - 1, {SRC} introduction", worst=LEAST_SENSE),
     )
+    invalid_needs = LEAST_FORCES
 
     def equations(self, v):
-        eqs = []
+        eqs = self._least_tensions(v)
         for way in DIRECTIONS:
             eqs += [
                 Equation(f"safety_margin_{way}",
@@ -98,20 +130,62 @@ class DesignChecks(Submodel):
                          "F_S - F_S_min", formula="m = F_S − F_S_min"),
                 Equation(f"taut_margin_{way}", v[f"taut_margin_{way}"] - (v[f"F_C_{way}"] - v["F_S_min"]),
                          "F_C - F_S_min", formula="m = F_C − F_S_min"),
+                Equation(f"route_margin_{way}", v[f"route_margin_{way}"]
+                         - (fmin(v[f"F_S_least_{way}"], v[f"F_C_least_{way}"]) - v["F_S_min"]),
+                         "min(F_S_least, F_C_least) - F_S_min", formula="m = min(F_S,least, F_C,least) − F_S_min"),
                 Equation(f"stroke_margin_{way}", v[f"stroke_margin_{way}"] - (v["stroke"] - v[f"dF_{way}"]),
                          "stroke - dF", formula="m = stroke − ΔF"),
             ]
+        eqs.append(Equation("sheave_margin", v["sheave_margin"] - (0.5 * v["F_nwl"] - v["F_S_min"]),
+                            "F_nwl/2 - F_S_min", formula="m = F_nwl/2 − F_S_min"))
         eqs.append(Equation("drum_margin", v["D_ratio_min"] * v["d"] * (v["drum_margin"] + 1.0) - v["D"],
                             "D / (D_ratio_min d) - 1", formula="m = D / (D_ratio_min d) − 1"))
         return eqs
 
-    def frames(self, values, scene):
-        return {"design checks": checks_frame(values, scene.built.quantities)}
+    def _least_tensions(self, v) -> list[Equation]:
+        """F_S_least, F_C_least of each direction: the tension profile of each side along the route's pieces
+        (the route effect's :meth:`profile`), with the inertia the forces include (docs/physics.md §4)."""
+        route = _hook(self.sibling("route")).profile(v)
+        a = _hook(self.sibling("inertia")).acceleration(v)
+        F_end, q_l = 0.5 * v["F_nwl"], v["q_l"]
+        eqs = []
+        for way, s in DIRECTIONS.items():
+            unwind = [rt.rope_gradient(al, v["mu_pl"], -s, a) for al in route.inclinations]
+            wind = [rt.rope_gradient(al, mu, s, a) for al, mu in zip(route.inclinations, route.mus)]
+            pull = rt.load_pull(v["G_ml"], v["T_m"], v["G_m"], s, a)
+            eqs += [Equation(f"F_S_least_{way}", v[f"F_S_least_{way}"]
+                             - rt.least_rope_tension(F_end, q_l, route.lengths, unwind), LEAST,
+                             formula="F_S,least = min over the unwinding side of T(x)"),
+                    Equation(f"F_C_least_{way}", v[f"F_C_least_{way}"]
+                             - rt.least_rope_tension(F_end, q_l, route.lengths, wind, v["x_m"], pull), LEAST,
+                             formula="F_C,least = min over the winding side of T(x), either side of the load")]
+        return eqs
+
+    def invalid_needs_for(self, outputs):
+        """The least tensions of the directions of ``outputs`` when each belongs to one, else all four."""
+        ways = {o.rsplit("_", 1)[-1] for o in outputs}
+        return LEAST_FORCES if not ways <= set(DIRECTIONS) else tuple(f for f in LEAST_FORCES
+                                                                        if f.rsplit("_", 1)[-1] in ways)
+
+    def invalid_mask(self, values):
+        """A least tension <= 0: the rope would have to push inside the route (it is slack there)."""
+        return slack_masks(values, LEAST_FORCES, " inside the route")
+
+    def invalid(self, values):
+        return slack_reasons(values, LEAST_FORCES, " inside the route")
+
+    def frames(self, values, scene, where=None):
+        return {"design checks": checks_frame(values, scene.built.quantities, where)}
 
 
-def checks_frame(values: dict, quantities: dict):
+def _hook(submodel) -> Any:
+    """A sibling submodel, asked for a hook its effect's variants all have (``profile``, ``acceleration``)."""
+    return submodel
+
+
+def checks_frame(values: dict, quantities: dict, where: dict | None = None):
     """Table of every margin present in ``values`` (a pandas DataFrame): check, direction, margin
-    (display unit), pass/fail."""
+    (display unit), pass/fail and, when ``where`` gives it (margin → text), where the margin is least."""
     import pandas as pd
 
     text = {base: t for base, t, _ in CHECKS}
@@ -121,5 +195,6 @@ def checks_frame(values: dict, quantities: dict):
         q = quantities[n]
         unit = "-" if q.display_unit == "1" else q.display_unit
         rows.append({"check": text[base], "direction": way or "-", "margin": q.to_display(values[n]),
-                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO"})
-    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass"])
+                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO", "where": (where or {}).get(n, "")})
+    columns = ["check", "direction", "margin", "unit", "pass"] + (["where"] if where else [])
+    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass", "where"])[columns]

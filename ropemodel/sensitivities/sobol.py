@@ -121,7 +121,8 @@ def sobol(scene: Scene, ranges: Mapping, outputs: Sequence[str] | None = None, n
     ranges : dict
         ``{name: "LOW:HIGH"}`` with units (``"300kN:500kN"``) or ``(low, high)`` in SI units.
     outputs : list of str, optional
-        Outputs to analyse (default: every unknown of the problem).
+        Outputs to analyse (default: those :func:`ropemodel.sweep` gives: every unknown, each at its worst
+        where the scene leaves the load's place or the manoeuvre open).
     n : int
         Base samples, a power of two ≥ 4; the model runs n·(k + 2) times for k ranges.
     seed : int
@@ -170,11 +171,12 @@ def sobol(scene: Scene, ranges: Mapping, outputs: Sequence[str] | None = None, n
     for k, (lo, hi) in si_ranges.items():
         q[k].check(lo, f"{k} (low end of its range)")
         q[k].check(hi, f"{k} (high end of its range)")
-    outputs = list(problem.unknowns) if outputs is None else list(outputs)
+    outputs = None if outputs is None else list(outputs)   # default: the sweep's (at their worst on a route)
 
     def func(columns):
         frame = sweep(scene, pd.DataFrame(columns), outputs, given=given, find=find, si=True,
                       progress=False, **sweep_options)
-        return {o: frame.iloc[:, len(columns) + i].to_numpy() for i, o in enumerate(outputs)}
+        names = {c: c.split(" [")[0] for c in frame.columns[len(columns):]}
+        return {o: frame[c].to_numpy() for c, o in names.items() if "@" not in o}   # not the governing places
 
     return sobol_indices(func, si_ranges, n, seed)

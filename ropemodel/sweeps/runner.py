@@ -30,6 +30,7 @@ import pyarrow as pa
 
 from ropemodel import __version__
 from ropemodel.core.evaluate import COMPILE_MIN, Job, evaluator
+from ropemodel.envelope import with_ramps
 from ropemodel.errors import InputError
 from ropemodel.progress import bar, enabled, status
 from ropemodel.problem import Problem
@@ -39,6 +40,7 @@ from ropemodel.sweeps.files import OutputLock, check_disk, check_output, check_s
 from ropemodel.sweeps.points import MAX_AXIS, Points, grid, table
 from ropemodel.sweeps.store import ChunkStore, complete_rows, discard_parts, read_output
 from ropemodel.sweeps.validate import check_ranges, check_rules
+from ropemodel.sweeps import worst as worst_case
 from ropemodel.units import label
 
 if TYPE_CHECKING:
@@ -211,6 +213,7 @@ class _Plan:
     errors: str
     bounds: list[tuple[int, int]]
     signature: dict
+    worst: worst_case.Worst | None = None
 
     @property
     def n(self) -> int:
@@ -219,11 +222,14 @@ class _Plan:
     def labels(self) -> list[str]:
         q = self.problem.model.quantities
         cols = [label(k, q[k].unit if self.si else q[k].display_unit) for k in [*self.pts.names, *self.outputs]]
+        cols += [label(c, worst_case.UNITS[k]) for c, k in (self.worst.where_columns(self.outputs) if self.worst
+                                                            else [])]
         return cols + (list(MARK_COLUMNS) if self.errors == "mark" else [])
 
 
 def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out, collect) -> _Plan:
     given_values = {k: v for k, v in given.items() if v is not None} if isinstance(given, dict) else {}
+    scene = with_ramps(scene)
     problem = Problem(scene, list(given), find)
     model = problem.model
     inputs = {k: model.quantities[k] for k in problem.knowns}
@@ -234,6 +240,7 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
     pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=model.outputs)
     if pts.n == 0:
         raise InputError("no points to sweep")
+    worst, outputs = worst_case.plan(scene, problem, pts.names, find, outputs)
     outputs = _outputs(problem, outputs, pts.names)
     check_size(pts.n, len(pts.names) + len(outputs) + 2 * (errors == "mark"), out=out, collect=collect)
     base = problem.inputs({**given_values, **{n: float(pts.values_of(n)[0]) for n in pts.names}})
@@ -242,7 +249,7 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
     n_chunks = -(-pts.n // chunk_size)
     bounds = [(k * chunk_size, min(pts.n, (k + 1) * chunk_size)) for k in range(n_chunks)]
     signature = _signature(scene, problem, pts, base, outputs, chunk_size, si, errors)
-    return _Plan(problem, pts, base, outputs, si, errors, bounds, signature)
+    return _Plan(problem, pts, base, outputs, si, errors, bounds, signature, worst)
 
 
 def _found(plan: _Plan, out: Path, collect: bool):
@@ -321,9 +328,11 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
     fun = problem.function
     order = list(varied) + [k for k in problem.knowns if k not in varied]
     syms = {k: ca.MX.sym(k) for k in problem.knowns}
-    res = fun.call(syms)
-    outs = [res[o] for o in outputs]
-    names = list(outputs)
+    if plan.worst is None:
+        res = fun.call(syms)
+        names, outs, per_case = list(outputs), [res[o] for o in outputs], [("", res)]
+    else:
+        names, outs, per_case = worst_case.columns(plan.worst, fun, syms, base, outputs, problem.model.quantities)
     roundtrip = {}
     if problem.given:
         forward = Problem(problem.scene).function
@@ -334,14 +343,17 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
             names.append(f"roundtrip_{g}")
             outs.append(back[g])
     physics = [sm for sm in problem.model.submodels if sm.invalid_needs_for(outputs)]
-    watch = {}
-    for name in dict.fromkeys(n for sm in physics for n in sm.invalid_needs_for(outputs)):
-        if name in problem.knowns or name in outputs:
-            watch[name] = name
-        elif name in problem.unknowns:
-            watch[name] = f"watch_{name}"
-            names.append(watch[name])
-            outs.append(res[name])
+    watch = []
+    for k, (case, res) in enumerate(per_case):
+        looks = {}
+        for name in dict.fromkeys(n for sm in physics for n in sm.invalid_needs_for(outputs)):
+            if name in problem.knowns or (name in outputs and plan.worst is None):
+                looks[name] = name
+            elif name in problem.unknowns:
+                looks[name] = f"watch_{name}_{k}"
+                names.append(looks[name])
+                outs.append(res[name])
+        watch.append((case, looks))
     sel = ca.Function("sweep_point", [syms[k] for k in order], outs, order, names)
     if fun.is_a("SXFunction"):
         sel = sel.expand()
@@ -350,6 +362,8 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
     for name in list(varied) + outputs:
         unit = q[name].unit if si else q[name].display_unit
         columns.append((label(name, unit), name, 1.0 if si else float(q[name].to_display(1.0))))
+    if plan.worst is not None:
+        columns += [(label(c, worst_case.UNITS[k]), c, 1.0) for c, k in plan.worst.where_columns(outputs)]
     checks = {n: (q[n].low, q[n].high, q[n].low_open, q[n].high_open,
                   f"{q[n].range_text()}, {q[n].description}") for n in problem.find if n in outputs}
     constants = {k: float(base[k]) for k in order[len(varied):]}

@@ -68,9 +68,29 @@ def results(ctx):
         html += page.fragment("<h3>Single quantities</h3>")
         html += page.table(["quantity", "value", "meaning", "equation"], rows, kinds=["name", "num", "", ""],
                            cls="singles")
+    html += worst_html(result)
     for title, frame in result.frames.items():
         if title not in SHOWN_ELSEWHERE:
             html += frame_html(title, frame)
+    return html
+
+
+def worst_html(result) -> str:
+    """For a result at its worst case: where each result is worst (its extremes, their places and manoeuvres),
+    and the results that vary with the case but have no worst."""
+    env = getattr(result, "envelope", None)
+    if env is None:
+        return ""
+    q = result.model.quantities
+    rows = [[n, e.sense, page.show(q[n], e.value), e.text(env.params)] for n, ext in env.extremes.items()
+            for e in ext]
+    html = page.fragment("<h3>Where each result is worst</h3><p>Over {{ s }}, both directions of travel.</p>",
+                         s=result.cases_text())
+    html += page.table(["quantity", "worst", "value", "where"], rows, kinds=["name", "", "num", ""], cls="worst")
+    if env.no_worst:
+        html += page.fragment('<p class="note">Vary with the load\'s place or the manoeuvre and have no worst '
+                              "(given at one point with <code>--set x_m=...</code>): {{ n }}.</p>",
+                              n=", ".join(env.no_worst))
     return html
 
 
@@ -85,8 +105,9 @@ def frame_html(title: str, frame):
     return html + page.table(list(map(str, frame.columns)), rows, kinds=["num"] * len(frame.columns))
 
 
-def check_rows(margins: dict, quantities: dict):
-    """(rows, row classes, failed names) of a checks table: margin name, check, direction, margin, verdict."""
+def check_rows(margins: dict, quantities: dict, where: dict | None = None):
+    """(rows, row classes, failed names) of a checks table: margin name, check, direction, margin, verdict and,
+    with ``where`` (margin → text), where the margin is least."""
     text = {base: t for base, t, _ in CHECKS}
     rows, classes, failed = [], [], []
     for n in margins_of(margins):
@@ -94,22 +115,25 @@ def check_rows(margins: dict, quantities: dict):
         base, way = (n.rsplit("_", 1) if _DIR.match(n) else (n, "-"))
         ok = v >= 0
         rows.append([n, text.get(base, quantities[n].description), way,
-                     page.show(quantities[n], 0.0 if abs(v) < ZERO else v), "pass" if ok else "FAIL"])
+                     page.show(quantities[n], 0.0 if abs(v) < ZERO else v), "pass" if ok else "FAIL"]
+                    + ([where.get(n, "the same in every case")] if where else []))
         classes.append("pass" if ok else "fail")
         if not ok:
             failed.append(n)
     return rows, classes, failed
 
 
-def checks_html(margins: dict, quantities: dict):
-    """A verdict line and the table of every margin in ``margins`` (SI)."""
-    rows, classes, failed = check_rows(margins, quantities)
+def checks_html(margins: dict, quantities: dict, where: dict | None = None):
+    """A verdict line and the table of every margin in ``margins`` (SI); with ``where`` (margin → text) a
+    column saying where each margin is least (the load's place and the manoeuvre)."""
+    rows, classes, failed = check_rows(margins, quantities, where)
     if failed:
         line = page.verdict(False, f"{len(failed)} of {len(rows)} checks FAIL: {', '.join(failed)}")
     else:
         line = page.verdict(True, f"All {len(rows)} checks pass.")
-    return line + page.table(["margin", "check", "direction", "margin value", "result"], rows,
-                             kinds=["name", "", "", "num", ""], row_class=classes, cls="checks")
+    head = ["margin", "check", "direction", "margin value", "result"] + (["where it is least"] if where else [])
+    return line + page.table(head, rows, kinds=["name", "", "", "num", ""] + ([""] if where else []),
+                             row_class=classes, cls="checks")
 
 
 def _has_checks(ctx) -> bool:
@@ -126,5 +150,13 @@ def checks(ctx):
              "at the scene's own values" + (" (its starting design; the sizing's design is checked under "
                                             "\"Sizing\")" if ctx.sizing else ""))
     html = page.fragment("<p>Every check {{ w }}: a margin ≥ 0 passes. Ratio margins are fractions "
-                         "(0.1: 10 % to spare), the others in the quantity's unit.</p>", w=where)
-    return html + checks_html({n: result.values[n] for n in margins_of(result.outputs)}, result.model.quantities)
+                         "(0.1: 10 % to spare), the others in the quantity's unit.{{ e }}</p>", w=where,
+                         e=_span(result))
+    return html + checks_html({n: result.values[n] for n in margins_of(result.outputs)}, result.model.quantities,
+                              getattr(result, "where", None))
+
+
+def _span(result) -> str:
+    """What the worst case spans, for a result at its worst (else nothing)."""
+    text = getattr(result, "cases_text", None)
+    return f" Each at its worst over {text()}, both directions." if text else ""
