@@ -19,6 +19,14 @@ with ``t_ramp`` a start and a stop anywhere on the route, at the peak accelerati
 scene's ramp shape (k = 1 for the linear ramp, π/2 for the cosine one); with ``a_e`` an emergency stop at
 −a_e.  Each case holds for both directions of travel: the outputs ``*_up`` are the upward haulage's, the
 ``*_down`` the downward's, at the same place and acceleration in their own direction of travel.
+
+Survey scale (n in the thousands): each case evaluates the whole model, whose cost grows with n, so the
+cases cost O(n²).  They can be pruned without evaluating the model, because a place enters the forces only
+through the load's term G_m (sin α_j ± (μ_pm cos α_j + a/g)) and the least tension through where the
+profile's slope changes sign (which joint does not depend on q_l or F_nwl, docs/physics.md §4): the places
+worth keeping per direction and manoeuvre are the segments of the extreme load terms and the ends of the
+segments next to such joints.  :func:`load_cases` lists every place; a pruned list is a list of
+:class:`LoadCase` like it, and every consumer takes any list.
 """
 
 from __future__ import annotations

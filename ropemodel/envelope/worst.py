@@ -18,6 +18,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
+import casadi as ca
 import numpy as np
 
 from ropemodel.envelope.cases import LoadCase
@@ -114,8 +115,6 @@ class Envelope:
 def symbolic_worst(exprs: list, senses: tuple[str, ...]):
     """(worst, index) of CasADi expressions, one per case: the least or the largest (of two senses the one of
     larger magnitude, as :meth:`Envelope.worst`), and the index of the (first) case it is at."""
-    import casadi as ca
-
     best = {}
     for sense in senses:
         value, index = exprs[0], ca.MX(0.0)
@@ -132,8 +131,6 @@ def symbolic_worst(exprs: list, senses: tuple[str, ...]):
 
 def pick(index, exprs: list):
     """``exprs[index]`` for a symbolic index (:func:`symbolic_worst`)."""
-    import casadi as ca
-
     out = exprs[0]
     for k, e in enumerate(exprs[1:], start=1):
         out = ca.if_else(index == k, e, out)
@@ -173,9 +170,9 @@ def envelope(problem, cases: list[LoadCase], params: Mapping | None = None) -> E
             env.no_worst.append(name)
             continue
         place, move = _matters(col, places, moves), _matters(col, moves, places)
-        pick = {"least": np.nanargmin, "largest": np.nanargmax}
+        arg = {"least": np.argmin, "largest": np.argmax}
         env.extremes[name] = tuple(Extreme(name, s, float(col[i]), cases[i], place, move)
-                                   for s in senses for i in [int(pick[s](col))])
+                                   for s in senses for i in [int(arg[s](col))])
     return env
 
 
@@ -195,7 +192,13 @@ def _matters(col: np.ndarray, key: list, other: list) -> bool:
 
 
 def _check_physics(problem, env: Envelope, inputs: dict) -> None:
-    """:class:`SolveError` at the first case outside the physics (a slack rope), with the submodel's reason."""
+    """:class:`SolveError` at the first case with no value (an implicit block that did not converge) or outside the
+    physics (a slack rope), with the submodel's reason: a worst case never skips a case."""
+    for name, col in env.columns.items():
+        bad = np.flatnonzero(np.isnan(col))
+        if bad.size:
+            raise SolveError(f"with the load at {env.cases[int(bad[0])].label(env.params)}: no finite value for "
+                             f"{name} (an implicit equation did not converge, or a division by zero)")
     values = {**env.columns, **{k: np.full(len(env.cases), v) for k, v in inputs.items()}}
     for sm in problem.model.submodels:
         for mask in sm.invalid_mask(values).values():
