@@ -4,7 +4,6 @@ sensitivities — or, when no design exists, which checks conflict and by how mu
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -14,11 +13,14 @@ import numpy as np
 from optimisation import discrete
 from optimisation.infeasibility import Diagnosis, diagnose
 from optimisation.ipopt import Solution, solve_continuous
-from optimisation.problem import VARIABLES, SizingProblem
+from optimisation.problem import VARIABLES, SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
 from ropemodel.effects.winch_checks import margin_names
 from ropemodel.papers import en12385 as ropes
-from ropemodel.scene import Scene
+from ropemodel.rules.apply import with_rule_terms
+from ropemodel.rules.describe import summary as rules_summary
+from ropemodel.scene import Scene, SceneLike
+from ropemodel.views.design import DesignViews
 
 #: default way to pick a catalogue diameter, chosen on the evidence of studies/discrete_design.py:
 #: on 30 random scenes bonmin returned the same design as next-size-up every time it finished,
@@ -29,8 +31,9 @@ BONMIN_TIMEOUT = 60.0
 
 
 @dataclass
-class Design:
-    """Result of :func:`size`.  Values SI; ``feasible`` False when no design exists."""
+class Design(DesignViews):
+    """Result of :func:`size`.  Values SI; ``feasible`` False when no design exists.  In Jupyter it shows
+    the design and every check as a table with units; ``to_frame()`` gives it as a DataFrame."""
 
     scene: Scene
     feasible: bool
@@ -78,6 +81,9 @@ class Design:
                                  "relax_alone": self.diagnosis.alone, "elastic": self.diagnosis.elastic,
                                  "where": self.diagnosis.where.strip(), "needs": self.diagnosis.needs}
         out["message"] = self.message
+        rules = rules_summary(self.scene)
+        if rules:
+            out["rules"] = rules
         return out
 
 
@@ -155,7 +161,7 @@ def solve_best(problem: SizingProblem, p=None, x0=None) -> Solution:
     return sol
 
 
-def size(scene: Scene | str | os.PathLike, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
+def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
     """Size the winch of ``scene``: the lightest catalogue rope, then the least pretension, then the least stroke
     (Krauze et al. 2025: every design check of eq. (12)-(23) as a constraint; ``ropemodel size``).
 
@@ -199,10 +205,7 @@ def size(scene: Scene | str | os.PathLike, method: str = DEFAULT_DISCRETE, with_
     >>> design.active
     ['slip_margin_up', 'stroke_margin_up', 'd (catalogue size)']
     """
-    if not isinstance(scene, Scene):
-        from optimisation.problem import load_sizing
-
-        scene = load_sizing(scene, emit=False)
+    scene = load_sizing(scene, emit=False)
     problem = SizingProblem(scene)
     design = Design(problem.scene, False, method=method, units=dict(problem.units))
     sol = solve_best(problem)
@@ -222,7 +225,7 @@ def size(scene: Scene | str | os.PathLike, method: str = DEFAULT_DISCRETE, with_
     design.margins_continuous = at_design(problem, sol.xs)[0]
     design.lexicographic_ok = sol.lexicographic_ok
     if with_sensitivities:
-        design.sensitivities = sensitivities(problem, sol)
+        design.sensitivities = with_rule_terms(problem.scene, sensitivities(problem, sol))
     d_star = design.continuous["d"]
     if method == "bonmin":
         disc = discrete.bonmin_with_timeout(problem, BONMIN_TIMEOUT, x0=sol.xs)

@@ -55,9 +55,10 @@ import numpy as np
 from ropemodel.effects.winch_checks import margin_names
 from ropemodel.envelope import RAMPS, Envelope, LoadCase, envelope, free, load_cases
 from ropemodel.envelope.cases import depends_on, distinct
+from ropemodel.envelope.cases import reads as case_reads
 from ropemodel.errors import InputError
 from ropemodel.problem import Problem
-from ropemodel.scene import Scene
+from ropemodel.scene import Scene, SceneLike, SceneWarning, as_scene
 
 VARIABLES = ("d", "F_nwl", "stroke")
 W_F = 1e-3
@@ -101,18 +102,18 @@ def _base(constraint: str) -> str:
     return constraint.split(" @ ")[0]
 
 
-def load_sizing(path, emit: bool = True) -> Scene:
-    """Load a scene file for sizing (:func:`prepare`): no starting design needed; warnings of the scene
-    as sizing reads it (``emit=False``: kept in ``scene.warnings`` for the caller to print)."""
+def load_sizing(scene: SceneLike, emit: bool = True) -> Scene:
+    """A scene read for sizing (:func:`prepare`): a :class:`~ropemodel.scene.Scene` as it is, or a TOML file or
+    built-in scene's name loaded with no starting design needed; the warnings of a scene loaded here
+    (``emit=False``: kept in ``scene.warnings`` for the caller to print)."""
     import warnings
 
-    from ropemodel.scene import SceneWarning, load
-
-    scene = prepare(load(path, optional=SIZED + D_OPTIONAL, emit=False))
-    if emit:
-        for note in scene.warnings:
+    loaded = as_scene(scene, optional=SIZED + D_OPTIONAL, emit=False)
+    prepared = prepare(loaded)
+    if emit and loaded is not scene:
+        for note in prepared.warnings:
             warnings.warn(note, SceneWarning, stacklevel=2)
-    return scene
+    return prepared
 
 
 def prepare(scene) -> Scene:
@@ -133,6 +134,14 @@ def prepare(scene) -> Scene:
     if all(scene.effects.get(k) == v for k, v in effects.items()) and not (set(scene.absent) - set(optional)):
         return scene
     return scene.with_effects(effects, optional=optional)
+
+
+def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
+    """What the sizing of the (prepared) ``scene`` is computed from (every check, the rope mass, the drive
+    power, the load cases' places and accelerations: :func:`ropemodel.envelope.reads`), and what it sets itself
+    (name → how): the design variables."""
+    chosen = {k: "the sizing chooses it (a value given only starts the search)" for k in VARIABLES}
+    return scene.built.inputs_of() | case_reads(scene), chosen
 
 
 class SizingProblem:
@@ -250,7 +259,9 @@ class SizingProblem:
     def p_of(self, values: dict | None = None) -> np.ndarray:
         """Parameter vector with SI ``values`` overriding the scene's."""
         p = self.p0.copy()
-        for k, v in (values or {}).items():
+        values = dict(values or {})
+        values.update(self.scene.rule_values({**self.scene.parameters, **values}, values))   # rules follow L_u
+        for k, v in values.items():
             p[self.params.index(k)] = v
         return p
 

@@ -62,19 +62,23 @@ def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, method: st
     if method not in METHODS:
         raise InputError(f"method {method!r}: valid methods: {', '.join(METHODS)}")
     problem = SizingProblem(scene)
+    scene = problem.scene                 # as sizing reads it (design checks on; a trip's ramps)
     q = scene.built.quantities
     pts = sizing_points(scene, problem, vary, points)
+    # a factor a rule set gives from a varied length (n_rope from L_u) varies with it, and is shown
+    names = list(pts.names) + sorted({p for n in pts.names for p in scene.ruled_by(n)} - set(pts.names))
     parts = []
     bar = tqdm(total=pts.n, unit="opt", desc="sizing", disable=(not progress) if progress is not None else None)
-    fast = ActiveSetMap(problem, pts.names) if warm and method == "active-set" else None
+    fast = ActiveSetMap(problem, names) if warm and method == "active-set" else None
     prev = None
     for start in range(0, pts.n, CHUNK):
         chunk = pts.chunk(start, min(pts.n, start + CHUNK))
+        chunk.update(scene.rule_values({**scene.parameters, **chunk}, pts.names))
         if fast is not None:
-            res = fast.run(np.column_stack([chunk[k] for k in pts.names]), done=bar.update)
+            res = fast.run(np.column_stack([chunk[k] for k in names]), done=bar.update)
             x, feasible, iterations, seconds = res.x, res.feasible, res.iterations, res.seconds
         else:
-            x, feasible, iterations, seconds, prev = _ipopt_points(problem, pts.names, chunk, warm, prev, bar)
+            x, feasible, iterations, seconds, prev = _ipopt_points(problem, names, chunk, warm, prev, bar)
         parts.append(sizing_frame(problem, q, chunk, x, feasible, iterations, seconds))
     bar.close()
     return pd.concat(parts, ignore_index=True)

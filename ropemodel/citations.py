@@ -25,6 +25,18 @@ CITATIONS: dict[str, str] = {
         "P. Thirion (1946). Les coefficients d'adhérence du caoutchouc. Revue Générale du Caoutchouc "
         "23, 101-106 (friction of rubber falling with contact pressure, 1/mu = a + b p)."
     ),
+    "delavergne2003": (
+        "J. de la Vergne (2003). Hard Rock Miner's Handbook, 3rd ed. McIntosh Engineering. Chapter 14: Koepe / "
+        "Friction Hoists (the machine, its head and tail ropes)."
+    ),
+    "edwards1992": (
+        "F. A. Edwards (1992). Hoisting systems. Chapter 17.5 in H. L. Hartman (ed.), SME Mining Engineering "
+        "Handbook, 2nd ed. Society for Mining, Metallurgy, and Exploration, Littleton, CO."
+    ),
+    "antislip_cn": (
+        "Anti-slip factor of multi-rope friction hoists, Chinese design practice: "
+        "sigma = (exp(mu*alpha) - 1) T2/(T1 - T2). No primary text held; definition as in docs/physics.md s. 7."
+    ),
 }
 
 

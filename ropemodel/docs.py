@@ -1,11 +1,18 @@
-"""The README's reference tables, generated from the effect registry (``python -m ropemodel.docs``).
+"""The README's reference tables, generated from the effect registry, and the output of ``ropemodel run`` it
+shows (``python -m ropemodel.docs``).
 
 The README holds each table between ``<!-- generated: NAME -->`` and ``<!-- end: NAME -->``;
 :func:`render` returns the tables, :func:`update` rewrites them in a README, and a test checks
 that the committed README equals what :func:`update` would write (so the tables never drift from
-the code).  Tables: ``effects`` (every effect and variant of every model), and per model
+the code).  Tables: ``effects`` (every effect and variant of every model), per model
 ``parameters-MODEL`` (unit, meaning, default and why, valid range, usual range and its source)
-and ``outputs-MODEL`` (unit, meaning, equation).
+and ``outputs-MODEL`` (unit, meaning, equation), and ``rule-sets`` and ``rules`` (every shipped rule
+set and rule, with its source and status); the site's scene reference (``docs/scenes.md``) holds these
+and, per model, ``variants-MODEL`` (every variant of every effect: what it builds, its parameters, what
+it computes with each equation's source, its papers) and ``numerics-MODEL`` (the ``[numerics]``
+options).  The README also shows what ``ropemodel run`` prints, ``run-example`` (:data:`OUTPUTS`: a
+command's output, computed only for a file that holds it).  ``python -m ropemodel.docs`` rewrites both
+files.
 """
 
 from __future__ import annotations
@@ -15,7 +22,7 @@ import re
 import sys
 from pathlib import Path
 
-from ropemodel.effects import REGISTRY, all_quantities, effects_of, models
+from ropemodel.effects import REGISTRY, all_quantities, effects_of, models, numerics_of
 
 _BLOCK = re.compile(r"(<!-- generated: (?P<name>[\w-]+) -->\n)(?P<body>.*?)(<!-- end: (?P=name) -->)", re.S)
 
@@ -73,18 +80,88 @@ def outputs_table(model: str) -> str:
     return "\n".join(rows)
 
 
+def run_example() -> str:
+    """What ``ropemodel run`` prints (the built-in example, Krauze et al. 2025, Fig. 9), as a text block."""
+    from ropemodel.problem import run
+    from ropemodel.scene import load
+
+    return f"```text\n{run(load(emit=False)).table()}\n```"
+
+
+#: blocks of a command's output (the README's), computed only where a file holds them
+OUTPUTS = {"run-example": run_example}
+
+
+def variants_table(model: str) -> str:
+    """Markdown: every variant of every effect of ``model``: what it builds, the parameters its equations
+    use (or that it declares, for a transient variant), what it computes with each equation's source,
+    and the papers it cites."""
+    from ropemodel.core.model import Model
+
+    rows = ["| effect | variant | what it builds | parameters | computes (source) | cites |",
+            "|---|---|---|---|---|---|"]
+    base = Model(model).parameters
+    for effect, spec in effects_of(model).items():
+        for variant, cls in spec.variants.items():
+            m = Model(model, {effect: variant})
+            eqs = [eq for eq in m.equations if m.defined_by[eq.defines] == effect]
+            used = dict.fromkeys(n for eq in eqs for n in eq.names() if n in m.parameters)
+            used.update(dict.fromkeys(q.name for q in cls.quantities if q.name not in m.outputs))
+            used.update(dict.fromkeys(n for n in m.parameters if n not in base))   # what choosing it asks
+            computes = "; ".join(f"`{eq.defines}` ({eq.source})" if eq.source else f"`{eq.defines}`" for eq in eqs)
+            name = f"**`{variant}`**" if variant == spec.default else f"`{variant}`"
+            rows.append(f"| `{effect}` | {name} | {cls.description or spec.doc} | "
+                        f"{', '.join(f'`{n}`' for n in used) or '-'} | {computes or '-'} | "
+                        f"{', '.join(cls.citations) or '-'} |")
+    return "\n".join(rows)
+
+
+def numerics_table(model: str) -> str:
+    """Markdown: every ``[numerics]`` option of ``model`` with its default and what it sets."""
+    rows = ["| option | default | what it sets |", "|---|---|---|"]
+    for key, opt in numerics_of(model).items():
+        rows.append(f"| `{key}` | `{opt.default!r}` | {opt.doc} |")
+    return "\n".join(rows)
+
+
+def rule_sets_table() -> str:
+    """Markdown: every shipped rule set, the machines it is written for, its source and its status."""
+    from ropemodel.rules import rule_sets
+
+    rows = ["| rule set | written for | source | status |", "|---|---|---|---|"]
+    for name, rs in rule_sets().items():
+        rows.append(f"| `{name}` | {', '.join(rs.machines)} | [{rs.title}]({rs.url}) | {rs.status} |")
+    return "\n".join(rows)
+
+
+def rules_table() -> str:
+    """Markdown: every rule of every set: what it governs, where it applies, its formula, clause and status."""
+    from ropemodel.rules import rule_sets
+
+    rows = ["| rule set | rule | governs | where | value | clause | status |", "|---|---|---|---|---|---|---|"]
+    for name, rs in rule_sets().items():
+        for r in rs.rules:
+            where = ", ".join(f"{k} = {'/'.join(v)}" for k, v in r.where.items()) or "-"
+            rows.append(f"| `{name}` | `{r.id}` | {r.governs} | {where} | {r.unicode()} | {r.clause} | {r.status} |")
+    return "\n".join(rows)
+
+
 def render() -> dict[str, str]:
-    """Every generated table by its block name."""
-    out = {"effects": effects_table()}
+    """Every generated block by its name."""
+    out = {"effects": effects_table(), "rule-sets": rule_sets_table(), "rules": rules_table()}
     for model in REGISTRY:
         out[f"parameters-{model}"] = parameters_table(model)
         out[f"outputs-{model}"] = outputs_table(model)
+    for model in REGISTRY:        # the site's scene reference (docs/scenes.md) also holds these
+        out[f"variants-{model}"] = variants_table(model)
+        out[f"numerics-{model}"] = numerics_table(model)
     return out
 
 
 def update(text: str) -> str:
     """``text`` with every generated block replaced by its current table (unknown blocks are an error)."""
     tables = render()
+    tables.update({name: block() for name, block in OUTPUTS.items() if f"<!-- generated: {name} -->" in text})
 
     def fill(m):
         if m["name"] not in tables:
@@ -94,10 +171,15 @@ def update(text: str) -> str:
     return _BLOCK.sub(fill, text)
 
 
+#: the files whose generated tables ``python -m ropemodel.docs`` rewrites by default
+FILES = ("README.md", "docs/scenes.md")
+
+
 def main(argv=None) -> int:
-    """``python -m ropemodel.docs [README.md]``: rewrite the generated tables in place."""
-    path = Path((argv or sys.argv[1:] or ["README.md"])[0])
-    path.write_text(update(path.read_text(encoding="utf-8")), encoding="utf-8")
+    """``python -m ropemodel.docs [FILE ...]``: rewrite the generated tables in place (default: :data:`FILES`)."""
+    for name in argv or sys.argv[1:] or FILES:
+        path = Path(name)
+        path.write_text(update(path.read_text(encoding="utf-8")), encoding="utf-8")
     return 0
 
 

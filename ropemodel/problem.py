@@ -25,7 +25,7 @@ from ropemodel.core.compile import forward_of, solver_of, structure_of
 from ropemodel.core.evaluate import evaluate_columns
 from ropemodel.errors import InputError, Problems, SolveError
 from ropemodel.result import Result
-from ropemodel.scene import Scene
+from ropemodel.scene import SceneLike, as_scene
 
 
 class Problem:
@@ -33,8 +33,9 @@ class Problem:
 
     Parameters
     ----------
-    scene : Scene
-        The validated scene; its parameter values are the defaults of every evaluation.
+    scene : Scene or str or Path
+        The validated scene; its parameter values are the defaults of every evaluation.  A TOML scene
+        file or a built-in scene's name is loaded first (:func:`ropemodel.load_scene`).
     given : dict or sequence of str
         Outputs whose values are given.  As a dict, name → value: a string with a unit
         (``"1000 mm"``), a pint Quantity, or a number (SI with ``bare="si"``, the default of the
@@ -58,8 +59,8 @@ class Problem:
         ill-posed choice (:class:`~ropemodel.errors.IllPosedError` names the variables), listed at once.
     """
 
-    def __init__(self, scene: Scene, given=(), find=(), bare: str = "si"):
-        self.scene = scene
+    def __init__(self, scene: SceneLike, given=(), find=(), bare: str = "si"):
+        self.scene = scene = as_scene(scene)
         model = self.model = scene.built
         given_values = dict(given) if isinstance(given, dict) else {}
         given, find = list(given), list(find)
@@ -84,6 +85,13 @@ class Problem:
             if n in model.outputs:
                 with found.collect():
                     self.given_values[n] = model.quantities[n].to_si(v, bare)
+        for n in find:
+            held = scene.ruled_by(n)
+            if held:
+                found.add(f"--find {n}: {n} sets {', '.join(held)} through the scene's rule set "
+                          f"({'; '.join(scene.basis(p) for p in held)}); an inverse solve holds every other "
+                          f"parameter, so {', '.join(held)} would stay at its value for this scene's {n}: override "
+                          f"it in [rules] with its reason to solve with it fixed, or sweep {n} instead")
         found.raise_if_any()
         self.given, self.find = given, find
         self.unknowns = [o for o in model.outputs if o not in given] + find
@@ -104,6 +112,7 @@ class Problem:
         missing = [k for k in self.knowns if k not in out]
         if missing:
             raise InputError(f"no value given for {', '.join(missing)}")
+        out.update(self.scene.rule_values(out, values or {}))   # a rule's length changed: its factor follows
         return out
 
     def solve(self, values: Mapping | None = None) -> Result:
@@ -150,6 +159,8 @@ class Problem:
         base = self.inputs({k: v for k, v in columns.items() if not isinstance(v, np.ndarray)})
         arrays = {k: np.broadcast_to(np.asarray(columns[k], dtype=float), (n,)) for k in self.knowns
                   if isinstance(columns.get(k), np.ndarray)}
+        arrays.update({k: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for k, v in
+                       self.scene.rule_values({**base, **arrays}, arrays).items()})
         constants = {k: base[k] for k in self.knowns if k not in arrays}
         out = evaluate_columns(self.function, arrays, constants, threads=parallel)
         return {u: out[u] for u in self.unknowns}
@@ -273,7 +284,7 @@ def _fmt_limit(x: float) -> str:
     return "inf" if x == math.inf else "-inf" if x == -math.inf else f"{x:g}"
 
 
-def run(scene: Scene, values: Mapping | None = None) -> Result:
+def run(scene: SceneLike, values: Mapping | None = None) -> Result:
     """Forward solve at one point: every output of the scene from its parameters, the load's place and the
     acceleration as the scene gives them (``x_m`` not given: on the last segment; ``a_h``: steady motion).
     ``values`` override parameters (SI numbers, strings with units, pint Quantities).  ``ropemodel run`` and
@@ -289,7 +300,7 @@ def run(scene: Scene, values: Mapping | None = None) -> Result:
     return Problem(scene).solve(values)
 
 
-def solve(scene: Scene, given: Mapping, find: Sequence[str] | str, bare: str = "si") -> Result:
+def solve(scene: SceneLike, given: Mapping, find: Sequence[str] | str, bare: str = "si") -> Result:
     """Inverse solve at one point: ``given`` outputs (name → value) in place of the ``find`` parameters, the load's
     place and the acceleration as the scene gives them.  ``ropemodel solve`` and :func:`ropemodel.solve` meet
     the given outputs at their worst (:func:`ropemodel.envelope.solve`, where the arguments are documented).

@@ -17,6 +17,7 @@ import os
 import sys
 import threading
 import time
+from typing import Any
 
 _QUIET = False
 _FRAMES = "|/-\\"
@@ -42,9 +43,15 @@ def enabled(flag: bool | None = None) -> bool:
 
 def bar(total: float, desc: str, unit: str = "it", flag: bool | None = None, **kw):
     """A tqdm progress bar on stderr (disabled where :func:`enabled` says no)."""
-    from tqdm.auto import tqdm
+    import tqdm.std
 
-    return tqdm(total=total, desc=desc, unit=unit, disable=not enabled(flag), file=sys.stderr,
+    shown = enabled(flag)
+    make: Any = tqdm.std.tqdm     # a bar never drawn needs no notebook widget (tqdm.auto warns without ipywidgets)
+    if shown:
+        import tqdm.auto
+
+        make = tqdm.auto.tqdm
+    return make(total=total, desc=desc, unit=unit, disable=not shown, file=sys.stderr,
                 mininterval=0.2, **_size(), **kw)
 
 

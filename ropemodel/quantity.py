@@ -35,6 +35,10 @@ class Quantity:
     guess: starting value for Newton when the quantity is an unknown of a nonlinear block.
     default: value used when a scene leaves the parameter out (``None``: required), with
         ``default_note`` saying why that value (reported wherever the default is used).
+    signs: what a negative and a positive value mean, for a signed quantity (``("braking", "motoring")``
+        of a drive power); tables print it next to the number (:meth:`sign_text`).
+    symbol: the symbol formulas show, plain Unicode with ``_`` before a subscript (``"m_safety,up"``);
+        ``""``: made from the name (:func:`symbol_of`: ``alpha_u`` → ``α_u``, ``F_C_up`` → ``F_C,up``).
     worst: which extreme of an output is its worst case where the load's place or the manoeuvre varies
         (:mod:`ropemodel.envelope`): ``("least",)`` (a margin, a least tension), ``("largest",)`` (a rope
         force, a stroke), or both (a signed power: largest motoring and largest braking); ``()``: none
@@ -59,11 +63,18 @@ class Quantity:
     guess: float = 1.0
     default: float | None = None
     default_note: str = ""
+    signs: tuple[str, ...] = ()
+    symbol: str = ""
     worst: tuple[str, ...] = ()
 
     def __post_init__(self):
         if not set(self.worst) <= set(SENSES):
             raise ValueError(f"{self.name}: worst must be among {SENSES}, got {self.worst}")
+
+    @property
+    def typeset(self) -> str:
+        """The symbol a formula shows (:attr:`symbol`, or :func:`symbol_of` the name)."""
+        return self.symbol or symbol_of(self.name)
 
     @property
     def display_unit(self) -> str:
@@ -77,6 +88,12 @@ class Quantity:
     def to_display(self, value):
         """Convert an SI value to the display unit."""
         return value * factor(self.unit, self.display_unit)
+
+    def sign_text(self, value: float) -> str:
+        """What the sign of ``value`` means (``"braking"``), or ``""`` for an unsigned quantity or 0."""
+        if not self.signs or not value or not math.isfinite(value):
+            return ""
+        return self.signs[value > 0]
 
     def to_si(self, value, bare: str = "refuse") -> float:
         """``value`` (string with unit, pint Quantity or number) in SI; see :func:`ropemodel.units.to_si`.
@@ -144,6 +161,35 @@ class Quantity:
         source = f"; {self.usual_source}" if self.usual_source else ""
         return (f"{self.name} = {self.show(value)} is outside the range usual for the field, "
                 f"{self.usual_text()} ({self.description}{source}): check the value and its unit")
+
+
+#: names written out in ASCII → their Greek letters
+GREEK = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "eps": "ε", "eta": "η",
+         "theta": "θ", "lambda": "λ", "mu": "μ", "nu": "ν", "rho": "ρ", "sigma": "σ", "tau": "τ", "phi": "φ",
+         "omega": "ω", "dF": "ΔF"}
+#: suffixes of a direction of travel, joined to the subscript (``F_C_up`` → ``F_C,up``)
+DIRECTIONS = ("up", "down")
+
+
+def symbol_of(name: str, base: str = "") -> str:
+    """The symbol of a quantity's ``name`` (Greek words as letters, ``dF`` as ΔF, a direction joined to the
+    subscript), or of its ``base`` symbol with the name's direction.
+
+    Examples
+    --------
+    >>> symbol_of("alpha_u"), symbol_of("mu_pl1"), symbol_of("F_C_up"), symbol_of("dF_CS_down"), symbol_of("c_mu")
+    ('α_u', 'μ_pl1', 'F_C,up', 'ΔF_CS,down', 'c_μ')
+    >>> symbol_of("slip_margin_up", base="m_slip")
+    'm_slip,up'
+    """
+    head, *rest = name.split("_")
+    if base:
+        rest = [rest[-1]] if rest and rest[-1] in DIRECTIONS else []
+        head, sep = base, "," if "_" in base else "_"
+        return f"{head}{sep}{rest[0]}" if rest else head
+    letters = [GREEK.get(part, part) for part in rest]
+    head = GREEK.get(head, head)
+    return f"{head}_{','.join(letters)}" if letters else head
 
 
 def _fmt(x: float) -> str:

@@ -7,14 +7,16 @@ import math
 import re
 from typing import Any
 
+from ropemodel.rules.describe import summary as rules_summary
 from ropemodel.units import label
+from ropemodel.views.result import ResultViews
 
 _DIR = re.compile(r"^(?P<base>.+)_(?P<dir>up|down)$")
 #: keys of the JSON object that are not quantities (no quantity has one of these names)
-META = ("given", "found", "defaults", "unused", "unlimited", "warnings", "citations")
+META = ("given", "found", "defaults", "unused", "unlimited", "warnings", "citations", "rules")
 
 
-class Result:
+class Result(ResultViews):
     """Every known and solved quantity of one solve, in SI.
 
     ``values`` maps names to SI floats; :meth:`to_series` gives display units in the
@@ -22,7 +24,9 @@ class Result:
     text table with each quantity's equation.  ``frames`` holds extra tables a
     submodel publishes (e.g. the tension along a sheave's arc).  An output that is
     infinite because an input is unlimited (no stroke given) reads ``unlimited`` in
-    the table and ``null`` in JSON, and is listed under ``"unlimited"``.
+    the table and ``null`` in JSON, and is listed under ``"unlimited"``.  In Jupyter it shows as
+    HTML tables with units; :meth:`to_frame` gives a DataFrame and :meth:`plot` its picture
+    (:mod:`ropemodel.views.result`).
     """
 
     def __init__(self, scene, model, values: dict[str, float], given=(), find=()):
@@ -52,7 +56,9 @@ class Result:
 
     def to_json(self, **extra) -> str:
         """One JSON object: every solved quantity (SI), then ``given`` (inverse questions), ``found``,
-        ``defaults`` (parameter → why its default), ``unused``, ``unlimited``, ``warnings`` and ``citations``."""
+        ``defaults`` (parameter → why its default), ``unused``, ``unlimited``, ``warnings``, ``citations`` and,
+        for a model with design checks, ``rules`` (what each factor rests on; see
+        :func:`ropemodel.rules.describe.summary`)."""
         out: dict[str, Any] = {k: (v if math.isfinite(v) else None) for k, v in self.to_dict().items()}
         if self.given:
             out["given"] = {k: self.values[k] for k in self.given}
@@ -62,6 +68,9 @@ class Result:
         out["unlimited"] = [k for k in self.outputs if self.values[k] == math.inf]
         out["warnings"] = list(self.scene.warnings)
         out["citations"] = self.citations
+        rules = rules_summary(self.scene)
+        if rules:
+            out["rules"] = rules    # every factor of the checks: its rule (set, clause, status) or user-given
         out.update(extra)
         return json.dumps(out, indent=2, allow_nan=False)
 
@@ -117,11 +126,16 @@ class Result:
                 cells.append(f"{value_cell(q[n], self.values[n]):>14}" if n in self.values else f"{'':>14}")
             src = self._source(f"{base}_up" if f"{base}_up" in self.values else f"{base}_down")
             lines.append(f"{base:<14}{''.join(cells)}  {unit_cell(qq):<8}{src}".rstrip())
+            if qq.signs:   # a signed quantity: what each sign means, under its number
+                signs = [q[f"{base}_{d}"].sign_text(self.values.get(f"{base}_{d}", 0.0)) for d in ("down", "up")]
+                lines.append(f"{'':<14}{''.join(f'{t:>14}' for t in signs)}".rstrip())
         return lines
 
     def _mark(self, name: str) -> str:
         if name in self.given:
             return "given"
+        if self.scene.origin.get(name) in ("rules", "rules override"):
+            return self.scene.basis(name)       # the rule (set, clause, formula, status) or the override's reason
         return "default" if name in self.scene.defaults else ""
 
     def _source(self, name: str) -> str:

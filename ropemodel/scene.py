@@ -13,6 +13,8 @@
     mu_pl = 0.05               # a bare number only for a dimensionless quantity
     [numerics]                 # solver options, where the model has any
     rtol = 1e-8
+    [report]                   # the filed report: document, revision, sign-off (ropemodel.scene_report)
+    revision = "A"
 
 Loading collects *every* problem before it raises one :class:`~ropemodel.errors.InputError`
 that lists them all (one line each): unknown names (with the nearest valid name), a key in
@@ -42,12 +44,18 @@ from importlib import resources
 from pathlib import Path
 
 from ropemodel import scene_tables as tables
+from ropemodel.scene_report import Filing, read_report
 from ropemodel.core.compile import forward_of
 from ropemodel.core.model import Model
 from ropemodel.effects import all_quantities, effects_of, models, resolve_effects
 from ropemodel.errors import InputError, Problems, suggest
+from ropemodel.rules import apply as rules_apply
+from ropemodel.rules import describe as rules_describe
+from ropemodel.views.scene import SceneViews
 
 EXAMPLE = "krauze2025_fig9"
+#: where a value read from the scene's own file came from (:meth:`Scene.with_effects` reads the file again)
+FILE_ORIGINS = ("scene", "route", "default", rules_apply.FROM_RULE, rules_apply.FROM_OVERRIDE)
 
 
 class SceneWarning(UserWarning):
@@ -55,19 +63,22 @@ class SceneWarning(UserWarning):
 
 
 
-@dataclass(frozen=True)
-class Scene:
+@dataclass(frozen=True, repr=False)
+class Scene(SceneViews):
     """A validated scene.  ``parameters`` are SI floats; ``effects`` have defaults filled in.
 
     Attributes
     ----------
     defaults: parameter → why its default value (every default this scene relies on).
     unused: parameter given but not used by the chosen effects → the variants that would use it.
+    unused_values: parameter given but not used → its SI value (kept: :meth:`with_effects` uses it when
+        the new effects do).
     checks: computed quantity given in the scene → :class:`~ropemodel.scene_tables.Check` (verified when the
         scene loads).
     absent: optional parameters left out (e.g. what sizing chooses itself).
     warnings: every warning of the scene, one line each (the command line prints them once).
-    origin: parameter → where its value came from (``"scene"``, ``"default"``, ``"--set"``, ``"api"``).
+    origin: parameter, used or not → where its value came from (``"scene"``, ``"route"``, ``"default"``,
+        ``"--set"``, ``"api"``, ...).
     digest: SHA-256 of the scene file's text (None for a scene built in Python).
     """
 
@@ -87,6 +98,11 @@ class Scene:
     raw: dict = field(default_factory=dict, repr=False, compare=False)
     #: the route's structure (``[[route]]``): per segment, whether it gives its own mu_winding
     route: tuple[bool, ...] = ()
+    #: the rule set of ``[rules]`` applied to this scene (:class:`ropemodel.rules.apply.Applied`), or None
+    rules: rules_apply.Applied | None = None
+    #: the filed report's data, ``[report]`` (:class:`ropemodel.scene_report.Filing`), or None
+    filing: Filing | None = None
+    unused_values: dict[str, float] = field(default_factory=dict)
 
     @cached_property
     def built(self) -> Model:
@@ -97,55 +113,102 @@ class Scene:
         """A copy with parameters replaced, every problem checked and listed at once.
 
         values: name → value; strings carry units, numbers are SI (``bare="si"``, the Python API) or,
-        with ``bare="refuse"`` (the command line's ``--set``), allowed only for pure numbers.
+        with ``bare="refuse"`` (the command line's ``--set``), allowed only for pure numbers.  A valid
+        parameter that this scene's effects do not use is named in ``unused`` and its value kept
+        (``unused_values``): a command that switches effects (:meth:`with_effects`) uses it.
         """
         model, found = self.built, Problems()
-        params, origin_of = dict(self.parameters), dict(self.origin)
-        defaults = dict(self.defaults)
-        unused, notes = dict(self.unused), []
-        for name, value in values.items():
-            if name in model.universe and name not in model.symbols:
-                with found.collect():
-                    model_q = model.universe[name]
-                    model_q.to_si(value, bare)
-                    unused[name] = " or ".join(model.owners(name)) or "no effect of this model"
-                    notes.append(f"{name} is not used: it belongs to {unused[name]}")
-                continue
-            problem = tables.settable(model, name, origin)
-            if problem:
-                found.add(problem)
-                continue
-            with found.collect():
-                params[name] = model.quantities[name].to_si(value, bare)
-                origin_of[name] = origin
+        params, origin_of, defaults = dict(self.parameters), dict(self.origin), dict(self.defaults)
+        unused, kept, notes = dict(self.unused), dict(self.unused_values), list[str]()
+        tables.set_values(model, values, bare, origin, params, origin_of, unused, found, notes, kept)
+        for name in values:
+            if name in params:
                 defaults.pop(name, None)
+        if self.rules is not None:
+            with found.collect():
+                params.update(rules_apply.refresh(self.rules, params, origin_of, values))
         for problem in model.problems({k: v for k, v in params.items() if k in model.parameters}):
             found.add(problem)
         found.raise_if_any()
-        notes += [w for k in values if k in model.parameters for w in [model.quantities[k].unusual(params[k])] if w]
         out = replace(self, parameters=params, origin=origin_of, defaults=defaults, unused=unused,
-                      absent=tuple(a for a in self.absent if a not in values),
-                      warnings=self.warnings + tuple(notes))
+                      unused_values=kept, absent=tuple(a for a in self.absent if a not in values),
+                      warnings=self.warnings + tuple(n for n in notes if n not in self.warnings))
         out.__dict__["built"] = model
         _verify_checks(out, Problems()).raise_if_any()
         return out
 
+    def overrides(self) -> dict[str, dict[str, float]]:
+        """Values this scene was given on top of its file (``--set``, ``values=``, :meth:`with_values`),
+        used or not: origin → {name: SI value}."""
+        out: dict[str, dict[str, float]] = {}
+        for name, value in {**self.unused_values, **self.parameters}.items():
+            where = self.origin.get(name, "api")
+            if where not in FILE_ORIGINS:
+                out.setdefault(where, {})[name] = value
+        return out
+
     def with_effects(self, effects: dict[str, str], optional=(), emit: bool = False) -> Scene:
-        """The same scene file read again with some effects set (e.g. sizing's ``checks = "design"``)."""
+        """The same scene file read again with some effects set (e.g. sizing's ``checks = "design"``), with
+        every value given on top of the file, used or not by the old effects, where it came from."""
         if not self.raw:
             raise InputError("this scene was not loaded from a file or dict; build it again with those effects")
         data = {k: dict(v) if isinstance(v, dict) else v for k, v in self.raw.items()}
         data["effects"] = {**data.get("effects", {}), **effects}
-        overrides = {k: v for k, v in self.parameters.items() if self.origin.get(k) not in ("scene", "default")}
-        scene = from_dict(data, self.source, optional=optional, emit=emit, digest=self.digest,
-                          values=overrides or None)
-        scene.origin.update({k: self.origin[k] for k in overrides if k in scene.origin})
+        scene = from_dict(data, self.source, optional=optional, emit=emit, digest=self.digest)
+        for where, values in self.overrides().items():
+            scene = scene.with_values(values, origin=where)
         return scene
+
+    def basis(self, parameter: str) -> str:
+        """Where ``parameter``'s value comes from: a rule (set, clause, formula, status), an override and its
+        reason, a default, or "user-given"."""
+        return rules_describe.basis(self, parameter)
+
+    def check_basis(self, check: str) -> str:
+        """The rule a design check applies (``check``: a margin name), or "user-given" ("-": no factor)."""
+        return rules_describe.check_basis(self, check)
+
+    def rule_values(self, values: Mapping, changed) -> dict:
+        """The values the rule set gives again where its inputs among ``changed`` take ``values`` (floats,
+        numpy arrays or CasADi expressions); {} without a rule set or when no rule input changed."""
+        if self.rules is None:
+            return {}
+        return self.rules.derive(values, changed, self.ruled())
+
+    def ruled(self) -> list[str]:
+        """The parameters whose value the rule set gives (not overridden, not set by hand)."""
+        return [p for p, o in self.origin.items() if o == rules_apply.FROM_RULE]
+
+    def ruled_by(self, name: str) -> list[str]:
+        """The parameters the rule set gives from ``name`` (e.g. ``["n_rope"]`` for the route's ``L_u``)."""
+        if self.rules is None:
+            return []
+        return [p for p in self.ruled() if name in self.rules.inputs_of(p, self.parameters)]
 
     def required(self) -> list[str]:
         """Parameters this scene must be given (no default)."""
         q = self.built.quantities
         return [n for n in self.built.parameters if q[n].default is None]
+
+
+#: what every function of the API takes as a scene: a loaded :class:`Scene`, a TOML file's path, or the
+#: name of a built-in scene (see :func:`as_scene`)
+SceneLike = Scene | str | os.PathLike
+
+
+def as_scene(scene: SceneLike, optional: Iterable[str] = (), emit: bool = True) -> Scene:
+    """A scene as every API function takes it: a :class:`Scene` as it is; a TOML file's path or a built-in
+    scene's name (``"example"``, ``"trip_fig9"``) loaded by :func:`load` (``optional``, ``emit`` as there).
+
+    >>> as_scene("example").name == as_scene(load("example")).name
+    True
+    """
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, str | os.PathLike):
+        return load(scene, optional=optional, emit=emit)
+    raise InputError(f"a scene is a Scene, the path of a TOML scene file or the name of a built-in scene; "
+                     f"got {type(scene).__name__}")
 
 
 def builtin_scenes() -> list[str]:
@@ -277,16 +340,18 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
         found.raise_if_any()
     route, route_values = tables.read_route(data, effects, given, found)
     model = Model(model_name, effects, tables.options(numerics, route, "L_ul" in given))
-    params, checks, unused, origin = tables.read_parameters(model, given, bare, found, notes)
+    params, checks, unused, origin, kept = tables.read_parameters(model, given, bare, found, notes)
     tables.route_parameters(model, route_values, bare, params, origin, found)
     if values:
-        tables.set_values(model, values, values_bare, values_origin, params, origin, unused, found, notes)
+        tables.set_values(model, values, values_bare, values_origin, params, origin, unused, found, notes, kept)
+    rules = rules_apply.read_rules(data, model, params, origin, given, found)
+    filing = read_report(data, found)
     defaults, absent = tables.fill_missing(model, params, origin, tuple(optional), found)
     for problem in model.problems(params):
         found.add(problem)
     scene = Scene(str(name if name is not None else source or "unnamed"), model_name, effects, params, numerics,
                   source, defaults, unused, checks, absent, tuple(notes), origin, digest,
-                  {k: v for k, v in data.items()}, route)
+                  {k: v for k, v in data.items()}, route, rules, filing, kept)
     scene.__dict__["built"] = model
     _verify_checks(scene, found)
     found.raise_if_any()

@@ -21,7 +21,7 @@ from ropemodel.effects import effects_of, misplaced, models, numerics_of
 from ropemodel.errors import InputError, Problems, suggest
 from ropemodel.units import last_digit, split_value, to_si
 
-TABLES = ("scene", "effects", "parameters", "numerics", "route")
+TABLES = ("scene", "effects", "parameters", "numerics", "route", "rules", "report")
 #: keys of a ``[[route]]`` segment → the parameter each becomes (``{i}``: the segment's number from the drive)
 ROUTE_KEYS = {"length": "L_{i}", "inclination": "alpha_{i}", "mu_winding": "mu_w{i}"}
 SCENE_KEYS = ("name", "model", "description")
@@ -141,8 +141,13 @@ def read_numerics(model: str, given: dict, found: Problems) -> dict:
 
 
 def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes: list):
-    """SI values of the given parameters; checks (computed quantities given); unused ones."""
-    params, checks, unused, origin = {}, {}, {}, {}
+    """SI values of the given parameters; checks (computed quantities given); unused ones (who would use
+    them, and their SI values)."""
+    params: dict[str, float] = {}
+    checks: dict[str, Check] = {}
+    unused: dict[str, str] = {}
+    origin: dict[str, str] = {}
+    kept: dict[str, float] = {}
     quantities = model.universe
     for key, value in given.items():
         if key not in quantities:
@@ -164,15 +169,25 @@ def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes
             if note:
                 notes.append(note)
         else:
-            owners = model.owners(key)
-            unused[key] = " or ".join(owners) or "no effect of this model"
-            notes.append(f"{key} is not used: it belongs to {unused[key]}")
-    return params, checks, unused, origin
+            keep_unused(model, key, si, "scene", origin, unused, kept, notes)
+    return params, checks, unused, origin, kept
+
+
+def keep_unused(model: Model, key: str, si: float, where: str, origin: dict, unused: dict, kept: dict,
+                notes: list) -> None:
+    """A valid parameter the chosen effects do not use: named (with the variants that would use it), its
+    value and origin kept for a command that switches effects."""
+    unused[key] = " or ".join(model.owners(key)) or "no effect of this model"
+    kept[key], origin[key] = si, where
+    note = f"{key} is not used: it belongs to {unused[key]}"
+    if note not in notes:
+        notes.append(note)
 
 
 def set_values(model: Model, values: Mapping, bare: str, origin_label: str, params: dict, origin: dict,
-                unused: dict, found: Problems, notes: list) -> None:
-    """Parameters set on top of the file (``--set``): they replace the file's values."""
+               unused: dict, found: Problems, notes: list, kept: dict) -> None:
+    """Parameters set on top of the file (``--set``, ``values=``): they replace the file's values (an unused
+    one is named in ``unused`` and its SI value kept in ``kept``)."""
     for key, value in values.items():
         problem = settable(model, key, origin_label)
         if problem and not (key in model.universe and key not in model.symbols):
@@ -186,8 +201,7 @@ def set_values(model: Model, values: Mapping, bare: str, origin_label: str, para
             origin[key] = f"{origin_label} (refused)"
             continue
         if key not in model.parameters:
-            unused[key] = " or ".join(model.owners(key)) or "no effect of this model"
-            notes.append(f"{key} is not used: it belongs to {unused[key]}")
+            keep_unused(model, key, si, origin_label, origin, unused, kept, notes)
             continue
         params[key], origin[key] = si, origin_label
         note = q.unusual(si)

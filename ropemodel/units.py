@@ -18,7 +18,8 @@ small closed set, parsed here in a few dozen lines.
 
 Grammar: ``NUMBER [UNIT]`` with UNIT a product or quotient of names with an
 optional SI prefix and an integer power (``kN/mm^2``, ``N·m``, ``kg/m³``, ``1/N``,
-``MPa*s``, ``m/s**2``); ``%`` is 0.01.
+``MPa*s``, ``m/s**2``); a reciprocal may also be written as pint prints it, ``/ N`` (``"1e-5 / N"``);
+``%`` is 0.01; an angle may be given in ``turn``/``turns`` (2π rad) or ``rev``.
 """
 
 from __future__ import annotations
@@ -46,6 +47,7 @@ _FORCE = _dim((_M, 1), (_L, 1), (_T, -2))
 #: unit name → (factor to SI, dimension, takes an SI prefix)
 UNITS: dict[str, tuple[float, tuple[int, ...], bool]] = {
     "m": (1.0, _L, True),
+    "ft": (0.3048, _L, False),                               # international foot (US rules write lengths in ft)
     "g": (1e-3, _M, True),
     "t": (1e3, _M, False),                                   # tonne
     "s": (1.0, _T, True),
@@ -62,6 +64,8 @@ UNITS: dict[str, tuple[float, tuple[int, ...], bool]] = {
     "deg": (math.pi / 180.0, _A, False),
     "°": (math.pi / 180.0, _A, False),
     "rev": (2.0 * math.pi, _A, False),
+    "turn": (2.0 * math.pi, _A, False),                      # a wrap angle: 1.5 turns = 540 deg
+    "turns": (2.0 * math.pi, _A, False),
     "rpm": (2.0 * math.pi / 60.0, _dim((_A, 1), (_T, -1)), False),
     "%": (0.01, _ONE, False),
     "Nm": (1.0, _dim((_FORCE, 1), (_L, 1)), True),           # torque, as catalogues print it
@@ -94,10 +98,18 @@ def _name(name: str) -> tuple[float, tuple[int, ...]]:
 
 @lru_cache(maxsize=512)
 def parse_unit(text: str) -> tuple[float, tuple[int, ...]]:
-    """(factor to SI, dimension) of a unit expression such as ``"kN/mm^2"`` or ``"N·m"``."""
+    """(factor to SI, dimension) of a unit expression such as ``"kN/mm^2"``, ``"N·m"`` or ``"/ N"`` (a
+    reciprocal as pint prints it, ``1/N``).
+
+    >>> parse_unit("/ N") == parse_unit("1/N")
+    True
+    """
     for sup, rep in _SUPERSCRIPT.items():
         text = text.replace(sup, rep)
-    tokens, pos, text = [], 0, text.strip()
+    text = text.strip()
+    if text.startswith("/"):            # "1e-5 / N": pint's way of writing a reciprocal unit
+        text = "1" + text
+    tokens, pos = [], 0
     while pos < len(text):
         m = _TOKEN.match(text, pos)
         if not m or m.end() == pos or m.lastgroup is None:

@@ -2,7 +2,8 @@
 
 The built-in scene ``route_segments`` (three segments, 22°, 9°, 3° from the drive, the load of
 Krauze et al. 2025 Fig. 9): an upward and a downward trip (``ropemodel.trips``), the winding and
-unwinding rope forces and the drive power against the load's position, with the paper's straight
+unwinding rope forces of the upward trip and the drive power of both against the load's position
+(signed: > 0 motoring, < 0 braking; lowered, the load drives the drum), with the paper's straight
 incline replaced by the "equivalent slope" of the same rise as a comparison (one segment, the same
 length and height): what the equivalent slope hides.
 
@@ -18,6 +19,8 @@ import pandas as pd
 from ropemodel.studykit import cli, output_dir, save_figure
 
 NAME = "route_trip"
+#: line colour of each direction's drive power
+COLOUR = {"up": "k", "down": "#1e8449"}
 
 
 def equivalent_slope(scene):
@@ -54,26 +57,28 @@ def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     table = pd.DataFrame(rows)
     table.to_csv(out / f"{NAME}.csv", index=False)
 
-    fig, axes = plt.subplots(2, 1, figsize=(8, 6.2), sharex=True)
+    fig, axes = plt.subplots(2, 1, figsize=(8, 6.6), sharex=True)
     for (label, direction), t in runs.items():
-        if direction != "up":
-            continue
         h = t.history
         style = "-" if label == "route" else ":"
-        axes[0].plot(h["x_m [m]"], h["F_C [N]"] / 1e3, style, color="#c0392b", label=f"F_C, {label}")
-        axes[0].plot(h["x_m [m]"], h["F_S [N]"] / 1e3, style, color="#2471a3", label=f"F_S, {label}")
-        axes[1].plot(h["x_m [m]"], h["P [W]"] / 1e3, style, color="k", label=f"drive power, {label}")
-    axes[0].set_ylabel("rope force [kN]")
-    axes[1].set_ylabel("drive power [kW]")
-    axes[1].set_xlabel("load's distance from the drive x_m [m] (upward trip: from right to left)")
-    axes[1].invert_xaxis()
+        if direction == "up":
+            axes[0].plot(h["x_m [m]"], h["F_C [N]"] / 1e3, style, color="#c0392b", label=f"F_C, {label}")
+            axes[0].plot(h["x_m [m]"], h["F_S [N]"] / 1e3, style, color="#2471a3", label=f"F_S, {label}")
+        axes[1].plot(h["x_m [m]"], h["N_p [W]"] / 1e3, style, color=COLOUR[direction],
+                     label=f"{direction}ward trip, {label}")
+    axes[1].axhline(0.0, color="0.4", lw=0.8)
+    axes[0].set_ylabel("rope force, upward trip [kN]")
+    axes[1].set_ylabel("drive power N_p [kW]\n> 0 motoring, < 0 braking")
+    axes[1].set_xlabel("load's distance from the drive x_m [m]")
     for ax in axes:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     up, flat_up = runs["route", "up"].summary, runs["equivalent slope", "up"].summary
-    fig.suptitle(f"Upward trip, route of 3 segments vs its equivalent slope: peak F_C {up['F_C_max'] / 1e3:.0f} vs "
-                 f"{flat_up['F_C_max'] / 1e3:.0f} kN, P_rms {up['P_rms'] / 1e3:.0f} vs {flat_up['P_rms'] / 1e3:.0f} kW",
-                 fontsize=9)
+    down = runs["route", "down"].summary
+    fig.suptitle(f"Route of 3 segments vs its equivalent slope. Upward: peak F_C {up['F_C_max'] / 1e3:.0f} vs "
+                 f"{flat_up['F_C_max'] / 1e3:.0f} kN, P_rms {up['P_rms'] / 1e3:.0f} vs {flat_up['P_rms'] / 1e3:.0f} kW."
+                 f"\nDownward on the route the drive brakes: {down['E_regen'] / 1e6:.1f} MJ returned, "
+                 f"{down['E_trip'] / 1e6:.2f} MJ drawn (where the 3° segment needs pulling)", fontsize=9)
     fig.tight_layout()
     save_figure(fig, __file__, out, NAME, fast)
     return table

@@ -2,7 +2,7 @@
 
 1. **CLI vs numpy.**  ``ropemodel sweep`` of the Fig. 9 scene over a grid of
    inclination × load (every output, Parquet) against a plain numpy script that
-   computes the same 29 outputs from the equations written out by hand
+   computes the same 31 outputs from the equations written out by hand
    (docs/physics.md §1) and writes the same columns to Parquet with the same row
    groups.  Both run as fresh processes (interpreter start and imports
    included); the best of ``repeat`` runs of each.  The two files are compared
@@ -73,16 +73,17 @@ def outputs(alpha, G_m, L_u, L_ul, mu_pm, mu_pl, F_nwl, v_pj, eta, q_l, q_lw):
         out[f"dF_S_{d}"] = q_lw * out[f"F_S_{d}"]           # eq. (20)
         out[f"dF_CS_{d}"] = out[f"dF_C_{d}"] + out[f"dF_S_{d}"]   # eq. (21)
         out[f"dF_{d}"] = out[f"dF_CS_{d}"] + out["dF_nwl"]        # eq. (23)
-    for d in ("up", "down"):
-        out[f"N_p_{d}"] = (out[f"F_C_{d}"] - out[f"F_S_{d}"]) * v_pj / eta
+    for d, sign in (("up", 1.0), ("down", -1.0)):   # signed: > 0 motoring, < 0 braking
+        P = out[f"P_drum_{d}"] = sign * (out[f"F_C_{d}"] - out[f"F_S_{d}"]) * v_pj
+        out[f"N_p_{d}"] = np.where(P > 0, P / eta, P * eta)
     return out
 ORDER = ["G_ml","G_l1","G_l2","G_l","G_mo","G_ls","T_m","T_l1","T_l2","T_l","T_ls","G_lmC","F_S_up","F_C_up",
          "F_S_down","F_C_down","mu_pl1","mu_pl2","dF_nwl","dF_C_up","dF_S_up","dF_CS_up","dF_up","dF_C_down",
-         "dF_S_down","dF_CS_down","dF_down","N_p_up","N_p_down"]
+         "dF_S_down","dF_CS_down","dF_down","P_drum_up","N_p_up","P_drum_down","N_p_down"]
 UNIT = {k: ("kN", 1e-3) for k in ORDER}
 UNIT.update({k: ("-", 1.0) for k in ("mu_pl1", "mu_pl2")})
 UNIT.update({k: ("mm", 1e3) for k in ORDER if k.startswith("dF")})
-UNIT.update({k: ("kW", 1e-3) for k in ("N_p_up", "N_p_down")})
+UNIT.update({k: ("kW", 1e-3) for k in ("P_drum_up", "N_p_up", "P_drum_down", "N_p_down")})
 def main(n_alpha, n_load, path, row_group, p):
     a = np.radians(np.linspace(5.0, 45.0, n_alpha))
     g = np.linspace(300e3, 500e3, n_load)
@@ -250,7 +251,8 @@ def _plot(scale, mem, path):
     plt.close(fig)
 
 
-def main(out_dir=None, fast: bool = False) -> dict:
+def main(out_dir=None, fast: bool = False, publish: bool = True) -> dict:
+    """The study; ``publish=False`` keeps the full run's figure out of ``studies/figures/`` (for tests)."""
     out = Path(out_dir) if out_dir else ROOT / "studies" / "out" / NAME
     out.mkdir(parents=True, exist_ok=True)
     import pandas as pd
@@ -277,7 +279,7 @@ def main(out_dir=None, fast: bool = False) -> dict:
     if mem:
         pd.DataFrame(mem).to_csv(out / "memory.csv", index=False)
     _plot(scale, mem, out / f"{NAME}.png")
-    if not fast:
+    if not fast and publish:
         figures = ROOT / "studies" / "figures"
         figures.mkdir(exist_ok=True)
         _plot(scale, mem, figures / f"{NAME}.png")

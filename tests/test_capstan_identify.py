@@ -50,6 +50,7 @@ def test_recovers_the_preload_too(scene):
     assert res.ok, res.messages
     for k, v in {**TRUE, "F_p": scene.parameters["F_p"]}.items():
         assert abs(res.estimates[k] - v) < 2 * res.standard_errors[k], (k, res.estimates[k], res.standard_errors[k])
+        assert res.standard_errors[k] < 0.05 * v, k     # the data determine it (2.6 % for mu, 0.2 % or less else)
 
 
 @pytest.mark.slow
@@ -70,7 +71,7 @@ def test_flags_mu_when_loads_are_too_small_to_slip(scene):
     res = identify(scene, data)
     assert not res.identifiable["mu"] and res.identifiable["EA"]
     assert not res.ok and any("mu" in m for m in res.messages)
-    assert res.estimates["EA"] == pytest.approx(TRUE["EA"], abs=3 * res.standard_errors["EA"])
+    assert res.estimates["EA"] == pytest.approx(TRUE["EA"], abs=min(3 * res.standard_errors["EA"], 1e-3 * TRUE["EA"]))
 
 
 def test_flags_everything_when_no_load_is_applied(scene):

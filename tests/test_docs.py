@@ -4,14 +4,51 @@ from pathlib import Path
 
 from ropemodel.docs import render, update
 
-README = Path(__file__).resolve().parents[1] / "README.md"
+ROOT = Path(__file__).resolve().parents[1]
+README = ROOT / "README.md"
+SITE = ROOT / "docs" / "scenes.md"          # the site's scene reference
 
 
 def test_readme_tables_match_the_registry():
     text = README.read_text(encoding="utf-8")
     assert update(text) == text, "README tables drifted from the code: run python -m ropemodel.docs README.md"
     for name in render():
+        if name.startswith(("effects", "parameters-", "outputs-")):
+            assert f"<!-- generated: {name} -->" in text, name
+
+
+def test_site_tables_match_the_registry():
+    """The site's scene reference holds every generated table, each as the registry has it now."""
+    text = SITE.read_text(encoding="utf-8")
+    assert update(text) == text, "docs/scenes.md tables drifted from the code: run python -m ropemodel.docs"
+    for name in render():
         assert f"<!-- generated: {name} -->" in text, name
+
+
+def _block(text: str, name: str) -> list[list[str]]:
+    """Rows (cells) of the Markdown table in block ``name``, header and rule left out."""
+    body = text.split(f"<!-- generated: {name} -->\n")[1].split(f"<!-- end: {name} -->")[0]
+    return [[c.strip() for c in line.strip("|").split(" | ")] for line in body.strip().splitlines()[2:]]
+
+
+def test_site_parameter_tables_are_the_quantities():
+    """Read back, each parameter row of the site is its Quantity: every declared parameter some variant's
+    model asks for (each variant built here; a route's per-segment L_1, alpha_1, ... are the route
+    variant's, listed in its variants table), with its display unit, valid range and default."""
+    from ropemodel.core.model import Model
+    from ropemodel.effects import REGISTRY, all_quantities
+
+    text = SITE.read_text(encoding="utf-8")
+    for model, effects in REGISTRY.items():
+        q = all_quantities(model)
+        asked = {n for e, spec in effects.items() for v in spec.variants for n in Model(model, {e: v}).parameters}
+        rows = {r[0].strip("`"): r for r in _block(text, f"parameters-{model}")}
+        assert set(rows) == asked & set(q), model
+        for name, (_, unit, meaning, default, valid, _usual) in rows.items():
+            assert unit == ("-" if q[name].display_unit in ("1", "") else q[name].display_unit), name
+            assert meaning == q[name].description and valid.startswith(q[name].range_text()), name
+            d = q[name].default
+            assert (default == "required") if d is None else default.startswith(q[name].show(d)), name
 
 
 def _shortest_scenes():
@@ -44,3 +81,16 @@ def test_the_readmes_shortest_scenes_work(tmp_path):
                 assert simulate(rm.load_scene(f)).summary["t_end"] > 0
             else:
                 assert rm.run(rm.load_scene(f)).values
+
+
+def test_the_readmes_run_output_is_what_ropemodel_run_prints(capsys):
+    """The block the README shows under "The built-in example" is the command's output today, to the byte."""
+    import re
+
+    from ropemodel.cli import main
+
+    block = re.search(r"<!-- generated: run-example -->\n```text\n(.*?)\n```\n<!-- end: run-example -->",
+                      README.read_text(encoding="utf-8"), re.S)
+    assert block, "the README's run block is not marked <!-- generated: run-example -->"
+    assert main(["run"]) == 0
+    assert capsys.readouterr().out == block[1] + "\n"

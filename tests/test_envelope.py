@@ -14,44 +14,12 @@ import math
 
 import numpy as np
 import pytest
+from _route3 import SCENE as ROUTE3
 from _route_truth import C, Route, places, rope
 
 import ropemodel as rm
 from ropemodel.cli import main
 
-ROUTE3 = """
-[scene]
-name = "three-segment"
-[effects]
-route = "segments"
-rope = "6x36-IWRC"
-lining = "rigid"
-checks = "design"
-power = "drive"
-[[route]]
-length = "600 m"
-inclination = "12 deg"
-[[route]]
-length = "700 m"
-inclination = "20 deg"
-[[route]]
-length = "500 m"
-inclination = "6 deg"
-[parameters]
-mu_pm = 0.05
-mu_pl = 0.05
-G_m = "300 kN"
-v_pj = "3 m/s"
-t_ramp = "4 s"
-eta = 0.85
-rope_grade = "1770 N/mm^2"
-rope_E = "100 kN/mm^2"
-mu_d = 0.2
-alpha_d = "540 deg"
-n_slip = 1.25
-n_rope = 5
-F_S_min = "0.5 kN"
-"""
 LENGTHS, DEGREES = (600.0, 700.0, 500.0), (12.0, 20.0, 6.0)
 V, ETA, A = 3.0, 0.85, 3.0 / 4.0          # v_pj [m/s], eta, the linear ramp's v_pj/t_ramp [m/s^2]
 MU_D, ALPHA_D, N_SLIP, N_ROPE = 0.2, math.radians(540.0), 1.25, 5.0

@@ -12,17 +12,18 @@ LIBRARY = sorted(p for d in ("ropemodel", "optimisation") for p in (ROOT / d).rg
 MAX_MODULE, MAX_FUNCTION = 400, 60
 
 
-def _module(path: Path) -> str:
-    return ".".join(path.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__")
+def _module(path: Path, root: Path) -> str:
+    return ".".join(path.relative_to(root).with_suffix("").parts).removesuffix(".__init__")
 
 
 def _package(module: str, path: Path) -> str:
     return module if path.name == "__init__.py" else module.rpartition(".")[0]
 
 
-def private_imports(path: Path) -> list[str]:
-    """``from other.package import _name`` (or ``import other._private``) in ``path``, other ≠ its package."""
-    module = _module(path)
+def private_imports(path: Path, root: Path = ROOT) -> list[str]:
+    """``from other.package import _name`` (or ``import other._private``) in ``path``, other ≠ its package
+    (``root``: the folder that holds the packages)."""
+    module = _module(path, root)
     own = _package(module, path)
     found = []
     for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
@@ -41,19 +42,23 @@ def private_imports(path: Path) -> list[str]:
                 continue
             home = ".".join(parts[:private[0]])   # the package that owns the private name
             if home != own and not own.startswith(home + ".") and home.split(".")[0] in ("ropemodel", "optimisation"):
-                found.append(f"{path.relative_to(ROOT)}:{node.lineno} imports {full}")
+                found.append(f"{path.relative_to(root)}:{node.lineno} imports {full}")
             elif home.split(".")[0] not in ("ropemodel", "optimisation"):
-                found.append(f"{path.relative_to(ROOT)}:{node.lineno} imports {full} (a third party's private name)")
+                found.append(f"{path.relative_to(root)}:{node.lineno} imports {full} (a third party's private name)")
     return found
 
 
 def test_the_checker_finds_a_private_import(tmp_path):
-    bad = ROOT / "ropemodel" / "cli" / "_probe_for_test.py"
-    try:
-        bad.write_text("from ropemodel.sweeps.files import _private\nfrom ropemodel.cli._common import warn\n")
-        assert private_imports(bad) == [f"{bad.relative_to(ROOT)}:1 imports ropemodel.sweeps.files._private"]
-    finally:
-        bad.unlink()
+    """A module placed in ``ropemodel/cli/`` of a copy of the layout (never in the package itself: the suite
+    runs in parallel workers and from read-only installs): another package's private name is found, its own
+    package's is not, and neither is a third party's public name."""
+    (tmp_path / "ropemodel" / "cli").mkdir(parents=True)
+    bad = tmp_path / "ropemodel" / "cli" / "_probe_for_test.py"
+    bad.write_text("from ropemodel.sweeps.files import _private\nfrom ropemodel.cli._common import warn\n"
+                   "import numpy.linalg\nfrom numpy import _core\n")
+    assert private_imports(bad, tmp_path) == [
+        "ropemodel/cli/_probe_for_test.py:1 imports ropemodel.sweeps.files._private",
+        "ropemodel/cli/_probe_for_test.py:4 imports numpy._core (a third party's private name)"]
 
 
 def test_no_module_imports_another_packages_private_names():

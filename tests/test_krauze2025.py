@@ -66,12 +66,14 @@ def test_series_has_units(fig9):
 
 
 def test_drive_power_by_hand(fig9):
-    # N_p = (F_C - F_S) v_pj / eta with eta = 1 in the example scene
+    # signed: P_drum = s (F_C - F_S) v_pj (s = -1 lowering); N_p = P_drum/eta motoring, P_drum eta braking;
+    # eta = 1 in the example scene (tests/test_trip_power.py writes eq. (12)-(13) out by hand)
     r = rm.run(fig9)
-    for d in ("up", "down"):
-        assert r[f"N_p_{d}"] == pytest.approx((r[f"F_C_{d}"] - r[f"F_S_{d}"]) * 2.5, rel=1e-14)
+    for d, s in (("up", 1.0), ("down", -1.0)):
+        assert r[f"N_p_{d}"] == pytest.approx(s * (r[f"F_C_{d}"] - r[f"F_S_{d}"]) * 2.5, rel=1e-14)
     r2 = rm.run(fig9.with_values({"eta": 0.8}))
     assert r2["N_p_up"] == pytest.approx(r["N_p_up"] / 0.8, rel=1e-14)
+    assert r2["N_p_down"] == pytest.approx(r["N_p_down"] * 0.8, rel=1e-14)
 
 
 CASE2 = """

@@ -1,8 +1,9 @@
 """The design report in a real browser: headless Chromium shows each built-in scene's page (not
-blank), draws its pictures, and prints it to a PDF of several pages.
+blank), draws its pictures, and prints it to a PDF of several pages, numbered, with a running header and
+the sign-off block.
 
-Chromium is required: CI installs it (``.ci/run``).  Where it is missing these tests FAIL, unless
-``ROPEMODEL_NO_BROWSER=1`` says to skip them.
+Chromium and poppler's pdftotext (to read the printed PDF's text) are required: CI installs them
+(``.ci/run``).  Where one is missing these tests FAIL, unless ``ROPEMODEL_NO_BROWSER=1`` says to skip them.
 """
 
 from __future__ import annotations
@@ -90,3 +91,39 @@ def test_cli_prints_the_page_to_pdf(tmp_path, capsys):
     pages = len(re.findall(rb"/Type\s*/Page(?![s\w])", data))
     assert pages >= 3, pages                                    # A4 pages of a full report
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report.html", "report.pdf"]
+
+
+def pdftotext() -> str:
+    """poppler's pdftotext (CI installs poppler-utils: .ci/run); missing, the test FAILS unless
+    ROPEMODEL_NO_BROWSER=1 says to skip the rendering tests."""
+    if os.environ.get("ROPEMODEL_NO_BROWSER") == "1":
+        pytest.skip("ROPEMODEL_NO_BROWSER=1: no rendering tests")
+    exe = shutil.which("pdftotext")
+    if exe is None:
+        pytest.fail("pdftotext is not installed (apt-get install poppler-utils); set ROPEMODEL_NO_BROWSER=1 to skip")
+    return exe
+
+
+def test_the_pdf_has_page_numbers_a_running_header_and_the_sign_off(tmp_path, capsys):
+    """The printed PDF's own text (pdftotext): every page k of N says "page k of N" and carries the document
+    number and revision; the first page has the sign-off block with the names and dates the scene gives."""
+    chromium()
+    exe = pdftotext()
+    from test_filing import FILED
+
+    scene, pdf = tmp_path / "filed.toml", tmp_path / "filed.pdf"
+    scene.write_text(FILED)
+    assert main(["report", str(scene), "--pdf", str(pdf)]) == 0
+    capsys.readouterr()
+    text = subprocess.run([exe, "-layout", str(pdf), "-"], check=True, capture_output=True, text=True).stdout
+    pages = text.split("\f")
+    pages = pages[:-1] if not pages[-1].strip() else pages
+    n = len(pages)
+    assert n >= 3
+    for k, body in enumerate(pages, start=1):
+        assert re.search(rf"page {k} of {n}\s*$", body.rstrip()), (k, body[-300:])
+        assert "CALC-H3-014 · revision B" in body.splitlines()[0], (k, body[:200])
+    first = pages[0]
+    for words in ("Sign-off", "Prepared by", "A. Engineer", "2026-11-20", "Checked by", "B. Checker", "2026-11-22",
+                  "Approved by", "Revision history", "rope re-sized"):
+        assert words in first, words

@@ -159,7 +159,8 @@ def test_run_takes_each_result_at_its_worst_place_by_default(capsys):
 
 
 def test_the_readme_envelope_of_route_segments_by_hand():
-    """The README's `ropemodel run route_segments` excerpt, each printed number (6 digits) by hand."""
+    """The README's `ropemodel run route_segments` excerpt, each printed number (6 digits) by hand: lowering,
+    the drive brakes hardest stopping on the 22° segment and motors starting on the 3° one."""
     from pathlib import Path
 
     text = (Path(__file__).resolve().parents[1] / "README.md").read_text()
@@ -169,17 +170,23 @@ def test_the_readme_envelope_of_route_segments_by_hand():
     mu = np.array([0.06, 0.05, 0.05])
     L_u = L.sum()
 
-    def forces(j, acc):
-        F_S = 0.5 * F + q_l * np.sum(L * np.sin(al)) - (0.05 * q_l * np.sum(L * np.cos(al)) + q_l * L_u / G * acc)
-        F_C = (0.5 * F + q_l * np.sum(L * np.sin(al)) + G_m * math.sin(al[j]) + 0.05 * G_m * math.cos(al[j])
-               + q_l * np.sum(mu * L * np.cos(al)) + (G_m + q_l * L_u) / G * acc)
+    def forces(j, acc, s=1.0):
+        F_S = 0.5 * F + q_l * np.sum(L * np.sin(al)) - s * (0.05 * q_l * np.sum(L * np.cos(al)) + q_l * L_u / G * acc)
+        F_C = (0.5 * F + q_l * np.sum(L * np.sin(al)) + G_m * math.sin(al[j])
+               + s * (0.05 * G_m * math.cos(al[j]) + q_l * np.sum(mu * L * np.cos(al)) + (G_m + q_l * L_u) / G * acc))
         return F_C, F_S
 
+    def drive(F_C, F_S, s):
+        """The drive's power: the drum's s (F_C − F_S) v, /η motoring, ·η braking (four quadrants)."""
+        P = s * (F_C - F_S) * v
+        return (P / eta if P > 0 else P * eta) / 1e3
+
     start, stop = forces(0, a), forces(2, -a)
+    lowered_stop, lowered_start = forces(0, -a, -1.0), forces(2, a, -1.0)
     hand = {("F_S_up", "largest"): stop[1] / 1e3, ("F_S_up", "least"): start[1] / 1e3,
             ("F_C_up", "largest"): start[0] / 1e3, ("dF_up", "largest"): 5.8 * (start[0] + start[1] + F) / 1e3,
-            ("N_p_up", "largest"): (start[0] - start[1]) * v / eta / 1e3,
-            ("N_p_up", "least"): (stop[0] - stop[1]) * v / eta / 1e3}
+            ("N_p_up", "largest"): drive(*start, 1.0), ("N_p_up", "least"): drive(*stop, 1.0),
+            ("N_p_down", "least"): drive(*lowered_stop, -1.0), ("N_p_down", "largest"): drive(*lowered_start, -1.0)}
     for (name, sense), value in hand.items():
         line = next(ln for ln in block.splitlines() if ln.split()[:2] == [name, sense])
         assert float(line.split()[2]) == pytest.approx(value, rel=5e-6), line

@@ -125,7 +125,7 @@ def toy_model():
                       Quantity("z", "1", "twice y"))
 
         def equations(self, v):
-            return [Equation.from_call("y", fun, ("a", "k"), "y = a exp(-k)"),
+            return [Equation.from_call("y", fun, ("a", "k"), "y = a exp(-k)", "a CasADi Function"),
                     Equation("z", v["z"] - 2 * v["y"], "z = 2 y")]
 
     yield name

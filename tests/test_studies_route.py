@@ -27,3 +27,8 @@ def test_route_trip_study(tmp_path):
     # the same rise: the energy of an upward trip differs only by the rope's resistance on the slopes
     assert table.loc[("route", "up"), "E_trip"] == pytest.approx(table.loc[("equivalent slope", "up"), "E_trip"],
                                                                  rel=0.02)
+    # lowering, the route's drive brakes on the steep segments and motors on the 3 deg one; the equivalent
+    # slope (about 11.4 deg, steeper than the load's resistance holds) brakes all the way
+    assert table.loc[("route", "down"), "E_trip"] > 0 and table.loc[("route", "down"), "E_regen"] > 0
+    assert table.loc[("equivalent slope", "down"), "E_trip"] == 0.0
+    assert table.loc[("equivalent slope", "down"), "P_brake_max"] < 0

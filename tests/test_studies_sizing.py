@@ -6,22 +6,45 @@ import pytest
 from _studies import load_study
 
 
+def _check_benchmark(summary, df, tmp_path):
+    """What studies/sizing_benchmark.py claims besides speed: IPOPT solved every (feasible by construction)
+    scene and met every check; where SLSQP also converged to a feasible point, it found the same rope."""
+    assert len(df) == summary["scenes"]
+    assert (tmp_path / "sizing_benchmark.png").stat().st_size > 0
+    assert summary["ipopt_success_rate"] == 1.0 and df["ipopt_ok"].all()
+    both = df[df["ipopt_ok"] & df["slsqp_converged"] & df["slsqp_feasible"]]
+    assert len(both) >= 0.9 * len(df)           # the comparison is not an empty one
+    assert (both["rel_diff_d"] <= 1e-4).all()
+
+
 def test_sizing_benchmark_fast(tmp_path):
+    """Six scenes: too few for the ratio of median times (0.95-1.4 measured in fast mode; per scene SLSQP is
+    faster on about a quarter of them), which the slow test below asserts on the full run."""
     summary = load_study("sizing_benchmark").main(tmp_path, fast=True)
     df = pd.read_csv(tmp_path / "sizing_benchmark.csv")
-    assert len(df) == summary["scenes"] >= 5
-    assert (tmp_path / "sizing_benchmark.png").stat().st_size > 0
-    # IPOPT solved every (feasible by construction) scene and met every check
-    assert summary["ipopt_success_rate"] == 1.0
-    # where both converged to feasible points, SLSQP (finite differences) found the same rope
-    both = df[df["ipopt_ok"] & df["slsqp_converged"] & df["slsqp_feasible"]]
-    assert (both["rel_diff_d"] <= 1e-4).all()
-    assert summary["time_ratio_slsqp_over_ipopt"] == pytest.approx(
-        df["slsqp_s"].median() / df["ipopt_s"].median(), rel=1e-12)
+    assert summary["scenes"] >= 5
+    _check_benchmark(summary, df, tmp_path)
+
+
+@pytest.mark.slow
+def test_sizing_benchmark_full_meets_the_readme(tmp_path):
+    """The README's caption, on the full run (120 random feasible scenes, the same in every run): IPOPT solved
+    all of them, SLSQP 116; SLSQP at least 1.3x slower in the ratio of median times measured in the same run
+    (1.57-1.85 in four runs); where both converged the optima agree to 1e-7 relative (2e-8 measured)."""
+    summary = load_study("sizing_benchmark").main(tmp_path, fast=False)
+    df = pd.read_csv(tmp_path / "sizing_benchmark.csv")
+    assert summary["scenes"] == 120
+    _check_benchmark(summary, df, tmp_path)
+    assert df["slsqp_ok"].sum() == 116, summary
+    assert summary["time_ratio_slsqp_over_ipopt"] >= 1.3, summary
+    for k in ("d", "F_nwl", "stroke"):
+        assert summary[f"max_rel_diff_{k}"] <= 1e-7, summary
 
 
 def test_discrete_design_fast(tmp_path):
-    summary = load_study("discrete_design").main(tmp_path, fast=True)
+    # bonmin's limit is the study's wall clock, not a claim: generous, so that parallel workers on a loaded
+    # machine do not turn a bonmin that finishes into a time-out
+    summary = load_study("discrete_design").main(tmp_path, fast=True, timeout=120.0)
     df = pd.read_csv(tmp_path / "discrete_design.csv")
     assert len(df) == summary["scenes"] >= 1
     # the next size up is a catalogue size >= the continuous optimum, and a second method (bonmin's one

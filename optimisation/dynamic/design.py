@@ -12,7 +12,6 @@ the static sizing rounds; each design simulated through its four manoeuvres
 
 from __future__ import annotations
 
-import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -26,11 +25,11 @@ from optimisation.dynamic.refine import Refinement, solve_refined
 from optimisation.dynamic.start import factored_start, fallback_starts
 from optimisation.dynamic.verify import verify
 from optimisation.infeasibility import diagnose
-from optimisation.problem import VARIABLES, SizingProblem
+from optimisation.problem import VARIABLES, SizingProblem, load_sizing
 from ropemodel.errors import SolveError
 from ropemodel.numerics.held import held_solver_output
 from ropemodel.papers import en12385 as ropes
-from ropemodel.scene import Scene
+from ropemodel.scene import Scene, SceneLike
 
 
 @dataclass
@@ -118,7 +117,7 @@ def continuous_optimum(problem, static_xs, record: Refinement | None = None, say
     return problem, sol, None
 
 
-def size_dynamic(scene: Scene | str | os.PathLike, with_sensitivities: bool = False,
+def size_dynamic(scene: SceneLike, with_sensitivities: bool = False,
                  progress: Callable[[str], None] | None = None) -> DynamicDesign:
     """Size the winch of ``scene`` through its start-up and braking in both directions
     (``ropemodel size --dynamic``): the lightest catalogue rope, then the least pretension, then the least
@@ -163,10 +162,7 @@ def size_dynamic(scene: Scene | str | os.PathLike, with_sensitivities: bool = Fa
         design.design["d"], design.continuous["d"], design.static["d"]    # m: catalogue, dynamic, static
         [m["peaks"]["F_C_max"] for m in design.manoeuvres]                 # N, each manoeuvre simulated
     """
-    if not isinstance(scene, Scene):
-        from optimisation.problem import load_sizing
-
-        scene = load_sizing(scene, emit=False)
+    scene = load_sizing(scene, emit=False)
     with held_solver_output():
         return _size(scene, with_sensitivities, progress or (lambda text: None))
 

@@ -18,7 +18,6 @@ grid) and verified by the hybrid simulator; a ramp the simulator does not confir
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass, field
 
 import casadi as ca
@@ -28,10 +27,10 @@ from optimisation.dynamic.problem import BACKOFF, DynamicSizingProblem
 from optimisation.dynamic.refine import add_points, minima
 from optimisation.dynamic.start import DT_DENSE
 from optimisation.dynamic.verify import verify
-from optimisation.problem import VARIABLES
+from optimisation.problem import VARIABLES, load_sizing
 from ropemodel.errors import InputError, SolveError
 from ropemodel.numerics.held import held_solver_output
-from ropemodel.scene import Scene
+from ropemodel.scene import Scene, SceneLike
 
 #: the scene's ramp parameter
 RAMP = "t_ramp"
@@ -86,7 +85,7 @@ def least_margin(problem, xs, p) -> tuple[float, str]:
     return least
 
 
-def shortest_ramp(scene: Scene | str | os.PathLike) -> RampAnswer:
+def shortest_ramp(scene: SceneLike) -> RampAnswer:
     """The shortest ``t_ramp`` [s] that keeps the scene's design safe through the four manoeuvres
     (``ropemodel size --dynamic --find t_ramp``).
 
@@ -120,10 +119,7 @@ def shortest_ramp(scene: Scene | str | os.PathLike) -> RampAnswer:
         answer = shortest_ramp("my_winch.toml")     # d, F_nwl and stroke given in the scene
         answer.t_ramp, answer.active                # s; e.g. ['slip_margin_fwd @ upward start, t = 3.1 s']
     """
-    if not isinstance(scene, Scene):
-        from optimisation.problem import load_sizing
-
-        scene = load_sizing(scene, emit=False)
+    scene = load_sizing(scene, emit=False)
     with held_solver_output():
         return _shortest(scene)
 

@@ -2,35 +2,38 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 import pandas as pd
 
 from ropemodel.numerics.capstan_rotation import RTOL, STEPS, check_wrap
 from ropemodel.errors import InputError, SolveError
 from ropemodel.problem import Problem
+from ropemodel.scene import Scene, SceneLike, as_scene
 from ropemodel.sweeps.files import check_size
 from ropemodel.sweeps.points import MAX_AXIS
 from ropemodel.units import label, to_si
-
-if TYPE_CHECKING:
-    from ropemodel.scene import Scene
 
 #: columns of a load curve, in this order (the load first)
 CURVE_OUTPUTS = ("T", "K", "K_ti", "K_sl", "delta", "delta_alpha", "alpha_1", "alpha_2", "theta_s1", "theta_s2",
                  "regime", "delta_error")
 
 
-def load_curve(scene: Scene, F_max: float | str, n: int = 201, F_min: float | str = 0.0,
+def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
+    """What a load curve of ``scene`` is computed from, and what it sets itself (the load: F_T, or T = 2 R F_T)."""
+    axis = "the curve's loads run from --from (F_min) to --to (F_max)"
+    return scene.built.inputs_of(), {"F_T": axis, "T": axis}
+
+
+def load_curve(scene: SceneLike, F_max: float | str, n: int = 201, F_min: float | str = 0.0,
                display: bool = False) -> pd.DataFrame:
     """Load curve of a capstan cable drive: its outputs at ``n`` loads F_T from ``F_min`` to ``F_max``
     (Li et al., piecewise stiffness; ``ropemodel curve``).
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or Path
         A capstan scene (either ``load`` variant: a pull F_T or a torque T).
+        A TOML scene file or a built-in scene's name is loaded first (:func:`ropemodel.load_scene`).
     F_max, F_min : float or str
         Highest and lowest load F_T [N] (SI numbers, or strings with units such as ``"100 N"``),
         0 ≤ F_min < F_max.
@@ -70,6 +73,7 @@ def load_curve(scene: Scene, F_max: float | str, n: int = 201, F_min: float | st
     1     50.0    197.55        98.85         3.0
     2    100.0     98.57         0.00         4.0
     """
+    scene = as_scene(scene)
     if scene.model != "capstan":
         raise InputError(f"load curves are for capstan scenes; this scene's model is {scene.model!r}")
     F_max = to_si("F_max", F_max, "N", bare="si")   # numbers SI (Python); text carries its unit

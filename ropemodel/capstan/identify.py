@@ -21,7 +21,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -29,10 +29,8 @@ import pandas as pd
 
 from ropemodel.numerics.capstan_rotation import ARGS, RTOL, STEPS, rotation, rotation_function, unwrap_load
 from ropemodel.errors import InputError, Problems, SolveError
+from ropemodel.scene import Scene, SceneLike, as_scene
 from ropemodel.units import factor
-
-if TYPE_CHECKING:
-    from ropemodel.scene import Scene
 
 FITTABLE = ("mu", "EA", "F_p", "L")
 SINGULAR = 1e-8
@@ -152,7 +150,15 @@ def _finite(d):
     return {k: (v if math.isfinite(v) else None) for k, v in d.items()}
 
 
-def identify(scene: Scene, data: pd.DataFrame | str | Path, fit: Sequence[str] = ("mu", "EA"),
+def reads(scene: Scene, fit: Sequence[str] = ("mu", "EA")) -> tuple[set[str], dict[str, str]]:
+    """What an identification reads from ``scene`` (the rotation's parameters), and what it takes elsewhere:
+    the loads are the data's, the fitted parameters' values only start the fit."""
+    chosen = {k: "the loads are the data's" for k in ("F_T", "T")}
+    chosen.update({k: "the fit starts from it; the estimate is the data's" for k in fit})
+    return set(ARGS), chosen
+
+
+def identify(scene: SceneLike, data: pd.DataFrame | str | Path, fit: Sequence[str] = ("mu", "EA"),
              sigma: float | None = None, variant: str | None = None,
              ipopt_options: dict | None = None) -> Identification:
     """Identify a capstan drive's parameters from a measured load curve: least squares by IPOPT
@@ -160,8 +166,9 @@ def identify(scene: Scene, data: pd.DataFrame | str | Path, fit: Sequence[str] =
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or Path
         A capstan scene: the parameters not fitted, and the starting values of those fitted.
+        A TOML scene file or a built-in scene's name is loaded first (:func:`ropemodel.load_scene`).
     data : pandas.DataFrame or str or Path
         Measured points: a load ``"F_T [N]"`` (or a torque ``"T [N*m]"``) and a rotation
         ``"delta_alpha [rad]"`` (any unit in brackets; in a file the units are required;
@@ -206,6 +213,7 @@ def identify(scene: Scene, data: pd.DataFrame | str | Path, fit: Sequence[str] =
     >>> fit.ok
     True
     """
+    scene = as_scene(scene)
     if scene.model != "capstan":
         raise InputError(f"identification is for capstan scenes; this scene's model is {scene.model!r}")
     fit = tuple(fit)

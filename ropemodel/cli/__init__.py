@@ -4,13 +4,15 @@ Each module in this package defines one command: a ``NAME``, a ``HELP`` line,
 ``add_arguments(parser)`` and ``main(args) -> int``.  They are discovered at
 start-up, so a new command is a new module.  Errors become one line on stderr:
 bad input exits 2, a failed solve or an infeasible design exits 1, Ctrl-C exits 130
-(:mod:`ropemodel.cli._interrupt`).
+(:mod:`ropemodel.cli._interrupt`).  A reader that stops early (``ropemodel run | head``) ends the
+command quietly with exit 0, as ``git log | head`` does.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import pkgutil
 import sys
 import warnings
@@ -78,6 +80,10 @@ def main(argv=None) -> int:
         if not guard.seen:
             raise
         code = None   # a failure after Ctrl-C (e.g. an interrupted integrator) is the interrupt's doing
+    try:
+        sys.stdout.flush()         # what is still buffered: its reader may have gone since
+    except BrokenPipeError:
+        code = _reader_gone()
     if code is None or guard.seen and code != EXIT_INTERRUPTED:
         print("interrupted", file=sys.stderr)
         code = EXIT_INTERRUPTED
@@ -102,8 +108,20 @@ def _run(argv, guard) -> int:
         print(f"error: {exc}", file=sys.stderr)
         return EXIT_INPUT if isinstance(exc, InputError) else EXIT_FAIL
     except BrokenPipeError:  # output piped into e.g. `head`, which closed early
-        sys.stderr.close()
-        return EXIT_OK
+        return _reader_gone()
+
+
+def _reader_gone() -> int:
+    """The reader of our output stopped early (``| head``): nothing more is written, exit 0.  The standard
+    streams are pointed at the null device, so the interpreter's final flush cannot fail again."""
+    null = os.open(os.devnull, os.O_WRONLY)
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            os.dup2(null, stream.fileno())
+        except (OSError, ValueError):   # a stream without a file descriptor (e.g. replaced by a test)
+            pass
+    os.close(null)
+    return EXIT_OK
 
 
 def run_console() -> None:

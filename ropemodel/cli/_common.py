@@ -45,11 +45,19 @@ def named(items, option: str, form: str) -> dict[str, str]:
     return out
 
 
-def add_scene_arguments(parser, optional: bool = True) -> None:
+#: built-in scenes the help suggests, with what they are
+EXAMPLES = {"example": "Fig. 9", "winch_sizing_fig9": "Fig. 9 with a catalogue rope", "winch_start": "a start-up",
+            "trip_fig9": "Fig. 9 as a whole trip", "capstan_li_experiment": "Li et al.'s capstan drive"}
+
+
+def add_scene_arguments(parser, optional: bool = True, example: str = "example") -> None:
+    """The scene argument (``example``: a built-in scene this command takes, suggested in its help), ``--set``
+    and ``--json``."""
     if optional:
         parser.add_argument("scene", nargs="?", help="scene TOML file (default: the built-in Fig. 9 example)")
     else:
-        parser.add_argument("scene", help="scene TOML file, or the name of a built-in scene ('example' for Fig. 9)")
+        parser.add_argument("scene", help=f"scene TOML file, or the name of a built-in scene ('{example}' for "
+                                          f"{EXAMPLES[example]})")
     parser.add_argument("--set", action="append", metavar="NAME=VALUE", default=[],
                         help="override a parameter; a dimensional VALUE carries its unit, e.g. alpha_u=20deg")
     parser.add_argument("--json", action="store_true", help="print one JSON object in SI units")
@@ -97,7 +105,31 @@ def worst_case_scene(args):
 
     scene = with_ramps(scene_from_args(args, announce=False))
     warn(scene.warnings)
-    return pinned(scene, args.at)
+    return pinned(scene, getattr(args, "at", []))
+
+
+def sizing_scene_from_args(args):
+    """The scene of a sizing command (``size``, ``sweep --sizing``, ``sensitivity --sizing``) as sizing reads it:
+    no starting design needed (d, F_nwl, stroke, and D on a rigid drum), design checks on; its warnings on
+    stderr."""
+    from optimisation.problem import D_OPTIONAL, SIZED, prepare, reads
+
+    scene = prepare(scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False))
+    warn(scene.warnings)
+    warn_unread(scene, "the sizing", *reads(scene))
+    return scene
+
+
+def warn_unread(scene, command: str, reads=None, chosen=None) -> None:
+    """Warn of each value given on top of the scene's file (``--set``) that ``command`` does not use:
+    ``chosen`` (name → how) it sets itself, the rest are not among ``reads`` (default: the parameters every
+    output of the scene's static model is computed from, and those its worst case reads:
+    :func:`ropemodel.envelope.reads`)."""
+    from ropemodel.envelope import reads as case_reads
+    from ropemodel.unread import not_read
+
+    reads = scene.built.inputs_of() if reads is None else set(reads)
+    warn(not_read(scene, reads | case_reads(scene), command, chosen))
 
 
 def warn(lines) -> None:

@@ -46,7 +46,7 @@ def design_text(design) -> str:
     if design.feasible:
         lines += ["", "active constraints: " + ", ".join(design.active)]
         lines += _manoeuvre_lines(design.manoeuvres, q)
-        lines += ["", f"{'check margin (least over the manoeuvre)':<52}{'value':>14}  unit"]
+        lines += ["", f"{'check margin (least over the manoeuvre)':<52}{'value':>14}  {'unit':<6}{'':<6}rule"]
         for k, v in design.margins.items():
             base = k.split(" @ ")[0]
             if base in CHECK:   # a check through a manoeuvre, in the check's own unit
@@ -55,7 +55,8 @@ def design_text(design) -> str:
                 unit, shown = q[base].display_unit, q[base].to_display(v)
             unit = "-" if unit == "1" else unit
             shown = shown if abs(v) > 1e-9 else 0.0     # an active check prints as 0, not -8.9e-13
-            lines.append(f"{k:<52}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS'}")
+            lines.append(f"{k:<52}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS':<6}"
+                         f"{design.scene.check_basis(base)}")
     lines += ["", design.message]
     return "\n".join(lines)
 

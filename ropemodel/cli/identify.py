@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from ropemodel.cli._common import add_scene_arguments, scene_from_args
+from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn_unread
 from ropemodel.errors import SolveError
 from ropemodel.progress import status
 from ropemodel.units import to_si
@@ -15,7 +15,7 @@ HELP = ("fit mu and EA (optionally F_p, L) of a capstan scene to measured loads 
 
 
 def add_arguments(parser) -> None:
-    add_scene_arguments(parser, optional=False)
+    add_scene_arguments(parser, optional=False, example="capstan_li_experiment")
     parser.add_argument("data", help="CSV file with columns F_T (or T) and delta_alpha, units in brackets")
     parser.add_argument("--fit", default="mu,EA", help="parameters to fit, comma-separated (default mu,EA)")
     parser.add_argument("--sigma", help="known noise of delta_alpha, > 0 with its unit, e.g. 0.01deg "
@@ -23,11 +23,12 @@ def add_arguments(parser) -> None:
 
 
 def main(args) -> int:
-    from ropemodel.capstan.identify import CONVERGED, identify
+    from ropemodel.capstan.identify import CONVERGED, identify, reads
 
     sigma = to_si("--sigma", args.sigma, "rad", "deg") if args.sigma is not None else None
     scene = scene_from_args(args)
     fit = [n.strip() for n in args.fit.split(",") if n.strip()]
+    warn_unread(scene, "identify", *reads(scene, fit))
     with status(f"identifying {', '.join(fit)} from {args.data}"):
         res = identify(scene, args.data, fit, sigma=sigma)
     if res.status not in CONVERGED:   # no estimates from a fit that did not converge

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import argparse
 
-from ropemodel.cli._common import add_at_argument, add_scene_arguments, worst_case_scene
+from ropemodel.cli._common import add_at_argument, add_scene_arguments, warn_unread, worst_case_scene
 from ropemodel.errors import InputError
 
 NAME = "run"
@@ -30,6 +30,8 @@ def main(args) -> int:
 
     if args.worst:
         raise InputError(WORST_GONE)
-    result = run(worst_case_scene(args))
+    scene = worst_case_scene(args)
+    warn_unread(scene, "run")
+    result = run(scene)
     print(result.to_json() if args.json else result.table())
     return 0

@@ -12,7 +12,8 @@ from __future__ import annotations
 import json
 import math
 
-from ropemodel.cli._common import add_at_argument, add_scene_arguments, named, worst_case_scene
+from ropemodel.cli._common import (add_at_argument, add_scene_arguments, named, sizing_scene_from_args, warn_unread,
+                                   worst_case_scene)
 from ropemodel.errors import InputError
 from ropemodel.progress import status
 
@@ -58,8 +59,12 @@ def main(args) -> int:
         check_samples(args.samples, len(ranges))
         check_seed(args.seed)
     plot = check_plot(args.plot) if args.plot is not None else None   # before any work
-    scene = worst_case_scene(args)
+    scene = sizing_scene_from_args(args) if args.sizing and ranges else worst_case_scene(args)
     outputs = _names(args.outputs) or None
+    if outputs:
+        scene.built.check_names(outputs, "output")
+    if not (args.sizing and ranges):
+        warn_unread(scene, "sensitivity", scene.built.inputs_of(outputs) if outputs else None)
     if ranges:
         if args.sizing:
             from optimisation.sweep import sizing_function

@@ -6,11 +6,12 @@ from ropemodel.cli._common import add_scene_arguments, scene_from_args
 from ropemodel.errors import InputError
 
 NAME = "simulate"
-HELP = "simulate the start-up or braking of a winch scene (dynamics = \"start\" or \"stop\")"
+HELP = ("simulate the start-up or braking of a winch scene, or a whole trip (dynamics = \"start\", \"stop\" "
+        "or \"trip\")")
 
 
 def add_arguments(parser) -> None:
-    add_scene_arguments(parser, optional=False)
+    add_scene_arguments(parser, optional=False, example="winch_start")
     parser.add_argument("-o", "--output", metavar="FILE",
                         help="write the history (SI, units in the column names) to FILE.csv or FILE.parquet")
 

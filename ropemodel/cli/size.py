@@ -14,7 +14,7 @@ from __future__ import annotations
 import json
 import math
 
-from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn
+from ropemodel.cli._common import add_scene_arguments, sizing_scene_from_args
 from ropemodel.errors import InputError
 from ropemodel.progress import status
 
@@ -23,7 +23,7 @@ HELP = "size the winch: least rope d, then least pretension F_nwl, then least st
 
 
 def add_arguments(parser) -> None:
-    add_scene_arguments(parser, optional=False)
+    add_scene_arguments(parser, optional=False, example="winch_sizing_fig9")
     parser.add_argument("--discrete", choices=("next-size-up", "bonmin"), default=None,
                         help="how to pick the catalogue diameter (default: next-size-up)")
     parser.add_argument("--dynamic", action="store_true",
@@ -59,7 +59,9 @@ def _text(design) -> str:
         lines.append("active constraints:")
         lines += [f"  {a}" for a in design.active]
         for k, v in design.power.items():
-            lines.append(f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}")
+            sign = q[k].sign_text(v)   # a drive power: motoring (> 0) or braking (< 0)
+            lines.append(f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}" + (f"  {sign}" if sign else "")
+                         + "  (at its worst)")
         for kind, e in design.drive.items():
             lines.append(f"{'drive ' + kind:<16}{q['N_p_up'].to_display(e['value']):>10.6g}  "
                          f"{q['N_p_up'].display_unit}  (largest; {where_text(e['where'], direction=True)})")
@@ -67,12 +69,12 @@ def _text(design) -> str:
             lines.append(f"{'D_min':<12}{q['D'].to_display(design.least_drum):>14.6g}  {q['D'].display_unit}"
                          f"  (no drum diameter given: the least drum, D_ratio_min d)")
         lines.append("")
-        lines.append(f"{'check margin':<22}{'value':>14}  {'unit':<6}{'':<6}where it is least")
+        lines.append(f"{'check margin':<22}{'value':>14}  {'unit':<6}{'':<6}where it is least; rule")
         for k, v in design.margins.items():
             unit = "-" if q[k].display_unit == "1" else q[k].display_unit
             shown = q[k].to_display(v) if abs(v) > 1e-9 else 0.0  # an active check prints as 0, not -8.9e-13
             lines.append(f"{k:<22}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS':<6}"
-                         f"{where_text(design.governing.get(k))}")
+                         f"{where_text(design.governing.get(k))}; {design.scene.check_basis(k)}")
     lines.append("")
     lines.append(design.message)
     return "\n".join(lines)
@@ -80,10 +82,8 @@ def _text(design) -> str:
 
 def main(args) -> int:
     from optimisation.design import DEFAULT_DISCRETE, size
-    from optimisation.problem import D_OPTIONAL, SIZED, prepare
 
-    scene = prepare(scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False))
-    warn(scene.warnings)
+    scene = sizing_scene_from_args(args)
     if args.dynamic or scene.numerics.get("sizing") == "dynamic":
         from ropemodel.cli import _size_dynamic
 

@@ -6,7 +6,7 @@ that governs it (:func:`ropemodel.envelope.solve`)."""
 
 from __future__ import annotations
 
-from ropemodel.cli._common import add_at_argument, add_scene_arguments, assignments, worst_case_scene
+from ropemodel.cli._common import add_at_argument, add_scene_arguments, assignments, warn_unread, worst_case_scene
 from ropemodel.errors import InputError
 
 NAME = "solve"
@@ -29,6 +29,8 @@ def main(args) -> int:
     find = [n.strip() for item in args.find for n in item.split(",") if n.strip()]
     if not given and not find:
         raise InputError("solve needs --given NAME=VALUE and --find NAME (use 'run' for the forward problem)")
-    result = solve(worst_case_scene(args), given, find, bare="refuse")
+    scene = worst_case_scene(args)
+    warn_unread(scene, "solve", chosen={f: "solve finds it from the --given values" for f in find})
+    result = solve(scene, given, find, bare="refuse")
     print(result.to_json() if args.json else result.table())
     return 0

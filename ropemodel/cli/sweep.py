@@ -15,7 +15,8 @@ import json
 import sys
 from typing import cast
 
-from ropemodel.cli._common import add_scene_arguments, assignments, named, scene_from_args
+from ropemodel.cli._common import (add_scene_arguments, assignments, named, scene_from_args, sizing_scene_from_args,
+                                   warn_unread)
 from ropemodel.errors import InputError
 
 NAME = "sweep"
@@ -65,7 +66,6 @@ def main(args) -> int:
     from ropemodel.sweeps import read_points, sweep
     from ropemodel.sweeps.runner import SweepFile, SweepInterrupted
 
-    scene = scene_from_args(args)
     vary = named(args.vary, "--vary", "NAME=START:STOP:N, e.g. alpha_u=5deg:45deg:1000")
     points = read_points(args.points) if args.points else None
     if points is not None and vary:
@@ -73,11 +73,16 @@ def main(args) -> int:
     if args.dynamic and not args.sizing:
         raise InputError("--dynamic needs --sizing (a sweep of the dynamic sizing optimum)")
     if args.sizing:
-        return _sizing(scene, vary, points, args)
+        return _sizing(vary, points, args)
+    scene = scene_from_args(args)
+    outputs = _names(args.outputs) or None
+    if outputs:
+        scene.built.check_names(outputs, "output")
+    warn_unread(scene, "this sweep", scene.built.inputs_of(outputs) if outputs else None)
     given: dict[str, str | None] = {g.strip(): None for g in args.given if "=" not in g}
     given.update(assignments([g for g in args.given if "=" in g], "--given"))
     try:
-        written = sweep(scene, vary or None, _names(args.outputs) or None, points=points, given=given,
+        written = sweep(scene, vary or None, outputs, points=points, given=given,
                         find=_names(args.find), out=args.output, chunk_size=args.chunk_size,
                         threads=args.threads, backend=args.backend, si=args.si,
                         errors="mark" if args.mark_failures else "raise",
@@ -102,8 +107,8 @@ def _summary(path, as_json: bool, rows: int, columns: list[str], status: str = "
         print(f"wrote {rows} points x {len(columns)} columns to {path}")
 
 
-def _sizing(scene, vary, points, args) -> int:
-    from optimisation.problem import prepare
+def _sizing(vary, points, args) -> int:
+    """The sizing optimum at every point; the scene read as sizing reads it (no starting design needed)."""
     from optimisation.sweep import sizing_sweep
     from ropemodel.progress import enabled
     from ropemodel.sweeps.files import OutputLock, check_output, write_frame
@@ -112,11 +117,12 @@ def _sizing(scene, vary, points, args) -> int:
         raise InputError("--sizing computes d, F_nwl and stroke; it takes no --given, --find or --outputs")
     out = check_output(args.output)
     with OutputLock(out):
+        scene = sizing_scene_from_args(args)
         try:
             if args.dynamic:
                 from optimisation.dynamic.sweep import dynamic_sizing_sweep
 
-                frame = dynamic_sizing_sweep(prepare(scene), vary or None, points=points,
+                frame = dynamic_sizing_sweep(scene, vary or None, points=points,
                                              progress=enabled(False if args.no_progress else None))
             else:
                 frame = sizing_sweep(scene, vary or None, points=points, warm=not args.cold,

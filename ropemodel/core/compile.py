@@ -56,10 +56,8 @@ def compile_solver(model, structure: Structure, guesses: dict[str, float] | None
             res = ca.vertcat(*[eq.residual for eq in eqs])
             x = ca.vertcat(*[model.symbols[u] for u in block.unknowns])
             p = ca.vertcat(*[model.symbols[d] for d in deps]) if deps else ca.SX(0, 1)
-            J = ca.jacobian(res, x)
-            if not ca.depends_on(J, x):
-                r0 = ca.substitute(res, x, ca.DM.zeros(x.shape))
-                sol = -r0 / J if x.numel() == 1 else ca.solve(J, -r0)
+            sol = linear_solution(res, x)
+            if sol is not None:
                 out = ca.Function(f"block{b}", [p], [sol])(p_val)
             else:
                 expandable = False
@@ -73,6 +71,19 @@ def compile_solver(model, structure: Structure, guesses: dict[str, float] | None
     fun = ca.Function(name, [value[k] for k in structure.knowns], outputs,
                       list(structure.knowns), list(structure.unknowns))
     return fun.expand() if expandable else fun
+
+
+def linear_solution(res: ca.SX, x: ca.SX) -> ca.SX | None:
+    """The solution of ``res(x) = 0`` for ``x`` when ``res`` is linear in ``x`` (``x = −J⁻¹ r(0)``), else None.
+
+    Every explicit block of the compiled model is solved by it, and reports print an equation from it
+    (:mod:`ropemodel.core.formulas`): the formula shown is the expression computed.
+    """
+    J = ca.jacobian(res, x)
+    if ca.depends_on(J, x):
+        return None
+    r0 = ca.substitute(res, x, ca.DM.zeros(x.shape))
+    return -r0 / J if x.numel() == 1 else ca.solve(J, -r0)
 
 
 def _mx_residual(eqs, unknowns, deps) -> ca.Function:

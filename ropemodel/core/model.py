@@ -72,6 +72,28 @@ class Model:
     def equation_of(self, name: str) -> Equation:
         return self.equations[self.outputs.index(name)]
 
+    def inputs_of(self, names=None) -> set[str]:
+        """The parameters the outputs ``names`` (default: every output) are computed from, through the
+        equations; a parameter among ``names`` is its own input.
+
+        >>> m = Model("winch")
+        >>> sorted(m.inputs_of(["G_ml"]))          # Krauze et al. (2025), eq. (1): G_ml = G_m sin α_u
+        ['G_m', 'alpha_u']
+        """
+        todo = list(self.outputs if names is None else names)
+        seen: set[str] = set()
+        out: set[str] = set()
+        while todo:
+            name = todo.pop()
+            if name in seen:
+                continue
+            seen.add(name)
+            if name in self.defined_by:
+                todo += self.equation_of(name).names()
+            elif name in self.symbols:
+                out.add(name)
+        return out
+
     @property
     def key(self) -> tuple:
         """What the equations depend on (model, effects, numerics): one compile serves every value."""

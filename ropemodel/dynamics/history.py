@@ -9,9 +9,10 @@ import numpy as np
 import pandas as pd
 
 from ropemodel.errors import SolveError
+from ropemodel.views.records import SimulationViews
 
 
-class Simulation:
+class Simulation(SimulationViews):
     """A simulated start-up or braking of a winch scene.
 
     Attributes
@@ -25,6 +26,9 @@ class Simulation:
         ``drive``).
     summary: dict of SI numbers and flags (see :meth:`to_dict`).
     events: located events (time, name, modes after it, state and history columns there).
+
+    In Jupyter it shows its summary with units; ``to_series()``, ``to_frame()`` (the history) and
+    ``plot()`` (the rope forces against time).
     """
 
     def __init__(self, scene, system):

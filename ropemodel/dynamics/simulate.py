@@ -3,23 +3,21 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
 
 from ropemodel.dynamics.assemble import build
 from ropemodel.dynamics.history import Simulation
 from ropemodel.dynamics.hybrid import HybridIntegrator
-
-if TYPE_CHECKING:
-    from ropemodel.scene import Scene
+from ropemodel.scene import SceneLike, as_scene
 
 
-def simulate(scene: Scene, values: Mapping | None = None, progress: bool | None = None) -> Simulation:
+def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | None = None) -> Simulation:
     """Simulate the transient of a scene with a transient (``dynamics`` "start", "stop" or "trip").
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or Path
         A winch scene whose ``dynamics`` effect is not ``"none"``.
+        A TOML scene file or a built-in scene's name is loaded first (:func:`ropemodel.load_scene`).
     values : dict, optional
         Scene parameters to override (SI numbers or strings with units).
     progress : bool, optional
@@ -51,6 +49,7 @@ def simulate(scene: Scene, values: Mapping | None = None, progress: bool | None 
     """
     from ropemodel.progress import bar, status
 
+    scene = as_scene(scene)
     if values:
         scene = scene.with_values(values)
     with status(f"simulating {scene.name}: building the transient", progress):

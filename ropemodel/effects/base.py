@@ -42,27 +42,39 @@ class Equation:
     Either a residual ``residual == 0`` in CasADi SX (the usual, fully symbolic
     form), or — built with :meth:`from_call` — ``defines = fun(*args)`` for a
     CasADi Function that cannot be written in SX (an integrator, a rootfinder).
+
+    Reports print the equation from these expressions (:mod:`ropemodel.core.formulas`), never from text:
+    the residual solved for ``defines``.  Where that explicit form is an iteration (Newton unrolled in SX)
+    rather than a formula, ``governing`` is the implicit equation it solves, written ``lhs - rhs`` in the
+    same symbols (``ln s + q s (1 − e^(−α/k)) − μα``), and ``method`` says how it is solved; a call
+    equation, or an error estimate, has no closed form: ``method`` names the method and ``tolerance`` its
+    relative tolerance.
     """
 
     defines: str
     residual: ca.SX | None
     source: str
     call: tuple[ca.Function, tuple[str, ...]] | None = None
-    #: the equation as a person reads it, plain Unicode (``"G_ml = G_m sin α_u"``), for reports
-    formula: str = ""
+    #: the implicit equation (``lhs - rhs`` in SX) that an iterated explicit form solves, for reports
+    governing: ca.SX | None = None
+    #: how the value is computed where no closed form shows it (``"adaptive Dormand–Prince 5(4)"``)
+    method: str = ""
+    #: the relative tolerance that method meets, where it has one
+    tolerance: float | None = None
 
     @classmethod
-    def from_call(cls, defines: str, fun: ca.Function, args, source: str, formula: str = "") -> Equation:
+    def from_call(cls, defines: str, fun: ca.Function, args, source: str, method: str,
+                  tolerance: float | None = None) -> Equation:
         """``defines = fun(*args)``: ``fun`` takes one scalar per name in ``args`` and returns one scalar.
 
         The compiled solver calls ``fun`` directly when it solves for ``defines``,
         and solves by Newton through ``fun``'s derivatives when an inverse
-        question frees one of ``args``.
+        question frees one of ``args``.  ``method`` (and ``tolerance``) say how ``fun`` computes it.
         """
         args = tuple(args)
         if fun.n_in() != len(args) or fun.n_out() != 1:
             raise RuntimeError(f"{fun.name()}: expected {len(args)} inputs and one output for {defines}")
-        return cls(defines, None, source, (fun, args), formula)
+        return cls(defines, None, source, (fun, args), method=method, tolerance=tolerance)
 
     def names(self) -> list[str]:
         """Every quantity the equation involves."""
@@ -92,6 +104,10 @@ class Submodel:
     quantities: ClassVar[tuple[Quantity, ...]] = ()
     #: the quantities :meth:`invalid_mask` reads (a sweep computes them even when not asked for)
     invalid_needs: ClassVar[tuple[str, ...]] = ()
+    #: what this variant takes for granted, one sentence each (the report's "Assumptions")
+    assumptions: ClassVar[tuple[str, ...]] = ()
+    #: what a calculation with this variant still lacks before it is filed, one sentence each ("Data still missing")
+    missing: ClassVar[tuple[str, ...]] = ()
 
     def __init__(self, options: dict | None = None, effects: dict | None = None):
         #: the scene's ``[numerics]`` (and structural options such as the route's segments)

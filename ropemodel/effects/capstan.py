@@ -89,13 +89,13 @@ T_PARAM = Quantity("T", "N*m", "load torque on the capstan", "N*m", low=0.0, gue
                    equation=f"{SRC}, section 3: T = 2 R F_T")
 
 
-def Q(name, unit, description, display, equation):
-    return Quantity(name, unit, description, display, equation=f"{SRC}, {equation}")
+def Q(name, unit, description, display, equation, symbol=""):
+    return Quantity(name, unit, description, display, equation=f"{SRC}, {equation}", symbol=symbol)
 
 
 OUTPUTS = (
     Q("delta", "m", "cable displacement at the capstan rim, integral of dF/K", "mm", "eq. (11) integrated"),
-    Q("delta_alpha", "rad", "rotation of the capstan, delta/R", "deg", "eq. (13), (19)"),
+    Q("delta_alpha", "rad", "rotation of the capstan, delta/R", "deg", "eq. (13), (19)", "Δα"),
     Q("alpha_1", "rad", "tight-side wrap after rotation", "deg", "eq. (13)"),
     Q("alpha_2", "rad", "slack-side wrap after rotation", "deg", "eq. (19)"),
     Q("theta_s1", "rad", "tight-side slip angle, at most alpha_1", "deg", "eq. (6), (13)"),
@@ -115,11 +115,6 @@ class _Stiffness(Submodel):
 
     citations = ("li_capstan",)
     quantities = PARAMS + (F_T_PARAM,) + OUTPUTS
-    #: K_ti and K_sl as a person reads them (reports), eq. (24)-(26) in the tight + slack reading
-    tight_formula = ("K_ti = μEA(F_p + F_T) / (2R F_T + μL(F_p + F_T)) while θ_s1 < α_1, "
-                     "else μEA / (2R(1 − e^(−μα_1)) + μL)")
-    slack_formula = ("K_sl = μEA(F_p − F_T) / (2R F_T + μL(F_p − F_T)) while θ_s2 < α_2, else μEA / (2R(1 − e^(−μα_2)) "
-                     "+ μL); 0 for F_T ≥ F_p")
 
     def _settings(self):
         o = self.options
@@ -131,15 +126,17 @@ class _Stiffness(Submodel):
     def _rotation_equations(self):
         """delta and delta_error as two call equations of one rotation Function (inlined: the core merges them)."""
         fun = self._rotation()
-        src = ("eq. (11): delta = integral of dF/K(F, alpha(delta))",
-               "error estimate of the rotation (summed local estimates)")
-        formulas = ("δ = ∫₀^F_T dF / K(F, α_1(δ), α_2(δ))",
-                    "δ_error = 2 Σ |x5 − x4| / δ over the adaptive Dormand–Prince 5(4) steps, rounded up to one digit")
+        rtol = self._settings()[2]
+        src = ("eq. (11) integrated over the load from 0 to F_T, the wraps following the rotation (not in the paper)",
+               "the rotation's error estimate: twice the summed local estimates, relative to δ, rounded up to one "
+               "digit (not in the paper)")
+        method = (f"adaptive, event-located Dormand–Prince 5(4) in u = ln(1 + F/F_p), the switches of eq. (26) "
+                  f"located, error-controlled to rtol = {rtol:g}")
         eqs = []
-        for k, (out, text, formula) in enumerate(zip(("delta", "delta_error"), src, formulas)):
+        for k, (out, text) in enumerate(zip(("delta", "delta_error"), src)):
             part = ca.Function(f"capstan_{out}", fun.mx_in(), [fun.call(fun.mx_in())[k]], fun.name_in(), [out],
                                {"always_inline": True})
-            eqs.append(Equation.from_call(out, part, ARGS, text, formula))
+            eqs.append(Equation.from_call(out, part, ARGS, text, method, rtol))
         return eqs
 
     def equations(self, v):
@@ -149,19 +146,15 @@ class _Stiffness(Submodel):
         w1, w2 = li.wrap_angles(a0, v["delta"], R)
         k_ti, k_sl = law.parts(F, F_p, mu, EA, R, L, a1, a2, self.options.get("sharpness", 30.0))
         return self._rotation_equations() + [
-            Equation("delta_alpha", v["delta_alpha"] - v["delta"] / R, "eq. (13), (19): rotation delta/R",
-                     formula="Δα = δ / R"),
-            Equation("alpha_1", a1 - w1, "eq. (13)", formula="α_1 = α_0 + δ / R"),
-            Equation("alpha_2", a2 - w2, "eq. (19)", formula="α_2 = α_0 − δ / R"),
-            Equation("theta_s1", v["theta_s1"] - li.tight_slip_angle_limited(F, F_p, mu, a1), "eq. (6), (13)",
-                     formula="θ_s1 = min(ln((F_p + F_T) / F_p) / μ, α_1)"),
-            Equation("theta_s2", v["theta_s2"] - li.slack_slip_angle_limited(F, F_p, mu, a2), "eq. (16), (19)",
-                     formula="θ_s2 = min(ln(F_p / (F_p − F_T)) / μ, α_2); α_2 once F_T ≥ F_p (1 − e^(−μα_2))"),
-            Equation("K_ti", v["K_ti"] - k_ti, "eq. (24), (26)", formula=self.tight_formula),
-            Equation("K_sl", v["K_sl"] - k_sl, "eq. (25), (26)", formula=self.slack_formula),
-            Equation("K", v["K"] - (v["K_ti"] + v["K_sl"]), "eq. (23)", formula="K = K_ti + K_sl"),
-            Equation("regime", v["regime"] - regime_number(F, F_p, mu, a1, a2), "eq. (26), tight + slack reading",
-                     formula="regime = 1 … 6 from the signs of θ_s1 − α_1, θ_s2 − α_2 and F_T − F_p"),
+            Equation("delta_alpha", v["delta_alpha"] - v["delta"] / R, "eq. (13), (19): the rotation"),
+            Equation("alpha_1", a1 - w1, "eq. (13)"),
+            Equation("alpha_2", a2 - w2, "eq. (19)"),
+            Equation("theta_s1", v["theta_s1"] - li.tight_slip_angle_limited(F, F_p, mu, a1), "eq. (6), (13)"),
+            Equation("theta_s2", v["theta_s2"] - li.slack_slip_angle_limited(F, F_p, mu, a2), "eq. (16), (19)"),
+            Equation("K_ti", v["K_ti"] - k_ti, "eq. (24), (26)"),
+            Equation("K_sl", v["K_sl"] - k_sl, "eq. (25), (26)"),
+            Equation("K", v["K"] - (v["K_ti"] + v["K_sl"]), "eq. (23)"),
+            Equation("regime", v["regime"] - regime_number(F, F_p, mu, a1, a2), "eq. (26), tight + slack reading"),
         ]
 
     def validate(self, values):
@@ -200,6 +193,8 @@ class PublishedStiffness(_Stiffness):
     """
 
     description = LAWS["li"].doc
+    assumptions = ("Eq. (26) as published, the slack side's stiffness jumping up where its slip zone fills its "
+                   "wrap.",)
 
 
 @register(MODEL, "stiffness", "continuous")
@@ -212,8 +207,6 @@ class ContinuousStiffness(_Stiffness):
     """
 
     description = LAWS["continuous"].doc
-    slack_formula = ("K_sl = μEA(F_p − F_T) / (2R F_T + μL(F_p − F_T)) while θ_s2 < α_2, else μEA / (2R(e^(μα_2) − 1) "
-                     "+ μL); 0 for F_T ≥ F_p")
 
 
 @register(MODEL, "stiffness", "smooth")
@@ -229,9 +222,6 @@ class SmoothStiffness(_Stiffness):
     """
 
     description = LAWS["smooth"].doc
-    tight_formula = "K_ti = (1 − σ(s z_t)) K_ti,slipping + σ(s z_t) K_ti,saturated, z_t = ln(1 + F_T/F_p) − μα_1"
-    slack_formula = ("K_sl = (1 − σ(s z_u)) ((1 − σ(s z_s)) K_sl,slipping + σ(s z_s) K_sl,saturated), "
-                     "z_s = F_T/F_p − (1 − e^(−μα_2)), z_u = F_T/F_p − 1, σ(x) = 1/(1 + e^(−x))")
 
 
 @register(MODEL, "load", "force")
@@ -243,7 +233,7 @@ class ForceLoad(Submodel):
     quantities = (F_T_PARAM, T_PARAM, PARAMS[2])
 
     def equations(self, v):
-        return [Equation("T", v["T"] - 2.0 * v["R"] * v["F_T"], "section 3: T = 2 R F_T", formula="T = 2 R F_T")]
+        return [Equation("T", v["T"] - 2.0 * v["R"] * v["F_T"], "section 3")]
 
 
 @register(MODEL, "load", "torque")
@@ -255,4 +245,4 @@ class TorqueLoad(Submodel):
     quantities = (F_T_PARAM, T_PARAM, PARAMS[2])
 
     def equations(self, v):
-        return [Equation("F_T", v["T"] - 2.0 * v["R"] * v["F_T"], "section 3: F_T = T/(2R)", formula="F_T = T / (2R)")]
+        return [Equation("F_T", v["T"] - 2.0 * v["R"] * v["F_T"], "section 3")]

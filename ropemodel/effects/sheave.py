@@ -51,7 +51,8 @@ import numpy as np
 from ropemodel.effects.base import (Equation, Submodel, choice, define_effect, define_numerics,
                                     positive_number, register, whole_number)
 from ropemodel.errors import InputError, SolveError
-from ropemodel.numerics.hajduk_integrators import DEFAULT, INTEGRATORS, log_ratio_function, segment_function
+from ropemodel.numerics.hajduk_integrators import (DEFAULT, DESCRIPTIONS, INTEGRATORS, log_ratio_function,
+                                                   segment_function)
 from ropemodel.papers import friction as fr
 from ropemodel.papers import hajduk1992 as hj
 from ropemodel.quantity import Quantity, non_negative, positive
@@ -106,19 +107,16 @@ class _Lining(Submodel):
 
     citations: ClassVar[tuple[str, ...]] = ("hajduk1992",)
     args: tuple[str, ...] = ()
-    #: the equations as a person reads them (reports): the closed form, eq. (19), and the ODE, eq. (5)-(6)
-    closed_formula = "ln(S/S_0) + S [Q_R (1 − e^(−α/(λ_R ω))) + Q_T (1 − e^(−α/(λ_T ω)))] = μ α"
-    ode_formula = ("dS/dα = S (μ(S) − S C′(α)) / (1 + S C(α)), S(0) = S_0, "
-                   "C(α) = Q_R (1 − e^(−α/(λ_R ω))) + Q_T (1 − e^(−α/(λ_T ω))), μ(S) = μ / (1 + c_μ S)")
 
     def data(self, S_0, omega, *args):
         raise NotImplementedError
 
     def _closed(self, v):
-        """(ln s, its error estimate) of the exact solution, eq. (19), as SX."""
+        """(ln s, its error estimate, the residual of eq. (19) at S) of the exact solution, as SX."""
         Q_R, k_R, Q_T, k_T = self.data(v["S_0"], v["omega"], *[v[a] for a in self.args])
         g = (v["mu"], v["alpha"], Q_R * v["S_0"], k_R, Q_T * v["S_0"], k_T)
-        return hj.log_tension_ratio(*g), hj.log_tension_ratio_error(*g)
+        governing = hj.tension_residual(v["S"], v["S_0"], v["mu"], v["alpha"], Q_R, k_R, Q_T, k_T)
+        return hj.log_tension_ratio(*g), hj.log_tension_ratio_error(*g), governing
 
     def _integrator(self):
         o = self.options
@@ -137,23 +135,26 @@ class _Lining(Submodel):
                            ["S", "S_error"]), names
 
     def equations(self, v):
-        eqs = [Equation("S_ratio", v["S_ratio"] * v["S_0"] - v["S"], "S_ratio = S/S_0", formula="S_ratio = S / S_0")]
+        eqs = [Equation("S_ratio", v["S_ratio"] * v["S_0"] - v["S"], "the tension ratio over the arc")]
         if self.options.get("method", "closed") == "ode":
             fun, names = self._call()
             name = self.options.get("integrator", DEFAULT)
-            for k, (out, src, formula) in enumerate((
-                    ("S", f"{SRC}, eq. (5)-(6) integrated ({name})", self.ode_formula),
-                    ("S_error", f"error estimate of the {name} integration",
-                     "S_error = the integrator's estimate of the relative error of S (≤ rtol)"))):
+            rtol = float(self.options.get("rtol", 1e-7))
+            method = (f"{DESCRIPTIONS[name]} ([numerics] integrator = {name!r}) of eq. (5)-(6) from S(0) = S_0, "
+                      f"error-controlled to rtol = {rtol:g}")
+            for k, (out, src) in enumerate((("S", f"{SRC}, eq. (5)-(6) integrated"),
+                                            ("S_error", "the integrator's estimate of the relative error of S"))):
                 # one Function per output, inlined where called: the core merges the two calls (CSE)
                 part = ca.Function(f"{fun.name()}_{out}", fun.mx_in(), [fun.call(fun.mx_in())[k]], fun.name_in(),
                                    [out], {"always_inline": True})
-                eqs.append(Equation.from_call(out, part, names, src, formula))
+                eqs.append(Equation.from_call(out, part, names, src, method, rtol))
         else:
-            y, err = self._closed(v)
-            eqs.append(Equation("S", v["S"] - v["S_0"] * ca.exp(y), f"{SRC}, eq. (19)", formula=self.closed_formula))
-            eqs.append(Equation("S_error", v["S_error"] - err, f"{SRC}, eq. (19): next Newton step + rounding",
-                                formula="S_error = |next Newton step of eq. (19) in ln S| + rounding"))
+            y, err, governing = self._closed(v)
+            eqs.append(Equation("S", v["S"] - v["S_0"] * ca.exp(y), f"{SRC}, eq. (19)", governing=governing,
+                                method=hj.NEWTON_METHOD))
+            eqs.append(Equation("S_error", v["S_error"] - err, f"{SRC}, eq. (19)",
+                                method="the size of the next Newton step of eq. (19) in ln s, plus 8 ulp of rounding "
+                                "times (1 + μα)"))
         return eqs
 
     def numeric_data(self, values):
@@ -201,7 +202,6 @@ class RigidLining(_Lining):
     description = "rigid lining (Euler-Eytelwein)"
     citations = ("euler_eytelwein", "hajduk1992")
     quantities = (S_0, MU, ALPHA, S_OUT, S_RATIO, S_ERROR)
-    ode_formula = "dS/dα = μ(S) S, S(0) = S_0, μ(S) = μ / (1 + c_μ S)"
 
     def data(self, S_0, omega, *args):
         return 0.0, 1.0, 0.0, 1.0
@@ -217,11 +217,11 @@ class RigidLining(_Lining):
     def equations(self, v):
         if self.options.get("method", "closed") == "ode":
             return super().equations(v)
-        return [Equation("S_ratio", v["S_ratio"] * v["S_0"] - v["S"], "S_ratio = S/S_0", formula="S_ratio = S / S_0"),
+        return [Equation("S_ratio", v["S_ratio"] * v["S_0"] - v["S"], "the tension ratio over the arc"),
                 Equation("S", v["S"] - v["S_0"] * fr.euler_eytelwein_ratio(v["mu"], v["alpha"]),
-                         "Euler-Eytelwein, Hajduk 1992 eq. (8)", formula="S = S_0 e^(μ α)"),
+                         "Euler-Eytelwein, Hajduk 1992 eq. (8)"),
                 Equation("S_error", v["S_error"] - hj.ROUNDING * (1.0 + v["mu"] * v["alpha"]),
-                         "Euler-Eytelwein, explicit: rounding only", formula="S_error = ε (1 + μ α), ε the rounding")]
+                         "Euler-Eytelwein: the closed form's rounding, 8 ulp times (1 + μα)")]
 
     def numeric_data(self, values):
         return 0.0, 1.0, 0.0, 1.0
@@ -238,9 +238,6 @@ class VoigtLining(_Lining):
     quantities = (S_0, MU, ALPHA, OMEGA, _compliance("Q", "total (radial + tangential)"),
                   _retardation("lambda", "the"), S_OUT, S_RATIO, S_ERROR)
     args = ("Q", "lambda")
-    closed_formula = "ln(S/S_0) + Q S (1 − e^(−α/(λ ω))) = μ α"
-    ode_formula = ("dS/dα = S (μ(S) − Q S e^(−α/(λω))/(λω)) / (1 + Q S (1 − e^(−α/(λω)))), S(0) = S_0, "
-                   "μ(S) = μ / (1 + c_μ S)")
 
     def data(self, S_0, omega, Q, lam):
         return Q, lam * omega, 0.0, 1.0
@@ -279,14 +276,10 @@ class PhysicalVoigtLining(AnisotropicVoigtLining):
 
     def equations(self, v):
         return super().equations(v) + [
-            Equation("Q_R", v["Q_R"] - hj.radial_compliance(v["h"], v["E"], v["R"], v["a"]), f"{SRC}, eq. (6)",
-                     formula="Q_R = h / (E R² a)"),
-            Equation("Q_T", v["Q_T"] - hj.tangential_compliance(v["mu"], v["G"], v["R"], v["a"]), f"{SRC}, eq. (6)",
-                     formula="Q_T = μ / (G R a)"),
-            Equation("lambda_R", v["lambda_R"] - hj.retardation_time(v["eta_R"], v["E"]), f"{SRC}, eq. (1)",
-                     formula="λ_R = η_R / E"),
-            Equation("lambda_T", v["lambda_T"] - hj.retardation_time(v["eta_T"], v["G"]), f"{SRC}, eq. (1)",
-                     formula="λ_T = η_T / G"),
+            Equation("Q_R", v["Q_R"] - hj.radial_compliance(v["h"], v["E"], v["R"], v["a"]), f"{SRC}, eq. (6)"),
+            Equation("Q_T", v["Q_T"] - hj.tangential_compliance(v["mu"], v["G"], v["R"], v["a"]), f"{SRC}, eq. (6)"),
+            Equation("lambda_R", v["lambda_R"] - hj.retardation_time(v["eta_R"], v["E"]), f"{SRC}, eq. (1)"),
+            Equation("lambda_T", v["lambda_T"] - hj.retardation_time(v["eta_T"], v["G"]), f"{SRC}, eq. (1)"),
         ]
 
     def lining_values(self, values):
@@ -302,10 +295,11 @@ class ConstantFriction(Submodel):
     """Constant friction coefficient μ (c_mu = 0)."""
 
     description = "constant friction coefficient"
+    assumptions = ("A constant friction coefficient μ, independent of the contact pressure.",)
     quantities = (C_MU,)
 
     def equations(self, v):
-        return [Equation("c_mu", v["c_mu"], "constant friction: c_mu = 0", formula="c_μ = 0")]
+        return [Equation("c_mu", v["c_mu"], "constant friction (no pressure dependence)")]
 
 
 @register(MODEL, "friction", "thirion")
@@ -331,8 +325,8 @@ class ThirionFriction(Submodel):
 
     def equations(self, v):
         # multiplied out: linear in c_mu and in p_c, R, a, so either direction is explicit
-        return [Equation("c_mu", v["c_mu"] * v["p_c"] * v["R"] * v["a"] - 1.0, "c_mu = 1/(p_c R a)",
-                         formula="c_μ = 1 / (p_c R a)")]
+        return [Equation("c_mu", v["c_mu"] * v["p_c"] * v["R"] * v["a"] - 1.0,
+                         "Thirion 1946, with the contact pressure p = S/(R a)")]
 
     def validate(self, values):
         if self.options.get("method", "closed") != "ode":

@@ -10,8 +10,9 @@ Effects and variants
 ``resistance``  ``case1`` (default) — μ_pl1 = μ_pl2 = μ_pl, eq. (15)-(16);
                 ``case2`` — μ_pl1, μ_pl2 given separately, eq. (17)-(18).
 ``elongation``  ``krauze2025`` (default) — eq. (19)-(23); ``none`` builds no elongation equation.
-``power``       ``none`` (default); ``drive`` — N_p = (F_C − F_S)·v_pj/η per direction (not in
-                the paper; force balance on the drum).
+``power``       ``none`` (default); ``drive`` — the drum's power P_drum = (F_C − F_S)·(±v_pj) and
+                the drive's N_p = P_drum/η motoring, P_drum·η braking, per direction, signed:
+                > 0 motoring, < 0 braking (not in the paper; force balance on the drum).
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ import numpy as np
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
-from ropemodel.quantity import Quantity
+from ropemodel.quantity import Quantity, symbol_of
 
 MODEL = "winch"
 DIRECTIONS = {"up": kr.UP, "down": kr.DOWN}
@@ -34,6 +35,9 @@ NONNEGATIVE = dict(low=0.0)
 #: an output whose worst case is its largest value (:attr:`ropemodel.quantity.Quantity.worst`)
 LARGEST = dict(worst=("largest",))
 COEFFICIENT = dict(low=0.0, high=1.0)
+
+#: what a signed power's sign means (four-quadrant convention)
+SIGNS = ("braking", "motoring")
 
 #: where the usual ranges come from (warnings outside them; README, "Writing a scene")
 JUDGEMENT = "engineering judgement, a wide margin around the paper's example"
@@ -63,10 +67,12 @@ D_DRUM = Q("D", "m", "diameter of the driving drum (at the rope centre line)", "
                              "D >= 30 d)"), **POSITIVE)
 
 
-def per_direction(name, unit, description, display=None, **kw) -> tuple[Quantity, ...]:
-    """The ``_up`` and ``_down`` versions of a direction-dependent quantity."""
+def per_direction(name, unit, description, display=None, symbol="", **kw) -> tuple[Quantity, ...]:
+    """The ``_up`` and ``_down`` versions of a direction-dependent quantity (``symbol``: the symbol both
+    share, e.g. ``"m_safety"``, shown ``m_safety,up``; default: made from the name)."""
     return tuple(
-        Q(f"{name}_{d}", unit, f"{description} ({'upward' if d == 'up' else 'downward'} travel)", display, **kw)
+        Q(f"{name}_{d}", unit, f"{description} ({'upward' if d == 'up' else 'downward'} travel)", display,
+          symbol=symbol_of(f"{name}_{d}", symbol) if symbol else "", **kw)
         for d in DIRECTIONS
     )
 
@@ -98,6 +104,8 @@ class HaulageForces(Submodel):
     """
 
     description = "static forces in the winding (F_C) and unwinding (F_S) rope, both directions"
+    assumptions = ("The rope forces of eq. (12)-(13): half the tensioner's force F_nwl in each rope at the return "
+                   "sheave, the weights along the incline, and resistances proportional to the normal forces.",)
     citations = ("krauze2025",)
     quantities = (
         F_NWL,
@@ -109,21 +117,17 @@ class HaulageForces(Submodel):
     )
 
     def equations(self, v):
-        eqs = [Equation("G_lmC", v["G_lmC"] - (v["G_ml"] + v["G_l"]), "eq. (14)", formula="G_lmC = G_ml + G_l")]
+        eqs = [Equation("G_lmC", v["G_lmC"] - (v["G_ml"] + v["G_l"]), "eq. (14)")]
         rigid = self.effects.get("inertia") == "rigid"
         for d, sign in DIRECTIONS.items():
             T_S, T_C = v["T_ls"], v["T_m"] + v["T_l"]
             if rigid:   # the inertia of a ramp acts like a resistance: with the sign of travel
                 T_S, T_C = T_S + v["I_S"], T_C + v["I_C"]
-            pm, extra_S, extra_C = ("−", " − I_S", " + I_C") if d == "up" else ("+", " + I_S", " − I_C")
             eqs.append(Equation(f"F_S_{d}", v[f"F_S_{d}"] - kr.unwinding_rope_force(v["F_nwl"], v["G_ls"], T_S, sign),
-                                "eq. (12)" + (" + inertia" if rigid else ""),
-                                formula=f"F_S = 0.5 F_nwl + G_ls {pm} T_ls" + (extra_S if rigid else "")))
+                                "eq. (12)" + (" + inertia" if rigid else "")))
             eqs.append(Equation(f"F_C_{d}",
                                 v[f"F_C_{d}"] - kr.winding_rope_force(v["F_nwl"], v["G_lmC"], T_C, 0.0, sign),
-                                "eq. (13)" + (" + inertia" if rigid else ""),
-                                formula=f"F_C = 0.5 F_nwl + G_lmC {'+' if d == 'up' else '−'} (T_m + T_l)"
-                                + (extra_C if rigid else "")))
+                                "eq. (13)" + (" + inertia" if rigid else "")))
         return eqs
 
     invalid_needs = _FORCES
@@ -177,6 +181,8 @@ class SteadyMotion(Submodel):
     """Steady motion: no inertia force (the paper's forces)."""
 
     description = "steady motion: no inertia force"
+    assumptions = ("Steady motion: the forces are those at constant speed; starting and stopping add inertia "
+                   "(inertia = \"rigid\", or the transient).",)
 
     def acceleration(self, v):
         """The haulage's acceleration the forces include [m/s²]: none."""
@@ -220,9 +226,9 @@ class RigidInertia(Submodel):
         v["a_e"]  # noqa: B018 - a parameter of the scene: the emergency stop of the worst case (ropemodel.envelope)
         return [
             Equation("I_C", v["I_C"] - rt.winding_side_mass(v["G_m"], v["q_l"], v["L_u"]) * v["a_h"],
-                     "(G_m + q_l L_u)/g a_h", formula="I_C = (G_m + q_l L_u) a_h / g"),
-            Equation("I_S", v["I_S"] - rt.unwinding_side_mass(v["q_l"], v["L_u"]) * v["a_h"], "q_l L_u/g a_h",
-                     formula="I_S = q_l L_u a_h / g"),
+                     "rigid-body inertia (not in the paper)"),
+            Equation("I_S", v["I_S"] - rt.unwinding_side_mass(v["q_l"], v["L_u"]) * v["a_h"],
+                     "rigid-body inertia (not in the paper)"),
         ]
 
 
@@ -231,14 +237,17 @@ class ResistanceCase1(Submodel):
     """Case 1 of Krauze et al. (2025), eq. (15): μ_pl1 = μ_pl2 = μ_pl; eq. (16) follows."""
 
     description = "one resistance coefficient mu_pl for all rope sections"
+    assumptions = ("One resistance coefficient μ_pl for every section of the rope, eq. (15).",)
     citations = ("krauze2025",)
+    #: the winding rope's resistance changes at point A (the straight route is two pieces there)
+    split_at_A = False
 
     def equations(self, v):
         if self.effects.get("route") == "segments":   # each segment carries its own coefficient
             return []
         return [
-            Equation("mu_pl1", v["mu_pl1"] - v["mu_pl"], "eq. (15)", formula="μ_pl1 = μ_pl"),
-            Equation("mu_pl2", v["mu_pl2"] - v["mu_pl"], "eq. (15)", formula="μ_pl2 = μ_pl"),
+            Equation("mu_pl1", v["mu_pl1"] - v["mu_pl"], "eq. (15)"),
+            Equation("mu_pl2", v["mu_pl2"] - v["mu_pl"], "eq. (15)"),
         ]
 
 
@@ -252,6 +261,7 @@ class ResistanceCase2(Submodel):
 
     description = "separate coefficients mu_pl1, mu_pl2 for the winding rope either side of point A"
     citations = ("krauze2025",)
+    split_at_A = True
 
 
 @register(MODEL, "elongation", "krauze2025")
@@ -259,6 +269,13 @@ class Elongation(Submodel):
     """Rope elongation and the minimum tensioner stroke, Krauze et al. (2025) eq. (19)-(23)."""
 
     description = "elongation of both ropes and the minimum stroke of the return sheave"
+    assumptions = (
+        "Each rope side stretches under its largest force over its whole length, eq. (19)-(20): the elastic "
+        "elongation is bounded from above.",
+        "No constructional (permanent) stretch of a new rope: it comes on top of the elastic elongation and usually "
+        "dominates the first months.",
+        "The tensioner takes up the loop's whole elongation: its reeving (number of falls) is not modelled.",
+    )
     citations = ("krauze2025",)
     quantities = (
         Q("q_lw", "m/N", "unit elongation of the installed rope", "mm/kN", guess=5.8e-6,
@@ -273,18 +290,13 @@ class Elongation(Submodel):
     )
 
     def equations(self, v):
-        eqs = [Equation("dF_nwl", v["dF_nwl"] - kr.elongation(v["q_lw"], v["F_nwl"]), "eq. (22)",
-                        formula="ΔF_nwl = q_lw F_nwl")]
+        eqs = [Equation("dF_nwl", v["dF_nwl"] - kr.elongation(v["q_lw"], v["F_nwl"]), "eq. (22)")]
         for d in DIRECTIONS:
             eqs += [
-                Equation(f"dF_C_{d}", v[f"dF_C_{d}"] - kr.elongation(v["q_lw"], v[f"F_C_{d}"]), "eq. (19)",
-                         formula="ΔF_C = q_lw F_C"),
-                Equation(f"dF_S_{d}", v[f"dF_S_{d}"] - kr.elongation(v["q_lw"], v[f"F_S_{d}"]), "eq. (20)",
-                         formula="ΔF_S = q_lw F_S"),
-                Equation(f"dF_CS_{d}", v[f"dF_CS_{d}"] - (v[f"dF_C_{d}"] + v[f"dF_S_{d}"]), "eq. (21)",
-                         formula="ΔF_CS = ΔF_C + ΔF_S"),
-                Equation(f"dF_{d}", v[f"dF_{d}"] - (v[f"dF_CS_{d}"] + v["dF_nwl"]), "eq. (23)",
-                         formula="ΔF = ΔF_CS + ΔF_nwl"),
+                Equation(f"dF_C_{d}", v[f"dF_C_{d}"] - kr.elongation(v["q_lw"], v[f"F_C_{d}"]), "eq. (19)"),
+                Equation(f"dF_S_{d}", v[f"dF_S_{d}"] - kr.elongation(v["q_lw"], v[f"F_S_{d}"]), "eq. (20)"),
+                Equation(f"dF_CS_{d}", v[f"dF_CS_{d}"] - (v[f"dF_C_{d}"] + v[f"dF_S_{d}"]), "eq. (21)"),
+                Equation(f"dF_{d}", v[f"dF_{d}"] - (v[f"dF_CS_{d}"] + v["dF_nwl"]), "eq. (23)"),
             ]
         return eqs
 
@@ -294,6 +306,7 @@ class NoElongation(Submodel):
     """Elongation off: no elongation or stroke equation is built."""
 
     description = "no elongation equations"
+    missing = ("No elongation: the tensioner's stroke is not computed (elongation = \"krauze2025\").",)
 
 
 @register(MODEL, "power", "none")
@@ -305,24 +318,36 @@ class NoPower(Submodel):
 
 @register(MODEL, "power", "drive")
 class DrivePower(Submodel):
-    """Drive power N_p = (F_C − F_S)·v_pj/η per direction (not in Krauze et al. 2025).
+    """Drive power per direction, signed (four-quadrant; not in Krauze et al. 2025).
 
-    The drum's torque balances the difference of the winding and unwinding rope
-    forces; η is the efficiency of the drive train from motor to drum rim.
+    The drum's power P_drum = (F_C − F_S)·u with u = s·v_pj the load's signed speed (s = +1 upward,
+    −1 downward; :func:`ropemodel.papers.krauze2025.drum_power`), and the drive's
+    N_p = P_drum/η while it motors (P_drum > 0), P_drum·η while it brakes (P_drum < 0;
+    :func:`~ropemodel.papers.krauze2025.drive_power`).  η is the efficiency of the drive train from
+    motor to drum rim.  Lowering the paper's load (Fig. 9) the drive brakes: N_p_down = −243.584 kW.
     """
 
-    description = "drive power per direction from the force balance on the drum"
+    description = "drive power per direction, > 0 motoring, < 0 braking, from the force balance on the drum"
+    assumptions = ("The drive train's efficiency η divides the power while motoring and multiplies it while "
+                   "braking; the drum's own inertia and losses are not included.",)
     citations = ("krauze2025",)
     quantities = (
         V_PJ,
         ETA,
-        *per_direction("N_p", "W", "drive power", "kW", equation="force balance on the drum",
-                       worst=("largest", "least")),
+        *per_direction("P_drum", "W", "power at the drum, (F_C − F_S) times the load's signed speed: > 0 motoring, "
+                       "< 0 braking", "kW", equation="force balance on the drum (not in the paper)",
+                       signs=SIGNS, worst=("largest", "least")),
+        *per_direction("N_p", "W", "drive power, P_drum/η motoring (> 0), P_drum·η braking (< 0)", "kW",
+                       equation="force balance on the drum and the drive train's efficiency (not in the paper)",
+                       signs=SIGNS, worst=("largest", "least")),
     )
 
     def equations(self, v):
-        return [
-            Equation(f"N_p_{d}", v[f"N_p_{d}"] - kr.drive_power(v[f"F_C_{d}"], v[f"F_S_{d}"], v["v_pj"], v["eta"]),
-                     "N_p = (F_C - F_S) v_pj / eta", formula="N_p = (F_C − F_S) v_pj / η")
-            for d in DIRECTIONS
-        ]
+        eqs = []
+        for d, sign in DIRECTIONS.items():
+            eqs += [Equation(f"P_drum_{d}", v[f"P_drum_{d}"] - kr.drum_power(v[f"F_C_{d}"], v[f"F_S_{d}"],
+                                                                           sign * v["v_pj"]),
+                             "force balance on the drum (not in the paper)"),
+                    Equation(f"N_p_{d}", v[f"N_p_{d}"] - kr.drive_power(v[f"P_drum_{d}"], v["eta"]),
+                             "the drive train's efficiency, four-quadrant (not in the paper)")]
+        return eqs

@@ -23,13 +23,14 @@ Krauze et al. (2025) give eq. (23) (least stroke ΔF) and the rule D >= 30 d (th
 introduction, "Drum diameter D is selected based on rope diameter d, ensuring
 compliance with minimum conditions D >= 30d"): hence the default D_ratio_min = 30.
 The safety factor n_rope has no default: it is set by the code of practice that
-applies (mine haulage regulations differ by country and duty).
+applies (mine haulage regulations differ by country and duty): typed, or given by
+a rule set in the scene's [rules] (ropemodel.rules; the checks read their factors
+the same way either way, and each check names where its factor comes from).
 """
 
 from __future__ import annotations
 
 from typing import Any
-
 
 from ropemodel._math import fmin
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
@@ -71,6 +72,7 @@ class NoChecks(Submodel):
     """Design checks off."""
 
     description = "no design checks"
+    missing = ("No design checks (rope safety, slack rope, stroke, drum diameter): choose checks = \"design\".",)
 
 
 @register(MODEL, "checks", "design")
@@ -93,28 +95,33 @@ class DesignChecks(Submodel):
           default=0.0, default_note="no least tension given: the ropes need only stay taut (> 0)"),
         X_M,
         STROKE,
-        Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", low=1.0, default=30.0,
+        Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", low=1.0, default=30.0, symbol="(D/d)_min",
           equation=f"{SRC}, introduction: D >= 30 d"),
         *per_direction("F_S_least", "N", "least tension of the unwinding rope along the route (at its joints, "
-                       "between the drum and the return sheave)", "kN", equation=LEAST, worst=LEAST_SENSE),
+                       "between the drum and the return sheave)", "kN", symbol="F_S,least", equation=LEAST,
+                       worst=LEAST_SENSE),
         *per_direction("F_C_least", "N", "least tension of the winding rope along the route (at its joints and "
-                       "beside the load, between the drum and the return sheave)", "kN", equation=LEAST,
-                       worst=LEAST_SENSE),
+                       "beside the load, between the drum and the return sheave)", "kN", symbol="F_C,least",
+                       equation=LEAST, worst=LEAST_SENSE),
         *per_direction("safety_margin", "1", "margin of rope safety F_min/(n_rope F_C) - 1 (>= 0 passes)",
-                       equation="F_min / (n_rope F_C) - 1", worst=LEAST_SENSE),
-        *per_direction("slack_margin", "N", "margin against a slack unwinding rope F_S - F_S_min (>= 0 passes)",
-                       "kN", equation="F_S - F_S_min", worst=LEAST_SENSE),
-        *per_direction("taut_margin", "N", "margin against a slack winding rope F_C - F_S_min (>= 0 passes; "
-                       "when lowering on a gentle slope the winding rope can go slack)", "kN",
-                       equation="F_C - F_S_min", worst=LEAST_SENSE),
-        *per_direction("route_margin", "N", "margin against a rope slack along the route min(F_S_least, "
-                       "F_C_least) - F_S_min (>= 0 passes)", "kN", equation="min(F_S_least, F_C_least) - F_S_min",
+                       symbol="m_safety", equation="rope safety check, F_min / F_C ≥ n_rope (not in the paper)",
                        worst=LEAST_SENSE),
-        *per_direction("stroke_margin", "m", "stroke left over stroke - dF (>= 0 passes)", "mm",
+        *per_direction("slack_margin", "N", "margin against a slack unwinding rope F_S - F_S_min (>= 0 passes)",
+                       "kN", symbol="m_slack", equation="slack-rope check of the unwinding rope (not in the paper)",
+                       worst=LEAST_SENSE),
+        *per_direction("taut_margin", "N", "margin against a slack winding rope F_C - F_S_min (>= 0 passes; "
+                       "when lowering on a gentle slope the winding rope can go slack)", "kN", symbol="m_taut",
+                       equation="slack-rope check of the winding rope (not in the paper)", worst=LEAST_SENSE),
+        *per_direction("route_margin", "N", "margin against a rope slack along the route min(F_S_least, "
+                       "F_C_least) - F_S_min (>= 0 passes)", "kN", symbol="m_route",
+                       equation="slack-rope check along the route, docs/physics.md §4 (not in the paper)",
+                       worst=LEAST_SENSE),
+        *per_direction("stroke_margin", "m", "stroke left over stroke - dF (>= 0 passes)", "mm", symbol="m_stroke",
                        equation=f"stroke - dF, {SRC} eq. (23)", worst=LEAST_SENSE),
         Q("sheave_margin", "N", "margin against a slack rope at the return sheave F_nwl/2 - F_S_min (>= 0 passes)",
-          "kN", equation="F_nwl/2 - F_S_min", worst=LEAST_SENSE),
-        Q("drum_margin", "1", "margin of the drum D/(D_ratio_min d) - 1 (>= 0 passes)",
+          "kN", symbol="m_sheave", equation="slack-rope check at the return sheave (not in the paper)",
+          worst=LEAST_SENSE),
+        Q("drum_margin", "1", "margin of the drum D/(D_ratio_min d) - 1 (>= 0 passes)", symbol="m_drum",
           equation=f"D / (D_ratio_min d) - 1, {SRC} introduction", worst=LEAST_SENSE),
     )
     invalid_needs = LEAST_FORCES
@@ -125,21 +132,20 @@ class DesignChecks(Submodel):
             eqs += [
                 Equation(f"safety_margin_{way}",
                          v["n_rope"] * v[f"F_C_{way}"] * (v[f"safety_margin_{way}"] + 1.0) - v["F_min"],
-                         "F_min / (n_rope F_C) - 1", formula="m = F_min / (n_rope F_C) − 1"),
+                         "rope safety check, F_min / F_C ≥ n_rope (not in the paper)"),
                 Equation(f"slack_margin_{way}", v[f"slack_margin_{way}"] - (v[f"F_S_{way}"] - v["F_S_min"]),
-                         "F_S - F_S_min", formula="m = F_S − F_S_min"),
+                         "slack-rope check of the unwinding rope (not in the paper)"),
                 Equation(f"taut_margin_{way}", v[f"taut_margin_{way}"] - (v[f"F_C_{way}"] - v["F_S_min"]),
-                         "F_C - F_S_min", formula="m = F_C − F_S_min"),
-                Equation(f"route_margin_{way}", v[f"route_margin_{way}"]
-                         - (fmin(v[f"F_S_least_{way}"], v[f"F_C_least_{way}"]) - v["F_S_min"]),
-                         "min(F_S_least, F_C_least) - F_S_min", formula="m = min(F_S,least, F_C,least) − F_S_min"),
+                         "slack-rope check of the winding rope (not in the paper)"),
+                Equation(f"route_margin_{way}", v[f"route_margin_{way}"] - self._route_margin(v, way),
+                         "slack-rope check along the route, docs/physics.md §4 (not in the paper)"),
                 Equation(f"stroke_margin_{way}", v[f"stroke_margin_{way}"] - (v["stroke"] - v[f"dF_{way}"]),
-                         "stroke - dF", formula="m = stroke − ΔF"),
+                         "stroke check against eq. (23)"),
             ]
         eqs.append(Equation("sheave_margin", v["sheave_margin"] - (0.5 * v["F_nwl"] - v["F_S_min"]),
-                            "F_nwl/2 - F_S_min", formula="m = F_nwl/2 − F_S_min"))
+                            "slack-rope check at the return sheave (not in the paper)"))
         eqs.append(Equation("drum_margin", v["D_ratio_min"] * v["d"] * (v["drum_margin"] + 1.0) - v["D"],
-                            "D / (D_ratio_min d) - 1", formula="m = D / (D_ratio_min d) − 1"))
+                            "drum check, the introduction's D ≥ 30 d with D_ratio_min"))
         return eqs
 
     def _least_tensions(self, v) -> list[Equation]:
@@ -153,13 +159,19 @@ class DesignChecks(Submodel):
             unwind = [rt.rope_gradient(al, v["mu_pl"], -s, a) for al in route.inclinations]
             wind = [rt.rope_gradient(al, mu, s, a) for al, mu in zip(route.inclinations, route.mus)]
             pull = rt.load_pull(v["G_ml"], v["T_m"], v["G_m"], s, a)
-            eqs += [Equation(f"F_S_least_{way}", v[f"F_S_least_{way}"]
-                             - rt.least_rope_tension(F_end, q_l, route.lengths, unwind), LEAST,
-                             formula="F_S,least = min over the unwinding side of T(x)"),
-                    Equation(f"F_C_least_{way}", v[f"F_C_least_{way}"]
-                             - rt.least_rope_tension(F_end, q_l, route.lengths, wind, v["x_m"], pull), LEAST,
-                             formula="F_C,least = min over the winding side of T(x), either side of the load")]
+            if len(route.lengths) > 1:     # one piece: the unwinding rope has nothing between its ends
+                eqs.append(Equation(f"F_S_least_{way}", v[f"F_S_least_{way}"]
+                                    - rt.least_rope_tension(F_end, q_l, route.lengths, unwind), LEAST))
+            eqs.append(Equation(f"F_C_least_{way}", v[f"F_C_least_{way}"]
+                                - rt.least_rope_tension(F_end, q_l, route.lengths, wind, v["x_m"], pull), LEAST))
         return eqs
+
+    def _route_margin(self, v, way: str):
+        """min(F_S_least, F_C_least) − F_S_min, of the sides that have something between their ends."""
+        least = v[f"F_C_least_{way}"]
+        if len(_hook(self.sibling("route")).profile(v).lengths) > 1:
+            least = fmin(v[f"F_S_least_{way}"], least)
+        return least - v["F_S_min"]
 
     def invalid_needs_for(self, outputs):
         """The least tensions of the directions of ``outputs`` when each belongs to one, else all four."""
@@ -175,7 +187,7 @@ class DesignChecks(Submodel):
         return slack_reasons(values, LEAST_FORCES, " inside the route")
 
     def frames(self, values, scene, where=None):
-        return {"design checks": checks_frame(values, scene.built.quantities, where)}
+        return {"design checks": checks_frame(values, scene.built.quantities, scene.check_basis, where)}
 
 
 def _hook(submodel) -> Any:
@@ -183,9 +195,10 @@ def _hook(submodel) -> Any:
     return submodel
 
 
-def checks_frame(values: dict, quantities: dict, where: dict | None = None):
+def checks_frame(values: dict, quantities: dict, basis=None, where: dict | None = None):
     """Table of every margin present in ``values`` (a pandas DataFrame): check, direction, margin
-    (display unit), pass/fail and, when ``where`` gives it (margin → text), where the margin is least."""
+    (display unit), pass/fail, the rule its factor comes from (``basis(margin name) -> text``) and, when
+    ``where`` gives it (margin → text), where the margin is least."""
     import pandas as pd
 
     text = {base: t for base, t, _ in CHECKS}
@@ -195,6 +208,7 @@ def checks_frame(values: dict, quantities: dict, where: dict | None = None):
         q = quantities[n]
         unit = "-" if q.display_unit == "1" else q.display_unit
         rows.append({"check": text[base], "direction": way or "-", "margin": q.to_display(values[n]),
-                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO", "where": (where or {}).get(n, "")})
-    columns = ["check", "direction", "margin", "unit", "pass"] + (["where"] if where else [])
-    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass", "where"])[columns]
+                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO", "rule": basis(n) if basis else "-",
+                     "where": (where or {}).get(n, "")})
+    columns = ["check", "direction", "margin", "unit", "pass", "rule"] + (["where"] if where else [])
+    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass", "rule", "where"])[columns]

@@ -64,8 +64,7 @@ def _margin_equations(v, traction):
         m, t = v[f"slip_margin_{d}"], traction(d)
         eqs.append(Equation(f"slip_margin_{d}",
                             v["n_slip"] * v[f"F_C_{d}"] * (m + 1.0) - v[f"F_S_{d}"] * t,
-                            "slip_margin = F_S traction / (n_slip F_C) - 1",
-                            formula="m = F_S traction / (n_slip F_C) − 1"))
+                            "no-slip check on the drum, F_C ≤ F_S traction / n_slip (not in the paper)"))
     return eqs
 
 
@@ -73,7 +72,7 @@ TRACTION = per_direction("traction", "1", "tension ratio the drum transmits at t
                          equation="rigid: exp(mu_d alpha_d); voigt: Hajduk 1992 eq. (19) with S_0 = F_S",
                          positive=True, guess=2.0, worst=("least",))
 
-MARGINS = per_direction("slip_margin", "1", "margin against slip on the drum (>= 0: no slip)",
+MARGINS = per_direction("slip_margin", "1", "margin against slip on the drum (>= 0: no slip)", symbol="m_slip",
                         equation="F_S traction / (n_slip F_C) - 1", worst=("least",))
 
 
@@ -82,6 +81,7 @@ class NoLining(Submodel):
     """Drum traction off: no slip check is built."""
 
     description = "no traction check"
+    missing = ("No check of slip on the drum: choose lining = \"rigid\" or \"voigt\".",)
 
     def transient_traction(self, values):
         """No friction engagement: the transient's rope is fixed to the drum (no traction ratio, no slip)."""
@@ -93,6 +93,8 @@ class RigidLining(Submodel):
     """No-slip check with the Euler–Eytelwein ratio traction = e^{μ_d α_d} (rigid drum surface)."""
 
     description = "no-slip check on a rigid drum, traction = exp(mu_d alpha_d)"
+    assumptions = ("Euler–Eytelwein on a rigid drum: one friction coefficient μ_d over the whole wrap, no creep "
+                   "of a lining.",)
     citations = ("euler_eytelwein",)
     quantities = (
         *DRUM,
@@ -103,7 +105,7 @@ class RigidLining(Submodel):
     def equations(self, v):
         eqs = [Equation(f"traction_{d}",
                         v[f"traction_{d}"] - friction.euler_eytelwein_ratio(v["mu_d"], v["alpha_d"]),
-                        "Euler-Eytelwein, Hajduk 1992 eq. (8)", formula="traction = e^(μ_d α_d)")
+                        "Euler-Eytelwein, Hajduk 1992 eq. (8)")
                for d in DIRECTIONS]
         return eqs + _margin_equations(v, lambda d: v[f"traction_{d}"])
 
@@ -127,6 +129,8 @@ class VoigtDrumLining(Submodel):
     """
 
     description = "no-slip check on a drum with an isotropic Voigt lining (Hajduk 1992)"
+    assumptions = ("The drum lining as isotropic Voigt bodies (Hajduk 1992): one compliance Q and one retardation "
+                   "time λ, the slack side's force F_S entering the arc, a constant friction coefficient μ_d.",)
     citations = ("hajduk1992",)
     quantities = (
         *DRUM,
@@ -141,11 +145,13 @@ class VoigtDrumLining(Submodel):
 
     def equations(self, v):
         k = v["lambda"] * 2.0 * v["v_pj"] / v["D"]
-        eqs = [Equation(f"traction_{d}",
-                        v[f"traction_{d}"] - hj.tension_ratio(v["mu_d"], v["alpha_d"], v["Q"] * v[f"F_S_{d}"], k),
-                        "Hajduk 1992, eq. (19), S_0 = F_S, omega = 2 v_pj / D",
-                        formula="ln s + Q F_S s (1 − e^(−α_d/(λω))) = μ_d α_d, ω = 2 v_pj / D")
-               for d in DIRECTIONS]
+        eqs = []
+        for d in DIRECTIONS:
+            s, q = v[f"traction_{d}"], v["Q"] * v[f"F_S_{d}"]
+            eqs.append(Equation(f"traction_{d}", s - hj.tension_ratio(v["mu_d"], v["alpha_d"], q, k),
+                                "Hajduk 1992, eq. (19), with S_0 = F_S and ω = 2 v_pj / D",
+                                governing=hj.tension_ratio_residual(s, v["mu_d"], v["alpha_d"], q, k),
+                                method=hj.NEWTON_METHOD))
         return eqs + _margin_equations(v, lambda d: v[f"traction_{d}"])
 
     def transient_traction(self, values):

@@ -8,8 +8,9 @@
                      into the force and elongation equations.  The factors are the parameters
                      ``rope_K``, ``rope_W``, ``rope_C``.
 ``6x36-IWRC`` …      one variant per named construction of ``ropemodel/data/ropes.toml`` (see
-                     :mod:`ropemodel.papers.en12385`): the same equations with the class's factors as
-                     constants, e.g. ``[effects] rope = "6x36-IWRC"``.
+                     :mod:`ropemodel.papers.en12385`): the same equations, and the class's factors as
+                     outputs of their own (rope_K = 0.356, citing the catalogue), e.g.
+                     ``[effects] rope = "6x36-IWRC"``.
 ``rope_grade`` (R_r) and ``rope_E`` are parameters of every catalogue variant.
 """
 
@@ -32,12 +33,12 @@ D_ROPE = positive("d", "m", "nominal rope diameter", "mm", guess=0.03, high=0.5,
 F_MIN = positive("F_min", "N", "minimum breaking force of the rope", "kN", guess=1e6)
 
 FACTORS = (
-    Q("rope_K", "1", "minimum breaking force factor K of the rope class", low=0.0, high=1.0, low_open=True,
+    Q("rope_K", "1", "minimum breaking force factor K of the rope class", low=0.0, high=1.0, low_open=True, symbol="K",
       guess=0.356),
     Q("rope_W", "kg/m^3", "nominal length mass factor W of the rope class (catalogue kg/(100 m*mm^2) x 1e4)", "kg/m^3",
-      low=1000.0, high=10000.0, guess=4090.0),
+      symbol="W", low=1000.0, high=10000.0, guess=4090.0),
     Q("rope_C", "1", "metallic cross-section factor C of the rope class", low=0.0, high=0.7854, low_open=True,
-      guess=0.46),
+      symbol="C", guess=0.46),
 )
 
 
@@ -47,6 +48,9 @@ class RopeGiven(Submodel):
 
     description = "rope weight q_l and unit elongation q_lw given"
     citations = ("krauze2025",)
+    assumptions = ("The rope's weight q_l and unit elongation q_lw are given numbers, tied to no designated rope.",)
+    missing = ("The rope itself: no construction, grade or standard, so no designation, no breaking force and no "
+               "rope safety check; choose a catalogue construction (rope = \"6x36-IWRC\", ...).",)
 
 
 @register(MODEL, "rope", "catalogue")
@@ -60,47 +64,58 @@ class RopeCatalogue(Submodel):
 
     description = "q_l, q_lw, F_min, A_m, m_l from d and the construction (EN 12385-4)"
     citations = ("krauze2025", "en12385_4")
+    #: the named construction of the catalogue (None: factors given as parameters)
+    construction: ClassVar[ropes.Construction | None] = None
+    assumptions = (
+        "EA = E C d² from the catalogue's metallic-area factor C and the modulus E the scene gives: the rope's "
+        "stiffness is not measured on the installed rope.",
+        "F_min = K d² R_r is the catalogue's minimum breaking force of the class, not the rope's test certificate.",
+        "The rope's weight is the catalogue's nominal length mass, W d².",
+    )
+    missing = ("A measured EA (or q_lw) of the installed rope: the elongation and the stroke rest on the "
+               "catalogue and the modulus E given.",
+               "The rope's test certificate: its actual breaking force, to confirm F_min.")
     quantities: ClassVar[tuple[Quantity, ...]] = (
         D_ROPE,
         F_MIN,
         *FACTORS,
         Q("rope_grade", "Pa", "rope grade R_r (EN 12385-4: 1570-2160 N/mm^2)", "N/mm^2", low=0.0, low_open=True,
-          warn_low=1570e6, warn_high=2160e6, usual_source="EN 12385-4 rope grades", guess=1770e6),
+          symbol="R_r", warn_low=1570e6, warn_high=2160e6, usual_source="EN 12385-4 rope grades", guess=1770e6),
         Q("rope_E", "Pa", "modulus of the rope referred to its metallic area", "kN/mm^2", low=0.0, low_open=True,
-          warn_low=5e10, warn_high=2.1e11, usual_source="rope makers quote 80-120 GPa on the metallic area; "
-          "steel wire itself is 210 GPa", guess=1e11),
-        Q("A_m", "m^2", "metallic cross-section of the rope", "mm^2", equation=f"{SRC}: A = C d^2"),
-        Q("m_l", "kg/m", "mass of the rope per metre", "kg/m", equation=f"{SRC}: m = W d^2"),
+          symbol="E", warn_low=5e10, warn_high=2.1e11,
+          usual_source="rope makers quote 80-120 GPa on the metallic area; steel wire itself is 210 GPa", guess=1e11),
+        Q("A_m", "m^2", "metallic cross-section of the rope", "mm^2", equation=f"{SRC}: metallic cross-section"),
+        Q("m_l", "kg/m", "mass of the rope per metre", "kg/m", equation=f"{SRC}: nominal length mass"),
     )
 
-    def _factors(self, v):
-        return v["rope_K"], v["rope_W"], v["rope_C"]
-
     def equations(self, v):
-        K, W, C = self._factors(v)
+        K, W, C = v["rope_K"], v["rope_W"], v["rope_C"]
         d = v["d"]
         return [
             Equation("F_min", v["F_min"] - ropes.minimum_breaking_force(K, d, v["rope_grade"]),
-                     f"{SRC}: F_min = K d^2 R_r", formula="F_min = K d² R_r"),
-            Equation("m_l", v["m_l"] - ropes.rope_mass_per_metre(W, d), f"{SRC}: m = W d^2", formula="m_l = W d²"),
-            Equation("q_l", v["q_l"] - ropes.rope_weight_per_metre(W, d), "q_l = g W d^2", formula="q_l = g W d²"),
-            Equation("A_m", v["A_m"] - ropes.metallic_area(C, d), f"{SRC}: A = C d^2", formula="A_m = C d²"),
+                     f"{SRC}: minimum breaking force"),
+            Equation("m_l", v["m_l"] - ropes.rope_mass_per_metre(W, d), f"{SRC}: nominal length mass"),
+            Equation("q_l", v["q_l"] - ropes.rope_weight_per_metre(W, d), f"{SRC}: nominal length mass times g"),
+            Equation("A_m", v["A_m"] - ropes.metallic_area(C, d), f"{SRC}: metallic cross-section"),
             Equation("q_lw", v["q_lw"] - ropes.unit_elongation(v["L_u"], v["rope_E"], C, d),
-                     "q_lw = L_u / (E C d^2)", formula="q_lw = L_u / (E C d²)"),
+                     "Hooke's law over the route with EA = E C d² (not in the paper)"),
         ]
 
 
 def _named(c: ropes.Construction) -> type[Submodel]:
-    """The catalogue rope with the factors of construction ``c`` as constants."""
+    """The catalogue rope with the factors of construction ``c``: each factor an equation (K = 0.356) citing
+    the catalogue, so that formulas show ``F_min = K d² R_r`` and the value of K with its source."""
 
     class NamedConstruction(RopeCatalogue):
         __doc__ = (f"{c.description}: the catalogue rope with K = {c.K:g}, W = {c.W:g} kg/m^3, "
                    f"C = {c.C:g} ({c.source}).")
         description = f"{c.description} (K, W, C of {c.source})"
-        quantities = tuple(q for q in RopeCatalogue.quantities if q.name not in ("rope_K", "rope_W", "rope_C"))
+        construction = c
 
-        def _factors(self, v):
-            return c.K, c.W, c.C
+        def equations(self, v):
+            factors = [Equation(f"rope_{k}", v[f"rope_{k}"] - value, f"{c.source}, ropemodel/data/ropes.toml")
+                       for k, value in (("K", c.K), ("W", c.W), ("C", c.C))]
+            return factors + super().equations(v)
 
     NamedConstruction.__name__ = NamedConstruction.__qualname__ = f"Rope_{c.name.replace('-', '_')}"
     return NamedConstruction

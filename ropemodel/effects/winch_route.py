@@ -78,37 +78,34 @@ class StraightRoute(Submodel):
     """The paper's route: one incline of length L_u at α_u, point A at L_ul, Krauze et al. (2025) eq. (1)-(11)."""
 
     description = "one straight incline (L_u, alpha_u), eq. (1)-(11)"
+    assumptions = ("The route is one straight incline of length L_u at α_u, the rope lying along it.",)
     citations = ("krauze2025",)
     quantities = INPUTS + OUTPUTS
 
     def equations(self, v):
         a = v["alpha_u"]
         eqs = [
-            Equation("G_ml", v["G_ml"] - kr.load_weight_along_incline(v["G_m"], a), "eq. (1)",
-                     formula="G_ml = G_m sin α_u"),
-            Equation("G_l1", v["G_l1"] - kr.rope_weight_along_incline(v["q_l"], v["L_u"] - v["L_ul"], a), "eq. (3)",
-                     formula="G_l1 = q_l (L_u − L_ul) sin α_u"),
-            Equation("G_l2", v["G_l2"] - kr.rope_weight_along_incline(v["q_l"], v["L_ul"], a), "eq. (4)",
-                     formula="G_l2 = q_l L_ul sin α_u"),
-            Equation("G_l", v["G_l"] - (v["G_l1"] + v["G_l2"]), "eq. (2)", formula="G_l = G_l1 + G_l2"),
-            Equation("G_mo", v["G_mo"] - kr.load_weight_normal(v["G_m"], a), "eq. (5)", formula="G_mo = G_m cos α_u"),
-            Equation("G_ls", v["G_ls"] - kr.rope_weight_along_incline(v["q_l"], v["L_u"], a), "eq. (6)",
-                     formula="G_ls = q_l L_u sin α_u"),
-            Equation("T_m", v["T_m"] - kr.load_resistance(v["mu_pm"], v["G_m"], a), "eq. (7)",
-                     formula="T_m = μ_pm G_m cos α_u"),
+            Equation("G_ml", v["G_ml"] - kr.load_weight_along_incline(v["G_m"], a), "eq. (1)"),
+            Equation("G_l1", v["G_l1"] - kr.rope_weight_along_incline(v["q_l"], v["L_u"] - v["L_ul"], a), "eq. (3)"),
+            Equation("G_l2", v["G_l2"] - kr.rope_weight_along_incline(v["q_l"], v["L_ul"], a), "eq. (4)"),
+            Equation("G_l", v["G_l"] - (v["G_l1"] + v["G_l2"]), "eq. (2)"),
+            Equation("G_mo", v["G_mo"] - kr.load_weight_normal(v["G_m"], a), "eq. (5)"),
+            Equation("G_ls", v["G_ls"] - kr.rope_weight_along_incline(v["q_l"], v["L_u"], a), "eq. (6)"),
+            Equation("T_m", v["T_m"] - kr.load_resistance(v["mu_pm"], v["G_m"], a), "eq. (7)"),
             Equation("T_l1", v["T_l1"] - kr.rope_resistance(v["mu_pl1"], v["q_l"], v["L_u"] - v["L_ul"], a),
-                     "eq. (8)", formula="T_l1 = μ_pl1 q_l (L_u − L_ul) cos α_u"),
-            Equation("T_l2", v["T_l2"] - kr.rope_resistance(v["mu_pl2"], v["q_l"], v["L_ul"], a), "eq. (9)",
-                     formula="T_l2 = μ_pl2 q_l L_ul cos α_u"),
-            Equation("T_l", v["T_l"] - (v["T_l1"] + v["T_l2"]), "eq. (10)", formula="T_l = T_l1 + T_l2"),
-            Equation("T_ls", v["T_ls"] - kr.rope_resistance(v["mu_pl"], v["q_l"], v["L_u"], a), "eq. (11)",
-                     formula="T_ls = μ_pl q_l L_u cos α_u"),
+                     "eq. (8)"),
+            Equation("T_l2", v["T_l2"] - kr.rope_resistance(v["mu_pl2"], v["q_l"], v["L_ul"], a), "eq. (9)"),
+            Equation("T_l", v["T_l"] - (v["T_l1"] + v["T_l2"]), "eq. (10)"),
+            Equation("T_ls", v["T_ls"] - kr.rope_resistance(v["mu_pl"], v["q_l"], v["L_u"], a), "eq. (11)"),
         ]
         return eqs
 
     def profile(self, v) -> Profile:
-        """The incline as two pieces either side of point A: μ_pl2 toward the drive, μ_pl1 beyond (eq. (17))."""
-        return Profile([v["L_ul"], v["L_u"] - v["L_ul"]], [v["alpha_u"]] * 2, [v["mu_pl2"], v["mu_pl1"]])
+        """The incline as one piece, or, where the winding rope's resistance changes at point A (case 2), two
+        pieces either side of it: μ_pl2 toward the drive, μ_pl1 beyond (eq. (17))."""
+        if getattr(self.sibling("resistance"), "split_at_A", False):
+            return Profile([v["L_ul"], v["L_u"] - v["L_ul"]], [v["alpha_u"]] * 2, [v["mu_pl2"], v["mu_pl1"]])
+        return Profile([v["L_u"]], [v["alpha_u"]], [v["mu_pl1"]])
 
     def rules(self, values):
         out = beyond_route(values)
@@ -149,6 +146,8 @@ class SegmentedRoute(Submodel):
     """
 
     description = "a route of straight segments, the load at x_m"
+    assumptions = ("The route is a chain of straight segments, the rope lying along each; the forces are those "
+                   "with the load at x_m.",)
     citations = ("krauze2025",)
     quantities = (*INPUTS, *OUTPUTS, X_M)
 
@@ -166,34 +165,26 @@ class SegmentedRoute(Submodel):
         L, alpha, mu = self.profile(v)
         x, G_m = v["x_m"], v["G_m"]
         src = "route of segments"
-        eqs = [Equation(f"mu_w{i}", v[f"mu_w{i}"] - v["mu_pl"], "mu_winding not given: mu_pl", formula=f"μ_w{i} = μ_pl")
+        eqs = [Equation(f"mu_w{i}", v[f"mu_w{i}"] - v["mu_pl"], "mu_winding not given: mu_pl")
                for i, has in enumerate(self.segments, start=1) if not has]
         if self.point_A:
             A, q = v["L_ul"], v["q_l"]
-            eqs += [Equation("G_l1", v["G_l1"] - rt.rope_weight_between(q, L, alpha, A, v["L_u"]), f"eq. (3), {src}",
-                             formula="G_l1 = q_l Σ ℓ_i sin α_i beyond point A"),
-                    Equation("G_l2", v["G_l2"] - rt.rope_weight_between(q, L, alpha, 0.0, A), f"eq. (4), {src}",
-                             formula="G_l2 = q_l Σ ℓ_i sin α_i up to point A"),
+            eqs += [Equation("G_l1", v["G_l1"] - rt.rope_weight_between(q, L, alpha, A, v["L_u"]), f"eq. (3), {src}"),
+                    Equation("G_l2", v["G_l2"] - rt.rope_weight_between(q, L, alpha, 0.0, A), f"eq. (4), {src}"),
                     Equation("T_l1", v["T_l1"] - rt.rope_resistance_between(q, L, alpha, mu, A, v["L_u"]),
-                             f"eq. (8), {src}", formula="T_l1 = q_l Σ μ_i ℓ_i cos α_i beyond point A"),
+                             f"eq. (8), {src}"),
                     Equation("T_l2", v["T_l2"] - rt.rope_resistance_between(q, L, alpha, mu, 0.0, A),
-                             f"eq. (9), {src}", formula="T_l2 = q_l Σ μ_i ℓ_i cos α_i up to point A")]
+                             f"eq. (9), {src}")]
         return eqs + [
-            Equation("L_u", v["L_u"] - rt.route_length(L), f"{src}: L_u = sum L_i", formula="L_u = Σ L_i"),
-            Equation("G_ml", v["G_ml"] - rt.load_weight_along_route(G_m, x, L, alpha), f"eq. (1), {src}",
-                     formula="G_ml = G_m sin α_j (the load's segment j)"),
-            Equation("G_l", v["G_l"] - rt.rope_weight_along_route(v["q_l"], L, alpha), f"eq. (2), {src}",
-                     formula="G_l = Σ q_l L_i sin α_i"),
-            Equation("G_mo", v["G_mo"] - rt.load_weight_normal_route(G_m, x, L, alpha), f"eq. (5), {src}",
-                     formula="G_mo = G_m cos α_j"),
-            Equation("G_ls", v["G_ls"] - rt.rope_weight_along_route(v["q_l"], L, alpha), f"eq. (6), {src}",
-                     formula="G_ls = Σ q_l L_i sin α_i"),
-            Equation("T_m", v["T_m"] - rt.load_resistance_route(v["mu_pm"], G_m, x, L, alpha), f"eq. (7), {src}",
-                     formula="T_m = μ_pm G_m cos α_j"),
-            Equation("T_l", v["T_l"] - rt.rope_resistance_along_route(v["q_l"], L, alpha, mu), f"eq. (10), {src}",
-                     formula="T_l = Σ μ_i q_l L_i cos α_i"),
+            Equation("L_u", v["L_u"] - rt.route_length(L), src),
+            Equation("G_ml", v["G_ml"] - rt.load_weight_along_route(G_m, x, L, alpha), f"eq. (1), {src}"),
+            Equation("G_l", v["G_l"] - rt.rope_weight_along_route(v["q_l"], L, alpha), f"eq. (2), {src}"),
+            Equation("G_mo", v["G_mo"] - rt.load_weight_normal_route(G_m, x, L, alpha), f"eq. (5), {src}"),
+            Equation("G_ls", v["G_ls"] - rt.rope_weight_along_route(v["q_l"], L, alpha), f"eq. (6), {src}"),
+            Equation("T_m", v["T_m"] - rt.load_resistance_route(v["mu_pm"], G_m, x, L, alpha), f"eq. (7), {src}"),
+            Equation("T_l", v["T_l"] - rt.rope_resistance_along_route(v["q_l"], L, alpha, mu), f"eq. (10), {src}"),
             Equation("T_ls", v["T_ls"] - rt.rope_resistance_along_route(v["q_l"], L, alpha, [v["mu_pl"]] * n),
-                     f"eq. (11), {src}", formula="T_ls = Σ μ_pl q_l L_i cos α_i"),
+                     f"eq. (11), {src}"),
         ]
 
     def profile(self, v) -> Profile:

@@ -9,9 +9,9 @@ commands ``run`` and ``solve`` at the worst case.
 """
 
 from ropemodel.envelope.answer import run, solve
-from ropemodel.envelope.cases import CASE_INPUTS, MANOEUVRES, RAMPS, LoadCase, free, load_cases, with_ramps
+from ropemodel.envelope.cases import CASE_INPUTS, MANOEUVRES, RAMPS, LoadCase, free, load_cases, reads, with_ramps
 from ropemodel.envelope.result import EnvelopeResult
 from ropemodel.envelope.worst import Envelope, Extreme, case_columns, envelope, where_text
 
 __all__ = ["CASE_INPUTS", "MANOEUVRES", "RAMPS", "Envelope", "EnvelopeResult", "Extreme", "LoadCase", "case_columns",
-           "envelope", "free", "load_cases", "run", "solve", "where_text", "with_ramps"]
+           "envelope", "free", "load_cases", "reads", "run", "solve", "where_text", "with_ramps"]

@@ -19,20 +19,20 @@ from ropemodel.envelope.worst import case_columns, envelope
 from ropemodel.errors import InputError, SolveError
 from ropemodel.problem import Problem
 from ropemodel.result import Result
-from ropemodel.scene import Scene
+from ropemodel.scene import SceneLike, as_scene
 
 #: relative agreement of a candidate's worst with the given value (as Problem.solve checks a given value)
 AGREE = 1e-6
 
 
-def run(scene: Scene, values: Mapping | None = None) -> Result:
+def run(scene: SceneLike, values: Mapping | None = None) -> Result:
     """Forward solve: every output of the scene, each at its worst where the scene leaves the load's place or
     the manoeuvre open (``ropemodel run``).
 
     Parameters
     ----------
-    scene : Scene
-        A loaded scene (:func:`ropemodel.load_scene`).
+    scene : Scene or str or Path
+        A loaded scene (:func:`ropemodel.load_scene`), a TOML scene file or the name of a built-in scene.
     values : dict, optional
         Parameters to override for this run: SI numbers, strings with units or pint Quantities
         (``{"x_m": "1300 m"}`` pins the load's place).
@@ -63,21 +63,22 @@ def run(scene: Scene, values: Mapping | None = None) -> Result:
     >>> round(r["F_C_up"] / 1e3, 2), r.where["F_C_up"]
     (267.83, 'segment 1, x_m = 400 m, start')
     """
-    scene = with_ramps(scene.with_values(values) if values else scene)
-    cases = load_cases(scene)
+    loaded = as_scene(scene)
+    sc = with_ramps(loaded.with_values(values) if values else loaded)
+    cases = load_cases(sc)
     if len(cases) == 1:
-        return Problem(scene).solve(cases[0].values(scene.parameters))
-    return EnvelopeResult(scene, scene.built, envelope(Problem(scene), cases))
+        return Problem(sc).solve(cases[0].values(sc.parameters))
+    return EnvelopeResult(sc, sc.built, envelope(Problem(sc), cases))
 
 
-def solve(scene: Scene, given: Mapping, find: Sequence[str] | str, bare: str = "si") -> Result:
+def solve(scene: SceneLike, given: Mapping, find: Sequence[str] | str, bare: str = "si") -> Result:
     """Inverse solve: ``given`` outputs (name → value) in place of the ``find`` parameters, each given output
     met at its worst over the load cases the scene leaves open (``ropemodel solve``).
 
     Parameters
     ----------
-    scene : Scene
-        A loaded scene.
+    scene : Scene or str or Path
+        A loaded scene (:func:`ropemodel.load_scene`), a TOML scene file or the name of a built-in scene.
     given : dict
         Output name → value: a string with a unit (``"1000 mm"``), a pint Quantity, or an SI number.
     find : str or sequence of str
@@ -108,20 +109,20 @@ def solve(scene: Scene, given: Mapping, find: Sequence[str] | str, bare: str = "
     252.383
     """
     find = [find] if isinstance(find, str) else list(find)
-    scene = with_ramps(scene)
-    problem = Problem(scene, given, find, bare=bare)
-    cases = load_cases(scene, pinned=find)
+    sc = with_ramps(as_scene(scene))
+    problem = Problem(sc, given, find, bare=bare)
+    cases = load_cases(sc, pinned=find)
     if len(cases) == 1:
-        return problem.solve(cases[0].values(scene.parameters))
-    forward = Problem(scene)
+        return problem.solve(cases[0].values(sc.parameters))
+    forward = Problem(sc)
     _needs_a_worst(forward, problem, cases)
-    params = {**scene.parameters, **problem.inputs()}
+    params = {**sc.parameters, **problem.inputs()}
     found = problem.evaluate(case_columns(cases, params))
     candidates = _candidates(found, find)
     k, governing = _choose(forward, problem, cases, params, candidates)
     values = {f: float(candidates[k][f]) for f in find}
     problem.solve({**values_of(cases[governing], params), **problem.given_values})    # validated there
-    solved = scene.with_values(values, origin="solved for")
+    solved = sc.with_values(values, origin="solved for")
     result = EnvelopeResult(solved, solved.built, envelope(forward, cases, values), problem.given, find)
     result.values.update(problem.given_values)          # the given values as given (the worst agrees to 1e-6)
     result.governing = cases[governing]

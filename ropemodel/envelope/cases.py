@@ -34,15 +34,20 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ropemodel.scene import Scene
 
 #: the manoeuvres, in the order the cases list them
 MANOEUVRES = ("steady", "start", "stop", "emergency stop")
 #: the inputs a load case sets, and what each means when the scene leaves it open
 CASE_INPUTS = ("x_m", "a_h")
 OPEN = {"x_m": "every place", "a_h": "every manoeuvre"}
+#: the parameters the manoeuvres' accelerations are computed from (besides the segments' lengths)
+CASE_READS = ("v_pj", "t_ramp", "a_e")
 
 
 @dataclass(frozen=True)
@@ -128,7 +133,7 @@ def _acceleration(params: Mapping, manoeuvre: str, ramp: float):
 RAMPS = {"dynamics": "trip", "inertia": "rigid"}
 
 
-def with_ramps(scene):
+def with_ramps(scene: Scene) -> Scene:
     """The scene with the starts and stops its ``t_ramp`` implies (:data:`RAMPS`): a winch scene that gives
     ``t_ramp`` for no transient of its own (or asks for whole trips) gets the ramps' rigid-body inertia, so
     that its worst case includes them (``size`` has always done so).  Any other scene is returned as it is."""
@@ -181,6 +186,16 @@ def load_cases(scene, pinned=()) -> list[LoadCase]:
         manoeuvres = [m for m in MANOEUVRES if given[m]]
         ramp = ramp_peak(scene) if ramps else 1.0
     return [LoadCase(j, seg, m, ramp) for j, seg in places for m in manoeuvres]
+
+
+def reads(scene: Scene) -> set[str]:
+    """What the worst case of ``scene`` is computed from besides its equations' inputs: the parameters the open
+    manoeuvres' accelerations come from (``v_pj``, ``t_ramp``, ``a_e``) and the open case inputs themselves
+    (given, each pins its case: ``x_m`` one place, ``a_h`` one manoeuvre).  Every command that takes the worst
+    case reads ``scene.built.inputs_of() | reads(scene)`` (:mod:`ropemodel.unread`)."""
+    open_ = free(scene)
+    ramps = {k for k in CASE_READS if k in scene.parameters} if "a_h" in open_ else set()
+    return ramps | set(open_)
 
 
 def depends_on(function, outputs, inputs=CASE_INPUTS) -> dict[str, tuple[str, ...]]:

@@ -50,6 +50,10 @@ from ropemodel.numerics import hajduk_ode as ode
 from ropemodel.numerics.adaptive import dopri_function
 
 DEFAULT = "dopri5"
+#: each integrator in words, for reports
+DESCRIPTIONS = {"dopri5": "adaptive Dormand–Prince 5(4)", "rk4": "classical RK4 with step doubling",
+                "rk": "CasADi's RK4 with step doubling", "collocation": "Radau IIA collocation with step doubling",
+                "cvodes": "SUNDIALS CVODES (BDF) at two tolerances", "idas": "SUNDIALS IDAS at two tolerances"}
 #: integrators built only of CasADi expressions and loops: C code generation works for these
 CODEGEN = ("dopri5", "rk4")
 DOPRI_SHARE = 0.25

@@ -37,6 +37,9 @@ class Construction:
     C: float
     K: float
     source: str
+    #: the class of EN 12385-4 (``"6x36"``) and the core (``"IWRC"``, ``"FC"``), for the rope's designation
+    rope_class: str = ""
+    core: str = ""
 
 
 @lru_cache(maxsize=1)
@@ -48,7 +51,8 @@ def constructions() -> dict[str, Construction]:
     """Named constructions (``"6x36-IWRC"`` …) with SI factors."""
     out = {}
     for name, c in _data()["constructions"].items():
-        out[name] = Construction(name, c["description"], c["W"] * W_CATALOGUE_UNIT, c["C"], c["K"], c["source"])
+        out[name] = Construction(name, c["description"], c["W"] * W_CATALOGUE_UNIT, c["C"], c["K"], c["source"],
+                                 c["rope_class"], c["core"])
     return out
 
 
@@ -72,6 +76,33 @@ def diameters() -> list[float]:
 
 def diameters_source() -> str:
     return _data()["diameters"]["source"]
+
+
+def factors_status() -> tuple[str, str]:
+    """(status, evidence) of the construction factors W, C, K: what the catalogue's numbers rest on."""
+    s = _data()["status"]
+    return s["factors"], s["evidence"]
+
+
+def designation_rules() -> dict:
+    """How a rope is designated (EN 12385-2, ISO 17893): standard, system, order, example, status, evidence,
+    cores (abbreviation → meaning)."""
+    return dict(_data()["designation"])
+
+
+def designation(d_mm: float, construction: str, core: str, grade_mpa: float, finish: str = "", lay: str = "") -> str:
+    """The rope's designation, its elements in the order of EN 12385-2 / ISO 17893 [-]: nominal diameter [mm],
+    construction-core, grade [N/mm²], wire finish, type and direction of lay (a missing element left out).
+
+    Examples
+    --------
+    >>> designation(22, "6x36WS", "IWRC", 1770, "B", "sZ")       # a 6x36-class rope, zinc coated, right regular lay
+    '22 6x36WS-IWRC 1770 B sZ'
+    >>> designation(42, "6x36", "IWRC", 1770)
+    '42 6x36-IWRC 1770'
+    """
+    parts = [f"{d_mm:g}", f"{construction}-{core}" if core else construction, f"{grade_mpa:g}", finish, lay]
+    return " ".join(p for p in parts if p)
 
 
 def minimum_breaking_force(K, d, R_r):

@@ -35,6 +35,9 @@ _TINY = 1e-30
 #: Newton iterations of the closed form (measured on 2e5 random points, c ∈ [1e-12, 1e6],
 #: μα ∈ [0, 60]: 3 steps reach 6e-12 in ln s, 4 reach machine precision; 2 more for margin)
 NEWTON_STEPS = 6
+#: how :func:`log_tension_ratio` solves eq. (19), for reports
+NEWTON_METHOD = (f"Newton's method in ln s from Winitzki's approximation of Lambert's W, {NEWTON_STEPS} steps "
+                 "(machine precision for μα up to 60)")
 
 
 def radial_compliance(h, E, R, a):
@@ -134,6 +137,24 @@ def tension_ratio_residual(s, mu, alpha, q_R, k_R, q_T=0.0, k_T=1.0):
     q_T(1 − e^{−α/k_T})] = μα, zero at the tension ratio s = S/S_0 > 0.
     """
     return log(s) + lining_term(s, alpha, q_R, k_R, q_T, k_T) - mu * alpha
+
+
+def tension_residual(S, S_0, mu, alpha, Q_R, k_R, Q_T=0.0, k_T=1.0):
+    """Residual of the exact implicit solution in the tensions, ln(S/S_0) + S C(α) − μα [-].  Hajduk (1992),
+    eq. (19), generalised to λ_R ≠ λ_T: zero at the tension S [N] leaving the arc, S_0 [N] > 0 entering it.
+
+    Q_R, Q_T [1/N] >= 0; k_R, k_T [rad] >= 0; mu [-] > 0; alpha [rad] >= 0 (:func:`tension_ratio_residual`
+    in q = Q S_0).
+
+    Examples
+    --------
+    >>> import math
+    >>> S_0, Q = 1e4, 1e-5                      # q = Q S_0 = 0.1, Fig. 5's setting
+    >>> S = S_0 * tension_ratio(0.2, math.pi, Q * S_0, 0.01 * math.pi)
+    >>> abs(tension_residual(S, S_0, 0.2, math.pi, Q, 0.01 * math.pi)) < 1e-14
+    True
+    """
+    return log(S / S_0) + lining_term(S, alpha, Q_R, k_R, Q_T, k_T) - mu * alpha
 
 
 def _log_ratio(mu_alpha, c):

@@ -13,7 +13,7 @@ Every function works on floats, numpy arrays and CasADi expressions.
 
 from __future__ import annotations
 
-from ropemodel._math import cos, sin
+from ropemodel._math import cos, fmax, fmin, sin
 
 UP = +1
 DOWN = -1
@@ -27,7 +27,7 @@ def load_weight_along_incline(G_m, alpha_u):
     G_m : float
         Weight of the transported load [N], > 0.
     alpha_u : float
-        Inclination of the route [rad], |α_u| < π/2 (the paper: up to 45°).
+        Inclination of the route [rad], −π/2 < α_u < π/2 (the paper: up to 45°).
 
     Returns
     -------
@@ -249,29 +249,77 @@ def elongation(q_lw, F):
     return q_lw * F
 
 
-def drive_power(F_C, F_S, v_pj, eta):
-    """Drive power N_p = (F_C − F_S)·v_pj / η (not in the paper: the force balance on the drum).
+def drum_power(F_C, F_S, u):
+    """Power the drum gives the rope, signed: P_drum = (F_C − F_S)·u (not in the paper).
 
-    The unwinding rope's tension F_S acts back on the drum; η is the drive efficiency
-    (0 < η ≤ 1).  Negative N_p means the drive brakes.
+    The force balance on the drum: the winding rope pulls the load with F_C and the unwinding rope
+    acts back on the drum with F_S, so the drum's torque is (F_C − F_S) D/2 and its rim moves with
+    the load.  ``u`` is the load's signed speed along the route, positive up the slope (toward the
+    drive): u = s·v_pj with s = +1 upward and −1 downward (physics reference §1 and §4).  The
+    four-quadrant convention follows: P_drum > 0, the drive motors (it lifts the load or pulls it
+    against the resistances); P_drum < 0, it brakes (the load drives the drum, as when a load is
+    lowered on a slope steeper than its resistances can hold).  Valid where the forces are: both
+    ropes taut (F_C, F_S > 0) and the rope not slipping on the drum.
+
+    Erratum: an earlier version of the physics reference (``docs/physics.md`` §1, and ropemodel with
+    it) wrote N_p = (F_C − F_S)·v_pj/η for both directions with v_pj ≥ 0, which counts lowering a
+    load as motoring and divides a braking power by η.  Lowering, the drum pays out the winding
+    rope: u = −v_pj.
 
     Parameters
     ----------
     F_C, F_S : float
-        Forces in the winding and unwinding rope [N].
-    v_pj : float
-        Haulage speed [m/s].
-    eta : float
-        Efficiency of the drive train [-].
+        Forces in the winding and unwinding rope [N], eq. (12)-(13) of the direction of ``u``.
+    u : float
+        The load's signed speed [m/s]: +v_pj upward, −v_pj downward.
 
     Returns
     -------
     float
-        N_p [W].
+        P_drum [W]: > 0 motoring, < 0 braking.
 
     Examples
     --------
-    >>> round(drive_power(190949.0, 30937.0, 2.5, 1.0) / 1e3, 2)   # upward, at the drum rim [kW]
-    400.03
+    Fig. 9 (F_C, F_S of eq. (12)-(13), v_pj = 2.5 m/s): 400.03 kW upward, −243.58 kW downward (braking).
+
+    >>> up = drum_power(190948.546, 30936.833, +2.5)
+    >>> down = drum_power(137214.018, 39780.441, -2.5)
+    >>> round(up / 1e3, 3), round(down / 1e3, 3)
+    (400.029, -243.584)
     """
-    return (F_C - F_S) * v_pj / eta
+    return (F_C - F_S) * u
+
+
+def drive_power(P_drum, eta):
+    """The drive's power N_p from the drum's, signed (four-quadrant; not in the paper).
+
+    N_p = P_drum/η while the drive motors (P_drum > 0: the drive train's losses come on top of what
+    the drum gives), N_p = P_drum·η while it brakes (P_drum < 0: the losses are taken from what the
+    load gives back, and N_p is what reaches the motor, to be returned to the supply or dissipated).
+    Written max(P_drum, 0)/η + min(P_drum, 0)·η, which is that and evaluates no branch: finite for
+    every P_drum and every η > 0, on floats, arrays and CasADi symbols alike.
+
+    Parameters
+    ----------
+    P_drum : float
+        Power at the drum [W], :func:`drum_power`.
+    eta : float
+        Efficiency of the drive train from motor to drum rim [-], 0 < η ≤ 1 (η = 1: the power at the
+        drum rim).
+
+    Returns
+    -------
+    float
+        N_p [W]: > 0 motoring (drawn), < 0 braking (returned by the drive).
+
+    Examples
+    --------
+    Fig. 9 at η = 1 (the paper gives no efficiency) and at η = 0.8: η divides motoring power and
+    multiplies braking power.
+
+    >>> round(drive_power(400029.283, 1.0) / 1e3, 3), round(drive_power(-243583.942, 1.0) / 1e3, 3)
+    (400.029, -243.584)
+    >>> round(drive_power(400029.283, 0.8) / 1e3, 3), round(drive_power(-243583.942, 0.8) / 1e3, 3)
+    (500.037, -194.867)
+    """
+    return fmax(P_drum, 0.0) / eta + fmin(P_drum, 0.0) * eta

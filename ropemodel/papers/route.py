@@ -49,7 +49,7 @@ def route_length(lengths):
 def rope_weight_along_route(q_l, lengths, inclinations):
     """Σ q_l L_i sin α_i [N]: weight along the route of one rope side (eq. (2), (6) for one segment).
 
-    q_l [N/m] rope weight per metre; lengths [m]; inclinations α_i [rad], |α_i| < π/2.
+    q_l [N/m] rope weight per metre; lengths [m]; inclinations α_i [rad], −π/2 < α_i < π/2.
     """
     total = 0.0
     for length, alpha in zip(lengths, inclinations):

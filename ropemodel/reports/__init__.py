@@ -13,6 +13,8 @@ as SVG ``data:`` URIs.  The PDF is the page printed by headless Chromium (:mod:`
 Needs the ``report`` extra (Jinja2, matplotlib).
 
 Modules: :mod:`.context` (the scene and its analyses, each computed once when a section asks),
+:mod:`.sheet` (the calculation sheet, ``--format json``), :mod:`.filing` (designation, normative numbers,
+assumptions, missing data),
 :mod:`.registry` (the sections), :mod:`.build` (the page), :mod:`.page` (Jinja2, escaping,
 tables, formulas), :mod:`.figures` (matplotlib → SVG), :mod:`.browser` (Chromium),
 :mod:`.sections` (one module per group of sections).
@@ -28,10 +30,12 @@ sizing, when ``ctx.sizing``), ``ctx.simulation`` (the transient), ``ctx.at_desig
 raises a :class:`~ropemodel.errors.RopeModelError` shows the error in its place and is listed as
 incomplete (``ropemodel report`` then exits 1).
 
-The sections today, in page order (:data:`ropemodel.reports.sections.MODULES`): scene, inputs,
-equations, results, checks (when the model has margins), sizing (a winch with a catalogue rope),
-transient (``dynamics`` not ``"none"``), trip (``dynamics = "trip"`` or a route of segments, with
-v_pj and t_ramp), sensitivity, references.
+The sections today, in page order (:data:`ropemodel.reports.sections.MODULES`): document (number,
+revision, sign-off, history: the scene's ``[report]``), scene, inputs, rules, rope (its designation),
+basis (normative numbers with source and status, assumptions, data still missing), equations (printed from
+the model's expressions; the same as the calculation sheet, :mod:`.sheet`), results, checks (when the
+model has margins), sizing (a winch with a catalogue rope), transient (``dynamics`` not ``"none"``), trip
+(``dynamics = "trip"`` or a route of segments, with v_pj and t_ramp), sensitivity, references.
 
 Adding a section, e.g. the energy cost of a trip on a route of segments: a module
 ``ropemodel/reports/sections/energy.py``::

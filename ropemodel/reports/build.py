@@ -3,14 +3,15 @@ computed shows why, and is listed in :attr:`Report.incomplete`."""
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass, field
 
 from ropemodel.errors import RopeModelError, require
 from ropemodel.reports import page
 from ropemodel.reports.context import Context
 from ropemodel.reports.registry import sections
+from ropemodel.reports.sections.document import running_header, title
 from ropemodel.reports.sections.scene import stamp, version
+from ropemodel.scene import SceneLike
 
 
 @dataclass
@@ -31,14 +32,15 @@ def requirements() -> None:
     require("matplotlib", "report")
 
 
-def report(scene: str | os.PathLike, values: dict | None = None, method: str | None = None) -> Report:
+def report(scene: SceneLike, values: dict | None = None, method: str | None = None) -> Report:
     """The design report of a scene: one self-contained HTML page (``ropemodel report``).
 
     Parameters
     ----------
-    scene : str or Path
-        A scene TOML file or the name of a built-in scene (``"example"``: Krauze et al. 2025, Fig. 9).
-        A sizing scene (a winch with a catalogue rope) is sized, and the page reports the design.
+    scene : Scene or str or Path
+        A loaded scene, a scene TOML file or the name of a built-in scene (``"example"``: Krauze et al.
+        2025, Fig. 9).  A sizing scene (a winch with a catalogue rope) is sized, and the page reports
+        the design.
     values : dict, optional
         Parameters that replace or complete the file's, ``{name: value}`` (SI floats, strings with
         units, pint Quantities), checked with the file's.
@@ -66,8 +68,8 @@ def report(scene: str | os.PathLike, values: dict | None = None, method: str | N
     >>> r = rm.report("example")
     >>> "190.949" in r.html and r.incomplete == []       # F_C_up of Fig. 9, kN
     True
-    >>> r.shown[:4]
-    ['scene', 'inputs', 'equations', 'results']
+    >>> r.shown[:5]
+    ['document', 'scene', 'inputs', 'basis', 'equations']
     """
     from ropemodel.reports.context import load
 
@@ -89,7 +91,7 @@ def build(ctx: Context) -> Report:
             html = page.error(f"Not computed: {exc}")
         parts.append((s.name, s.title, html))
         report.shown.append(s.name)
-    report.html = page.page(f"Design report: {ctx.scene.name}", version(), stamp(ctx), parts)
+    report.html = page.page(title(ctx), version(), stamp(ctx), parts, running_header(ctx))
     report.verdicts = verdicts(ctx)
     return report
 

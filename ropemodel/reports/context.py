@@ -8,11 +8,10 @@ the same error; the page shows the error in those sections (see :mod:`ropemodel.
 from __future__ import annotations
 
 import functools
-from dataclasses import replace
 from datetime import datetime, UTC
 
 from ropemodel.errors import RopeModelError, SolveError
-from ropemodel.scene import Scene
+from ropemodel.scene import Scene, SceneLike
 
 
 def once(fn):
@@ -121,24 +120,22 @@ class Context:
         return self.scene.built.quantities
 
 
-def load(path, values: dict | None = None, origin: str = "--set", bare: str = "refuse",
+def load(scene: SceneLike, values: dict | None = None, origin: str = "--set", bare: str = "refuse",
          method: str | None = None) -> Context:
-    """Load the scene of a report: every problem of the file and of ``values`` in one
+    """The context of a report on ``scene`` (a :class:`~ropemodel.scene.Scene`, a file or a built-in scene's
+    name) with ``values`` on top: every problem of the file and of ``values`` in one
     :class:`~ropemodel.errors.InputError`.  A sizing scene (:func:`sizes`) is read as ``ropemodel size``
     reads it (d, F_nwl, stroke and, on a drum without a compliant lining, D may be left out; design
     checks on); any other scene must give every parameter."""
     from optimisation.problem import D_OPTIONAL, SIZED, prepare
     from ropemodel.scene import load as load_scene
 
-    scene = load_scene(path, optional=SIZED + D_OPTIONAL, emit=False, values=values, bare=bare, origin=origin)
-    if sizes(scene):
-        prepared = prepare(scene)
-        if prepared is not scene:   # read again with the checks on: keep where each value came from
-            kept = {k: o for k, o in scene.origin.items() if k in prepared.origin}
-            built = prepared.built
-            prepared = replace(prepared, origin={**prepared.origin, **kept})
-            prepared.__dict__["built"] = built
-        return Context(prepared, True, method)
-    if scene.absent:   # what sizing may leave out, any other scene must give: the scene's own error list
-        scene = load_scene(path, emit=False, values=values, bare=bare, origin=origin)
-    return Context(scene, False, method)
+    if isinstance(scene, Scene):
+        read = scene.with_values(values, bare=bare, origin=origin) if values else scene
+    else:
+        read = load_scene(scene, optional=SIZED + D_OPTIONAL, emit=False, values=values, bare=bare, origin=origin)
+    if sizes(read):
+        return Context(prepare(read), True, method)
+    if read.absent:   # what sizing may leave out, any other scene must give: the scene's own error list
+        read = read.with_effects({})
+    return Context(read, False, method)

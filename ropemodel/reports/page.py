@@ -37,7 +37,9 @@ tr.fail td:last-child, tr.fail td:first-child, p.fail { color: #8b1111; font-wei
 .formula { font-family: "DejaVu Serif", "Liberation Serif", "Times New Roman", serif; font-size: 10.5pt; }
 .eq { display: grid; grid-template-columns: 1fr auto; column-gap: 1rem; margin: .25rem 0 .1rem;
       break-inside: avoid; }
-.eqno { color: #333; white-space: nowrap; }
+.eqno { color: #333; max-width: 20rem; text-align: right; }
+.cases { display: inline-grid; grid-template-columns: auto auto; column-gap: .8rem; vertical-align: middle;
+         border-left: 2px solid #333; border-radius: 6px 0 0 6px; padding-left: .4rem; }
 .numbers { margin: 0 0 .5rem 1.2rem; font-size: 8.5pt; color: #333; }
 pre { background: #f6f8fa; padding: .5rem; font-size: 8.5pt; white-space: pre-wrap; break-inside: avoid; }
 figure { margin: .5rem 0 1rem; break-inside: avoid; }
@@ -49,16 +51,26 @@ a { color: #1d4e89; }
 dl.head { display: grid; grid-template-columns: max-content 1fr; column-gap: 1rem; row-gap: .1rem; }
 dl.head dt { font-weight: bold; } dl.head dd { margin: 0; word-break: break-all; }
 @media print { body { max-width: none; margin: 0; padding: 0; } }
-@page { size: A4; margin: 14mm 12mm 16mm 12mm;
-        @bottom-right { content: "page " counter(page) " of " counter(pages); font-size: 8pt; color: #555; } }
+table.signoff td { height: 2.2rem; min-width: 9rem; } table.signoff td:first-child { font-weight: bold; }
 """
+
+#: the printed page: A4, a running header (document and revision left, title right) and footer (the scene's
+#: file and digest left, the page number right), in CSS paged media (Chromium prints the margin boxes)
+PAGE_RULE = """@page { size: A4; margin: 18mm 12mm 16mm 12mm;
+  @top-left { content: "{{ left }}"; font-size: 8pt; color: #555; }
+  @top-right { content: "{{ right }}"; font-size: 8pt; color: #555; }
+  @bottom-left { content: "{{ foot }}"; font-size: 7pt; color: #777; }
+  @bottom-right { content: "page " counter(page) " of " counter(pages); font-size: 8pt; color: #555; } }"""
+#: characters a CSS string keeps as they are; every other is written as a CSS escape
+_CSS_PLAIN = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 .,-_:;()/#+=")
 
 PAGE = """<!DOCTYPE html>
 <html lang="en">
 <head>
 <meta charset="utf-8">
 <title>{{ title }}</title>
-<style>{{ style | safe }}</style>
+<style>{{ style | safe }}
+{{ rule | safe }}</style>
 </head>
 <body>
 <h1>{{ title }}</h1>
@@ -82,6 +94,7 @@ def environment():
     env = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined, trim_blocks=True,
                              lstrip_blocks=True)
     env.filters["typeset"] = typeset
+    env.filters["formula"] = formula
     return env
 
 
@@ -135,10 +148,12 @@ def table(head, rows, kinds=None, row_class=None, cls: str = ""):
 
 def show(q, value) -> str:
     """``value`` (SI) in the quantity's display unit, as :meth:`ropemodel.quantity.Quantity.show` writes it;
-    a value that is not a finite number says so."""
+    a value that is not a finite number says so; a signed quantity says what its sign means
+    (``"-243.584 kW (braking)"``)."""
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "not computed"
-    return q.show(float(value))
+    sign = q.sign_text(float(value))
+    return q.show(float(value)) + (f" ({sign})" if sign else "")
 
 
 def error(message: str):
@@ -151,7 +166,7 @@ def verdict(ok: bool, text: str):
     return fragment('<p class="verdict {{ c }}">{{ t }}</p>', c="pass" if ok else "fail", t=text)
 
 
-_SUB = re.compile(r"(?<=[A-Za-zΑ-ωΔ′)])_([A-Za-z0-9]+(?:,[A-Za-z0-9]+)?)")
+_SUB = re.compile(r"(?<=[A-Za-zΑ-ω′)])_([A-Za-z0-9Α-ω]+(?:,[A-Za-z0-9Α-ω]+)?)")
 
 
 def _superscripts(text: str) -> str:
@@ -188,7 +203,59 @@ def typeset(formula: str):
     return Markup(_SUB.sub(lambda m: f"<sub>{m.group(1)}</sub>", text))
 
 
-def page(title: str, version: str, date: str, sections) -> str:
-    """The whole page: ``sections`` a list of (name, title, html)."""
+def _split(text: str, sep: str) -> list[str]:
+    """``text`` split at ``sep`` where no bracket is open."""
+    parts, depth, start, i = [], 0, 0, 0
+    while i < len(text):
+        c = text[i]
+        depth += (c in "({[") - (c in ")}]")
+        if depth == 0 and text.startswith(sep, i):
+            parts.append(text[start:i])
+            start = i = i + len(sep)
+            continue
+        i += 1
+    return parts + [text[start:]]
+
+
+def _closing(text: str) -> int:
+    """The index of the bracket that closes ``text[0]``'s (-1 if none)."""
+    depth = 0
+    for i, c in enumerate(text):
+        depth += (c in "({[") - (c in ")}]")
+        if depth == 0:
+            return i
+    return -1
+
+
+def formula(text: str):
+    """A formula as HTML (:func:`typeset`); ``y = {a if c; b otherwise}`` (:mod:`ropemodel.core.infix`'s
+    choice of cases) laid out as stacked cases."""
+    from markupsafe import Markup
+
+    left, eq, right = text.partition(" = ")
+    braced = eq and right.startswith("{") and _closing(right) == len(right) - 1
+    cases = _split(right[1:-1], "; ") if braced else []
+    if len(cases) < 2:
+        return typeset(text)
+    rows = []
+    for case in cases:
+        parts = _split(case, " if ") if not case.endswith(" otherwise") else [case[:-10], "otherwise"]
+        value, cond = " if ".join(parts[:-1]) or parts[-1], parts[-1]
+        rows.append(f"<span>{typeset(value)}</span><span>{'if ' + typeset(cond) if cond != 'otherwise' else cond}"
+                    "</span>")
+    return Markup(f'{typeset(left)} = <span class="cases">{"".join(rows)}</span>')
+
+
+def css_string(text: str) -> str:
+    """``text`` as the inside of a CSS string: quotes, backslashes, ``<`` and every other character not plainly
+    safe written as CSS escapes (``\\3c ``), so no text can end the string or the style element."""
+    return "".join(c if c in _CSS_PLAIN else f"\\{ord(c):x} " for c in " ".join(str(text).split()))
+
+
+def page(title: str, version: str, date: str, sections, header: tuple[str, str, str] = ("", "", "")) -> str:
+    """The whole page: ``sections`` a list of (name, title, html); ``header`` the printed page's running header
+    (left, right) and footer (left) texts."""
     items = [{"name": n, "title": t, "html": h} for n, t, h in sections]
-    return _template(PAGE).render(title=title, version=version, date=date, style=STYLE, sections=items)
+    left, right, foot = (css_string(x) for x in header)
+    rule = _template(PAGE_RULE).render(left=left, right=right, foot=foot)
+    return _template(PAGE).render(title=title, version=version, date=date, style=STYLE, rule=rule, sections=items)

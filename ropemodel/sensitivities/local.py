@@ -26,7 +26,7 @@ from __future__ import annotations
 import math
 from collections import ChainMap
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -35,10 +35,9 @@ import pandas as pd
 from ropemodel.envelope import envelope, free, load_cases, with_ramps
 from ropemodel.errors import InputError, SolveError
 from ropemodel.problem import Problem
+from ropemodel.scene import SceneLike, as_scene
 from ropemodel.units import label
 
-if TYPE_CHECKING:
-    from ropemodel.scene import Scene
 
 ZERO_RTOL = 1e-12
 
@@ -59,6 +58,9 @@ def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, o
     P = ca.MX.sym("p", len(parameters))
     args = {k: ca.MX(x[k]) for k in problem.knowns}
     args.update({k: P[i] for i, k in enumerate(parameters)})
+    ruled = problem.scene.ruled()      # a factor a rule gives follows its length, plus its own change
+    for k, v in problem.scene.rule_values(args, [p for p in parameters if p not in ruled]).items():
+        args[k] = v + (args[k] - x[k])
     if case is not None:
         given: ChainMap[str, Any] = ChainMap(args, problem.scene.parameters)
         args.update({k: ca.MX(v) if isinstance(v, float) else v for k, v in case.values(given).items()})
@@ -75,15 +77,16 @@ def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, o
     return y, J, dict(zip(parameters, p0)), outputs
 
 
-def elasticities(scene: Scene, values: Mapping | None = None, outputs: Sequence[str] | None = None,
+def elasticities(scene: SceneLike, values: Mapping | None = None, outputs: Sequence[str] | None = None,
                  parameters: Sequence[str] | None = None, given: Mapping | Sequence[str] = (),
                  find: Sequence[str] = ()) -> pd.DataFrame:
     """Local sensitivities: elasticities ∂ln y/∂ln p of a scene's outputs, exact (CasADi's Jacobian).
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or Path
         The scene (:func:`ropemodel.load_scene`).
+        A TOML scene file or a built-in scene's name is loaded first (:func:`ropemodel.load_scene`).
     values : dict, optional
         Inputs that override the scene's, ``{name: value}`` (SI floats, strings with units or
         pint Quantities).
@@ -124,6 +127,7 @@ def elasticities(scene: Scene, values: Mapping | None = None, outputs: Sequence[
     1   alpha_u  190.9485     kN      0.7746
     2     mu_pm  190.9485     kN      0.1175
     """
+    scene = as_scene(scene)
     values = dict(values or {})
     pinned = {k: values.pop(k) for k in list(values) if k in scene.built.parameters}
     scene = with_ramps(scene.with_values(pinned) if pinned else scene)

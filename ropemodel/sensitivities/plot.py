@@ -56,7 +56,7 @@ def tornado(frame: pd.DataFrame, outputs: Sequence[str] | None = None, path: str
         :func:`ropemodel.sensitivities.elasticities` output; undefined elasticities are left out.
     outputs : list of str, optional
         Outputs to draw (default: all), laid out on a grid of ``columns`` panels per row, the most
-        influenced output (largest |elasticity|) first, so the chart keeps a page's width
+        influenced output (the largest elasticity in absolute value) first, so the chart keeps a page's width
         (:data:`WIDTH` in) however many outputs it has.
     path : str or Path, optional
         Save the chart there (``.png``, ``.svg``, ``.pdf``, ... — checked by :func:`check_plot`

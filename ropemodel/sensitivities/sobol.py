@@ -18,17 +18,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from ropemodel.errors import InputError, require
 from ropemodel.problem import Problem
+from ropemodel.scene import SceneLike, as_scene
 from ropemodel.units import to_si
 
-if TYPE_CHECKING:
-    from ropemodel.scene import Scene
 
 MAX_SEED = 2**32 - 1
 
@@ -109,15 +108,16 @@ def sobol_indices(func, ranges: dict[str, tuple[float, float]], n: int = 1024, s
     return pd.DataFrame(rows)
 
 
-def sobol(scene: Scene, ranges: Mapping, outputs: Sequence[str] | None = None, n: int = 1024, seed: int = 0,
+def sobol(scene: SceneLike, ranges: Mapping, outputs: Sequence[str] | None = None, n: int = 1024, seed: int = 0,
           given: Mapping | Sequence[str] = (), find: Sequence[str] = (), **sweep_options: Any) -> pd.DataFrame:
     """Global sensitivities: Sobol indices of a scene's outputs over uniform ranges of its inputs
     (Saltelli sampling and Jansen estimators by SALib; the outputs by :func:`ropemodel.sweep`).
 
     Parameters
     ----------
-    scene : Scene
+    scene : Scene or str or Path
         The scene (:func:`ropemodel.load_scene`); inputs not in ``ranges`` keep its values.
+        A TOML scene file or a built-in scene's name is loaded first (:func:`ropemodel.load_scene`).
     ranges : dict
         ``{name: "LOW:HIGH"}`` with units (``"300kN:500kN"``) or ``(low, high)`` in SI units.
     outputs : list of str, optional
@@ -160,6 +160,7 @@ def sobol(scene: Scene, ranges: Mapping, outputs: Sequence[str] | None = None, n
     0   alpha_u  0.64  0.64
     1       G_m  0.35  0.37
     """
+    scene = as_scene(scene)
     from ropemodel.sweeps import sweep
 
     problem = Problem(scene, given, find)
@@ -172,10 +173,10 @@ def sobol(scene: Scene, ranges: Mapping, outputs: Sequence[str] | None = None, n
         q[k].check(lo, f"{k} (low end of its range)")
         q[k].check(hi, f"{k} (high end of its range)")
     outputs = None if outputs is None else list(outputs)   # default: the sweep's (at their worst on a route)
+    options = {"progress": False, **sweep_options}     # the samples are one sweep's points: no bar unless asked
 
     def func(columns):
-        frame = sweep(scene, pd.DataFrame(columns), outputs, given=given, find=find, si=True,
-                      progress=False, **sweep_options)
+        frame = sweep(scene, pd.DataFrame(columns), outputs, given=given, find=find, si=True, **options)
         names = {c: c.split(" [")[0] for c in frame.columns[len(columns):]}
         return {o: frame[c].to_numpy() for c, o in names.items() if "@" not in o}   # not the governing places
 

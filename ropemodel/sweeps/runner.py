@@ -18,10 +18,11 @@ import contextlib
 import hashlib
 import json
 import os
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -30,10 +31,12 @@ import pyarrow as pa
 
 from ropemodel import __version__
 from ropemodel.core.evaluate import COMPILE_MIN, Job, evaluator
+from ropemodel.envelope import reads as case_reads
 from ropemodel.envelope import with_ramps
 from ropemodel.errors import InputError
 from ropemodel.progress import bar, enabled, status
 from ropemodel.problem import Problem
+from ropemodel.scene import SceneLike, SceneWarning, as_scene
 from ropemodel.sweeps.chunk import ChunkJob
 from ropemodel.sweeps.schedule import results
 from ropemodel.sweeps.files import OutputLock, check_disk, check_output, check_size
@@ -42,9 +45,7 @@ from ropemodel.sweeps.store import ChunkStore, complete_rows, discard_parts, rea
 from ropemodel.sweeps.validate import check_ranges, check_rules
 from ropemodel.sweeps import worst as worst_case
 from ropemodel.units import label
-
-if TYPE_CHECKING:
-    from ropemodel.scene import Scene
+from ropemodel.views.records import SweepFileViews
 
 CHUNK = 65536  # points per chunk: ~20 MB of results for 40 columns
 ERRORS = ("raise", "mark")
@@ -67,7 +68,7 @@ class SweepInterrupted(KeyboardInterrupt):
 
 
 @dataclass
-class SweepFile(os.PathLike):
+class SweepFile(SweepFileViews, os.PathLike):
     """What ``sweep(..., collect=False)`` returns: the output file (path-like) and what it holds.
 
     status: ``"written"`` (computed now, or resumed) or ``"complete"`` (found finished: nothing computed).
@@ -85,7 +86,7 @@ class SweepFile(os.PathLike):
         return str(self.path)
 
 
-def sweep(scene: Scene, vary: Mapping | pd.DataFrame | None = None, outputs: Sequence[str] | None = None, *,
+def sweep(scene: SceneLike, vary: Mapping | pd.DataFrame | None = None, outputs: Sequence[str] | None = None, *,
           points: pd.DataFrame | None = None, given: Mapping | Sequence[str] = (), find: Sequence[str] = (),
           out: str | os.PathLike | None = None, chunk_size: int = CHUNK, executor: Any = None,
           threads: int | None = None, backend: str = "auto", si: bool = False, errors: str = "raise",
@@ -94,7 +95,8 @@ def sweep(scene: Scene, vary: Mapping | pd.DataFrame | None = None, outputs: Seq
 
     Parameters
     ----------
-    scene: a :class:`~ropemodel.scene.Scene`; inputs not varied keep its values.
+    scene: a :class:`~ropemodel.scene.Scene` (or a TOML scene file, or a built-in scene's name, loaded first);
+        inputs not varied keep its values.
     vary: ``{name: axis}`` — a grid, the product of the axes (``"5deg:45deg:1000"``,
         ``(0, 0.7, 100)``, a list of values; numbers are SI) — or a DataFrame of points.
     outputs: names of the outputs to compute (default: every unknown of the problem).
@@ -158,6 +160,7 @@ def sweep(scene: Scene, vary: Mapping | pd.DataFrame | None = None, outputs: Seq
     ...          progress=False).loc[0, "invalid"]
     'outside the model: F_S_up <= 0: the unwinding rope is slack (upward travel)'
     """
+    scene = as_scene(scene)
     _check_options(errors, chunk_size, collect, out, threads)
     show = enabled(progress)
     out = check_output(out) if out is not None else None
@@ -242,6 +245,8 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
         raise InputError("no points to sweep")
     worst, outputs = worst_case.plan(scene, problem, pts.names, find, outputs)
     outputs = _outputs(problem, outputs, pts.names)
+    if not given and not find:
+        _idle(model, pts.names, outputs, case_reads(scene) if worst else set())
     check_size(pts.n, len(pts.names) + len(outputs) + 2 * (errors == "mark"), out=out, collect=collect)
     base = problem.inputs({**given_values, **{n: float(pts.values_of(n)[0]) for n in pts.names}})
     check_ranges(pts, inputs)
@@ -250,6 +255,18 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
     bounds = [(k * chunk_size, min(pts.n, (k + 1) * chunk_size)) for k in range(n_chunks)]
     signature = _signature(scene, problem, pts, base, outputs, chunk_size, si, errors)
     return _Plan(problem, pts, base, outputs, si, errors, bounds, signature, worst)
+
+
+def _idle(model, names, outputs, cases=frozenset()) -> None:
+    """A :class:`~ropemodel.scene.SceneWarning` naming the varied inputs no output of the sweep depends on,
+    neither through the equations nor through the worst case's places and manoeuvres (``cases``)."""
+    reads = model.inputs_of(outputs) | set(cases)
+    idle = [n for n in names if n not in reads]
+    if idle:
+        which = ", ".join(outputs) if len(outputs) <= 4 else "the outputs asked for"
+        warnings.warn(f"{', '.join(idle)} varied, but no output of this sweep ({which}) depends on "
+                      f"{'it' if len(idle) == 1 else 'them'}: the results do not change along "
+                      f"{'its' if len(idle) == 1 else 'their'} column", SceneWarning, stacklevel=3)
 
 
 def _found(plan: _Plan, out: Path, collect: bool):
@@ -328,32 +345,23 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
     fun = problem.function
     order = list(varied) + [k for k in problem.knowns if k not in varied]
     syms = {k: ca.MX.sym(k) for k in problem.knowns}
+    args = {**syms, **problem.scene.rule_values(syms, varied)}   # a swept length carries its rule's factor
     if plan.worst is None:
-        res = fun.call(syms)
+        res = fun.call(args)
         names, outs, per_case = list(outputs), [res[o] for o in outputs], [("", res)]
     else:
-        names, outs, per_case = worst_case.columns(plan.worst, fun, syms, base, outputs, problem.model.quantities)
+        names, outs, per_case = worst_case.columns(plan.worst, fun, args, base, outputs, problem.model.quantities)
     roundtrip = {}
     if problem.given:
         forward = Problem(problem.scene).function
-        params = {k: syms[k] if k in syms else res[k] for k in problem.model.parameters}
+        params = {k: args[k] if k in args else res[k] for k in problem.model.parameters}
         back = forward.call(params)
         for g in problem.given:
             roundtrip[f"roundtrip_{g}"] = g
             names.append(f"roundtrip_{g}")
             outs.append(back[g])
     physics = [sm for sm in problem.model.submodels if sm.invalid_needs_for(outputs)]
-    watch = []
-    for k, (case, res) in enumerate(per_case):
-        looks = {}
-        for name in dict.fromkeys(n for sm in physics for n in sm.invalid_needs_for(outputs)):
-            if name in problem.knowns or (name in outputs and plan.worst is None):
-                looks[name] = name
-            elif name in problem.unknowns:
-                looks[name] = f"watch_{name}_{k}"
-                names.append(looks[name])
-                outs.append(res[name])
-        watch.append((case, looks))
+    watch = worst_case.watches(per_case, physics, problem, outputs, plan.worst is None, names, outs)
     sel = ca.Function("sweep_point", [syms[k] for k in order], outs, order, names)
     if fun.is_a("SXFunction"):
         sel = sel.expand()

@@ -58,15 +58,16 @@ def plan(scene, problem, varied, find, outputs) -> tuple[Worst | None, list[str]
     return Worst(cases, depends), outputs
 
 
-def columns(worst: Worst, fun, syms: dict, base: dict, outputs, quantities) -> tuple[list[str], list, list]:
+def columns(worst: Worst, fun, args: dict, base: dict, outputs, quantities) -> tuple[list[str], list, list]:
     """(names, expressions, cases): each output at its worst over the cases and its where columns, then
-    (case name, every output at that case) for the physics checks of each case."""
-    values = ChainMap(syms, base)
+    (case name, every output at that case) for the physics checks of each case.  ``args``: the swept
+    Function's inputs (symbols, or expressions of them), ``base`` the numbers of the others."""
+    values = ChainMap(args, base)
     at: dict[int, dict] = {}
 
     def result(i: int) -> dict:
         if i not in at:
-            at[i] = fun.call({**syms, **worst.cases[i].values(values)})
+            at[i] = fun.call({**args, **worst.cases[i].values(values)})
         return at[i]
 
     names, exprs = [], []
@@ -86,4 +87,24 @@ def columns(worst: Worst, fun, syms: dict, base: dict, outputs, quantities) -> t
     return names, exprs, [(worst.cases[i].name(), result(i)) for i in range(len(worst.cases))]
 
 
-__all__ = ["CASE_INPUTS", "UNITS", "Worst", "columns", "plan"]
+def watches(per_case, physics, problem, outputs, single: bool, names: list, outs: list) -> list:
+    """What the physics checks of each case read (:class:`~ropemodel.sweeps.chunk.ChunkJob`'s ``watch``): per
+    case (its name, ``""`` at a single point), each quantity the ``physics`` submodels need → the input or
+    output holding it; a needed output that is not swept as it is (or is swept at its worst) is added to
+    ``names`` and ``outs`` as ``watch_NAME_k``."""
+    needed = list(dict.fromkeys(n for sm in physics for n in sm.invalid_needs_for(outputs)))
+    out = []
+    for k, (case, res) in enumerate(per_case):
+        looks = {}
+        for name in needed:
+            if name in problem.knowns or (name in outputs and single):
+                looks[name] = name
+            elif name in problem.unknowns:
+                looks[name] = f"watch_{name}_{k}"
+                names.append(looks[name])
+                outs.append(res[name])
+        out.append((case, looks))
+    return out
+
+
+__all__ = ["CASE_INPUTS", "UNITS", "Worst", "columns", "plan", "watches"]

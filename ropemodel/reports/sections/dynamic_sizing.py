@@ -45,11 +45,12 @@ def dynamic_sizing(ctx):
     html += page.fragment("<h3>What fixes the design</h3><p>Active at the continuous optimum (a check at an instant "
                           "of a manoeuvre, or a static check):</p><ul>{% for a in active %}<li><code>{{ a }}</code>"
                           "</li>{% endfor %}</ul>", active=design.active_continuous)
-    return html + _least_margins(design.manoeuvres)
+    return html + _least_margins(design.manoeuvres, design.scene)
 
 
-def _least_margins(manoeuvres) -> str:
-    """Each check's least margin through each manoeuvre (the simulator's history), in the check's own unit."""
+def _least_margins(manoeuvres, scene) -> str:
+    """Each check's least margin through each manoeuvre (the simulator's history), in the check's own unit,
+    with the rule its factor comes from."""
     from optimisation.dynamic.manoeuvres import CHECK
 
     rows = []
@@ -57,7 +58,7 @@ def _least_margins(manoeuvres) -> str:
         for name, least in m["least_margins"].items():
             unit = CHECK[name].shown
             rows.append([name, m["manoeuvre"], f"{least['margin']:.6g}", "-" if unit == "1" else unit,
-                         f"{least['t']:.3f}", "pass" if least["margin"] >= 0 else "FAIL"])
+                         f"{least['t']:.3f}", "pass" if least["margin"] >= 0 else "FAIL", scene.check_basis(name)])
     return page.fragment("<h3>Least margins through the manoeuvres</h3>") + page.table(
-        ["check", "manoeuvre", "least margin", "unit", "at t [s]", "verdict"], rows,
-        kinds=["name", "", "num", "", "num", ""], cls="manoeuvre-checks")
+        ["check", "manoeuvre", "least margin", "unit", "at t [s]", "verdict", "rule"], rows,
+        kinds=["name", "", "num", "", "num", "", ""], cls="manoeuvre-checks")

@@ -10,7 +10,8 @@ from ropemodel.reports.registry import section
 
 #: scene.origin → what the report says
 ORIGIN = {"scene": "scene file", "default": "default (see below)", "--set": "--set on the command line",
-          "route": "[[route]] segment", "api": "Python API", "sizing": "chosen by the sizing"}
+          "route": "[[route]] segment", "api": "Python API", "sizing": "chosen by the sizing",
+          "rules": "rule set (see \"Rules\")", "rules override": "override in [rules] (see \"Rules\")"}
 CATALOGUE = "derived from the rope catalogue"
 
 

@@ -105,9 +105,10 @@ def frame_html(title: str, frame):
     return html + page.table(list(map(str, frame.columns)), rows, kinds=["num"] * len(frame.columns))
 
 
-def check_rows(margins: dict, quantities: dict, where: dict | None = None):
-    """(rows, row classes, failed names) of a checks table: margin name, check, direction, margin, verdict and,
-    with ``where`` (margin → text), where the margin is least."""
+def check_rows(margins: dict, quantities: dict, scene=None, where: dict | None = None):
+    """(rows, row classes, failed names) of a checks table: margin name, check, direction, margin, verdict,
+    the rule the check applies (its factor's provenance in ``scene``) and, with ``where`` (margin → text),
+    where the margin is least."""
     text = {base: t for base, t, _ in CHECKS}
     rows, classes, failed = [], [], []
     for n in margins_of(margins):
@@ -115,7 +116,8 @@ def check_rows(margins: dict, quantities: dict, where: dict | None = None):
         base, way = (n.rsplit("_", 1) if _DIR.match(n) else (n, "-"))
         ok = v >= 0
         rows.append([n, text.get(base, quantities[n].description), way,
-                     page.show(quantities[n], 0.0 if abs(v) < ZERO else v), "pass" if ok else "FAIL"]
+                     page.show(quantities[n], 0.0 if abs(v) < ZERO else v), "pass" if ok else "FAIL",
+                     scene.check_basis(n) if scene is not None else "-"]
                     + ([where.get(n, "the same in every case")] if where else []))
         classes.append("pass" if ok else "fail")
         if not ok:
@@ -123,16 +125,19 @@ def check_rows(margins: dict, quantities: dict, where: dict | None = None):
     return rows, classes, failed
 
 
-def checks_html(margins: dict, quantities: dict, where: dict | None = None):
-    """A verdict line and the table of every margin in ``margins`` (SI); with ``where`` (margin → text) a
-    column saying where each margin is least (the load's place and the manoeuvre)."""
-    rows, classes, failed = check_rows(margins, quantities, where)
+def checks_html(margins: dict, quantities: dict, scene=None, where: dict | None = None):
+    """A verdict line and the table of every margin in ``margins`` (SI), each with its rule (see "Rules") and,
+    with ``where`` (margin → text), where it is least (the load's place and the manoeuvre); nothing when there
+    is none (no verdict over no checks)."""
+    rows, classes, failed = check_rows(margins, quantities, scene, where)
+    if not rows:
+        return ""
     if failed:
         line = page.verdict(False, f"{len(failed)} of {len(rows)} checks FAIL: {', '.join(failed)}")
     else:
         line = page.verdict(True, f"All {len(rows)} checks pass.")
-    head = ["margin", "check", "direction", "margin value", "result"] + (["where it is least"] if where else [])
-    return line + page.table(head, rows, kinds=["name", "", "", "num", ""] + ([""] if where else []),
+    head = ["margin", "check", "direction", "margin value", "result", "rule"] + (["where it is least"] if where else [])
+    return line + page.table(head, rows, kinds=["name", "", "", "num", "", ""] + ([""] if where else []),
                              row_class=classes, cls="checks")
 
 
@@ -153,7 +158,7 @@ def checks(ctx):
                          "(0.1: 10 % to spare), the others in the quantity's unit.{{ e }}</p>", w=where,
                          e=_span(result))
     return html + checks_html({n: result.values[n] for n in margins_of(result.outputs)}, result.model.quantities,
-                              getattr(result, "where", None))
+                              result.scene, getattr(result, "where", None))
 
 
 def _span(result) -> str:

@@ -1,7 +1,7 @@
 """Section "sensitivity": what matters most, as tornado charts of the elasticities of a few headline results.
 
 Headline results are the ones a designer sizes with: the rope force F_C, the tensioner's stroke need
-ΔF and the drive power N_p of a winch (the direction with the larger value), the tension S of a
+ΔF and the drive power N_p of a winch (the direction with the larger magnitude), the tension S of a
 sheave, the stiffness K and the rotation of a capstan drive.  A model with none of them shows the
 results that depend on the most inputs.
 """
@@ -17,21 +17,6 @@ HEADLINE = ("F_C", "dF", "N_p", "S", "K", "delta_alpha")
 OUTPUTS, TOP = 3, 8
 
 
-def _cone(model, name: str, seen=None) -> set[str]:
-    """Every parameter ``name`` depends on (through the equations)."""
-    seen = set() if seen is None else seen
-    if name in seen:
-        return set()
-    seen.add(name)
-    if name not in model.defined_by:
-        return {name}
-    out = set()
-    for n in model.equation_of(name).names():
-        if n != name:
-            out |= _cone(model, n, seen)
-    return out
-
-
 def headline(model, values: dict) -> list[str]:
     """The few outputs the sensitivity charts show (see the module docstring)."""
     chosen = []
@@ -43,7 +28,7 @@ def headline(model, values: dict) -> list[str]:
             chosen.append(base)
     if not chosen:
         plain = [o for o in model.outputs if "_margin" not in o and not o.endswith("_error") and o != "regime"]
-        chosen = sorted(plain, key=lambda o: -len(_cone(model, o)))
+        chosen = sorted(plain, key=lambda o: -len(model.inputs_of([o])))
     return chosen[:OUTPUTS]
 
 

@@ -46,7 +46,9 @@ def sizing(ctx):
                       "no drum diameter given: the least drum, D_ratio_min d"])
     if extra:
         html += page.table(["quantity", "value", "meaning"], extra, kinds=["name", "num", ""])
-    html += page.fragment("<h3>Checks at the recommended design</h3>")
     where = {k: where_text(w) for k, w in getattr(design, "governing", {}).items()}
-    html += checks_html({k: v for k, v in design.margins.items() if k in q}, q, where or None)   # static checks
+    checks = checks_html({k: v for k, v in design.margins.items() if k in q}, q, design.scene,
+                         where or None)   # static checks
+    if checks:
+        html += page.fragment("<h3>Checks at the recommended design</h3>") + checks
     return html + page.fragment('<p class="note">{{ m }}</p>', m=design.message)

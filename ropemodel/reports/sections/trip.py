@@ -12,19 +12,25 @@ import math
 from ropemodel.reports import figures, page
 from ropemodel.reports.registry import section
 
-#: summary key → (label, unit shown, factor from SI)
+#: summary key → (label, unit shown, factor from SI); the braking energy's label comes from the scene's
+#: ``braking`` variant (returned to the supply or dissipated)
 ROWS = {"t_trip": ("trip time", "s", 1.0), "F_C_max": ("largest winding-rope force F_C", "kN", 1e-3),
-        "F_S_min": ("least unwinding-rope force F_S", "kN", 1e-3), "P_max": ("largest drive power", "kW", 1e-3),
-        "P_rms": ("r.m.s. drive power (thermal rating)", "kW", 1e-3),
-        "E_trip": ("energy drawn per trip", "kWh", 1 / 3.6e6), "E_regen": ("energy the drive could return", "kWh",
-                                                                           1 / 3.6e6),
+        "F_S_min": ("least unwinding-rope force F_S", "kN", 1e-3),
+        "P_max": ("largest motoring drive power (> 0)", "kW", 1e-3),
+        "P_brake_max": ("largest braking drive power (< 0)", "kW", 1e-3),
+        "P_rms": ("r.m.s. drive power (the motor's thermal rating, braking included)", "kW", 1e-3),
+        "E_trip": ("energy drawn while motoring", "kWh", 1 / 3.6e6),
+        "E_regen": ("energy returned to the supply while braking", "kWh", 1 / 3.6e6),
+        "E_dissipated": ("energy dissipated in the braking resistor while braking", "kWh", 1 / 3.6e6),
+        "W_drum": ("net work of the drum (the load's potential energy change plus friction)", "kWh", 1 / 3.6e6),
         "stroke_needed": ("tensioner stroke needed, eq. (23)", "mm", 1e3)}
 #: history columns drawn, one panel per unit
 UNITS = ("m/s", "N", "W")
 
 
 def has_trip(ctx) -> bool:
-    e, given = ctx.scene.effects, {**ctx.scene.parameters, **ctx.scene.unused}   # a trip uses v_pj, t_ramp
+    """A winch scene about trips that gives the speed and the ramp time (used by its effects or not)."""
+    e, given = ctx.scene.effects, {**ctx.scene.parameters, **ctx.scene.unused_values}   # a trip uses v_pj, t_ramp
     return (ctx.scene.model == "winch" and (e.get("dynamics") == "trip" or e.get("route") == "segments")
             and "v_pj" in given and "t_ramp" in given)
 
@@ -32,13 +38,18 @@ def has_trip(ctx) -> bool:
 @section("trip", "Trip", when=has_trip)
 def trip(ctx):
     runs = ctx.trips
+    braking = next(iter(runs.values())).braking
     html = page.fragment("<p>A whole trip each way{{ at }}: the drive ramps to v_pj in t_ramp, runs, and "
                          "ramps to rest; the forces add the ramps' rigid-body inertia to the paper's eq. (12)-(13) "
-                         "on the load's segment, and power and energy are integrated exactly.</p>",
-                         at=", at the recommended design" if ctx.at_design else "")
+                         "on the load's segment, and power and energy are integrated exactly. Powers are signed "
+                         "(four-quadrant): positive while the drive motors, negative while it brakes (the load "
+                         "drives the drum); the drive's braking energy is {{ where }} (braking = "
+                         "\"{{ variant }}\").</p>",
+                         at=", at the recommended design" if ctx.at_design else "",
+                         where=braking.destination, variant=braking.variant)
     head = ["quantity", "upward", "downward", "unit"]
     rows = [[label, *(f"{runs[d].summary[k] * f:.6g}" for d in ("up", "down")), unit]
-            for k, (label, unit, f) in ROWS.items()]
+            for k, (label, unit, f) in ROWS.items() if all(k in run.summary for run in runs.values())]
     html += page.table(head, rows, kinds=["", "num", "num", ""])
     profile = _profile(ctx)
     if profile:
@@ -48,9 +59,10 @@ def trip(ctx):
     for d, run in runs.items():
         uri = figures.panels(run.history, "t [s]", UNITS, title=f"{ctx.scene.name}: trip {d}")
         if uri:
-            html += page.fragment('<figure><img src="{{ u }}" alt="trip {{ d }}"><figcaption>Trip {{ d }}: speed '
-                                  "(m/s), rope forces (kN) and drive power (kW) against time.</figcaption></figure>",
-                                  u=uri, d=d)
+            html += page.fragment('<figure><img src="{{ u }}" alt="trip {{ d }}"><figcaption>Trip {{ d }}: the '
+                                  "load's speed (m/s, positive up the slope), rope forces (kN), and the drum's and "
+                                  "the drive's power (kW, positive motoring, negative braking) against "
+                                  "time.</figcaption></figure>", u=uri, d=d)
     return html
 
 
