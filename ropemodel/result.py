@@ -13,7 +13,7 @@ from ropemodel.views.result import ResultViews
 
 _DIR = re.compile(r"^(?P<base>.+)_(?P<dir>up|down)$")
 #: keys of the JSON object that are not quantities (no quantity has one of these names)
-META = ("given", "found", "defaults", "unused", "unlimited", "warnings", "citations", "rules")
+META = ("given", "found", "where", "defaults", "unused", "unlimited", "warnings", "citations", "rules")
 
 
 class Result(ResultViews):
@@ -22,7 +22,8 @@ class Result(ResultViews):
     ``values`` maps names to SI floats; :meth:`to_series` gives display units in the
     index (``F_C_up [kN]``), :meth:`to_json` SI numbers, :meth:`table` a readable
     text table with each quantity's equation.  ``frames`` holds extra tables a
-    submodel publishes (e.g. the tension along a sheave's arc).  An output that is
+    submodel publishes (e.g. the tension along a sheave's arc); ``where`` says where each output taken at
+    its worst occurs (a Koepe hoist's end state and manoeuvre).  An output that is
     infinite because an input is unlimited (no stroke given) reads ``unlimited`` in
     the table and ``null`` in JSON, and is listed under ``"unlimited"``.  In Jupyter it shows as
     HTML tables with units; :meth:`to_frame` gives a DataFrame and :meth:`plot` its picture
@@ -34,8 +35,11 @@ class Result(ResultViews):
         self.values = dict(values)
         self.given, self.find = list(given), list(find)
         self.frames: dict = {}
+        #: output → where its worst case is, for outputs taken at their worst
+        self.where: dict[str, str] = {}
         for sm in model.submodels:
             self.frames.update(sm.frames(self.values, scene))
+            self.where.update(sm.where(self.values))
 
     def __getitem__(self, name: str) -> float:
         return self.values[name]
@@ -56,13 +60,16 @@ class Result(ResultViews):
 
     def to_json(self, **extra) -> str:
         """One JSON object: every solved quantity (SI), then ``given`` (inverse questions), ``found``,
-        ``defaults`` (parameter → why its default), ``unused``, ``unlimited``, ``warnings``, ``citations`` and,
-        for a model with design checks, ``rules`` (what each factor rests on; see
-        :func:`ropemodel.rules.describe.summary`)."""
+        ``where`` (output → where its worst case is), ``defaults`` (parameter → why its default), ``unused``,
+        ``unlimited``, ``warnings``, ``citations`` and, for a model with design checks, ``rules`` (what each
+        factor rests on; see :func:`ropemodel.rules.describe.summary`)."""
         out: dict[str, Any] = {k: (v if math.isfinite(v) else None) for k, v in self.to_dict().items()}
         if self.given:
             out["given"] = {k: self.values[k] for k in self.given}
             out["found"] = list(self.find)
+        where = {k: w for k, w in self.where.items() if k in self.outputs}
+        if where:
+            out["where"] = where
         out["defaults"] = {k: self.scene.defaults[k] for k in self.scene.defaults if k in self.values}
         out["unused"] = dict(self.scene.unused)
         out["unlimited"] = [k for k in self.outputs if self.values[k] == math.inf]
@@ -93,15 +100,19 @@ class Result(ResultViews):
         lines = [f"{self.scene.name}  (model {self.model.name}; "
                  + ", ".join(f"{e}={v}" for e, v in self.model.built_effects.items()) + ")"]
         inputs = [n for n in self.model.parameters if n not in self.find] + self.given
-        lines += ["", "inputs"] + [row(n, q[n], self.values[n], self._mark(n)) for n in inputs]
-        if self.find:
-            lines += ["", "found (solved for)"] + [row(n, q[n], self.values[n], "solved for") for n in self.find]
         single = [o for o in self.outputs if not _DIR.match(o) and o not in self.find]
+        w = max(len(n) for n in inputs + self.find + single + [" " * 13]) + 1    # names longer than 13: wider
+        lines += ["", "inputs"] + [row(n, q[n], self.values[n], self._mark(n), w) for n in inputs]
+        if self.find:
+            lines += ["", "found (solved for)"] + [row(n, q[n], self.values[n], "solved for", w) for n in self.find]
         if single:
-            lines += ["", "results"] + [row(n, q[n], self.values[n], self._source(n)) for n in single]
+            lines += ["", "results"] + [row(n, q[n], self.values[n], self._source(n), w) for n in single]
         lines += self._pairs()
         for title, frame in self.frames.items():
             lines += ["", title, frame.to_string(index=False)]
+        where = [k for k in self.outputs if k in self.where]
+        if where:
+            lines += ["", "where each worst case is"] + [f"  {k}: {self.where[k]}" for k in where]
         if self.scene.defaults:
             lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in self.scene.defaults.items()
                                               if k in self.values]
@@ -152,9 +163,9 @@ def value_cell(q, value) -> str:
     return q.unlimited_text if value == math.inf else f"{q.to_display(value):.6g}"
 
 
-def row(name, q, value, source="") -> str:
-    """One line of a result table: name, value, unit, source."""
-    return f"{name:<14}{value_cell(q, value):>14}  {unit_cell(q):<8}{source}".rstrip()
+def row(name, q, value, source="", width=14) -> str:
+    """One line of a result table: name (in ``width`` columns), value, unit, source."""
+    return f"{name:<{width}}{value_cell(q, value):>14}  {unit_cell(q):<8}{source}".rstrip()
 
 
 __all__ = ["META", "Result", "row", "unit_cell", "value_cell"]

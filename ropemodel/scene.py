@@ -4,7 +4,7 @@
 
     [scene]
     name = "Krauze et al. 2025, Fig. 9"
-    model = "winch"            # default; also "sheave", "capstan"
+    model = "winch"            # default; also "sheave", "capstan", "koepe"
     [effects]                  # effect = variant; omitted effects take their defaults
     elongation = "krauze2025"
     [parameters]               # the paper's symbols; a dimensional value carries its unit

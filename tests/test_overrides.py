@@ -140,6 +140,9 @@ def independent(scene, command: str, name: str) -> str | None:
       with rigid-body inertia each force is affine in the acceleration, each check and power monotone in the
       forces and each least tension the least of affine ones, so each worst lies at an extreme acceleration
       (docs/physics.md §4); the nudge takes a_e to at most max(1.5 a_e, 0.05 m/s²).
+    * A Koepe brake's largest deceleration bounds its window only below the slip limits (the window's top is
+      min(a_slip_decel, a_brake_max), docs/physics.md §7): not given (unlimited) and nudged to 5 m/s², above
+      both slip limits, the window is the same.
 
     A report prints every input of every equation it shows: only what enters none of them (a transient's
     t_end) can leave it unchanged.
@@ -158,6 +161,10 @@ def independent(scene, command: str, name: str) -> str | None:
     if (name == "a_e" and command in ("run", "solve", "sensitivity") and "t_ramp" in v and "v_pj" in v
             and max(1.5 * v.get("a_e", 0.0), 0.05) < v["v_pj"] / v["t_ramp"]):
         return "an emergency stop gentler than the ramps' stop"
+    if name == "a_brake_max" and v[name] == math.inf and scene.model == "koepe":
+        r = rm.run(scene)
+        if max(r["a_slip_hoist_decel"], r["a_slip_lower_decel"]) < 5.0:
+            return "the brake's window is the slip limits' below 5 m/s²"
     if command == "simulate" and name == "n_slip":
         return "the static slip check's factor"
     if command == "simulate" and name == "eta":
@@ -248,14 +255,16 @@ def identified(scene):
 
 def solved(scene):
     """The inverse problem each model's README shows: the load from the stroke (winch), the friction from
-    the tension (sheave), the friction from the rotation (capstan); the given value is the base scene's."""
+    the tension (sheave), the friction from the rotation (capstan), the payload from the anti-slip factor
+    (koepe); the given value is the base scene's."""
     given, find = INVERSE[scene.model]
     base = rm.run(SCENES[NAMES[scene.name]])[given]
     result = rm.solve(scene, {given: base}, [find])    # at the worst case: the outputs that have one
     return {k: v for k, v in result.values.items() if k in [*scene.built.outputs, find] and k != given}
 
 
-INVERSE = {"winch": ("dF_up", "G_m"), "sheave": ("S", "mu"), "capstan": ("delta_alpha", "mu")}
+INVERSE = {"winch": ("dF_up", "G_m"), "sheave": ("S", "mu"), "capstan": ("delta_alpha", "mu"),
+           "koepe": ("sigma_static", "m_payload")}
 
 
 def is_winch(scene):

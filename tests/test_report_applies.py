@@ -38,7 +38,8 @@ def called_for(scene) -> set[str]:
     """The specific sections a scene calls for, from what the scene says (its effects and values)."""
     e, given = scene.effects, {**scene.parameters, **scene.unused_values}
     out = set()
-    if scene.model == "winch" and (e.get("checks") == "design" or e.get("lining", "none") != "none"):
+    if e.get("checks") == "design" or e.get("brake", "none") != "none" or (
+            scene.model == "winch" and e.get("lining", "none") != "none"):
         out.add("checks")
     if scene.model == "winch" and e.get("rope", "given") != "given":
         out.add("sizing")

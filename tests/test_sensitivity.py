@@ -17,11 +17,16 @@ SCENES = sorted(p.name for p in resources.files("ropemodel.data").iterdir() if p
 def fd_elasticities(problem, x, par, outputs, h=1e-5):
     """Central differences of ln y in ln p for each of ``outputs`` on single evaluations (no range check:
     eta = 1 may step past 1), Richardson-extrapolated from steps h and h/2 so the O(h^2) truncation error
-    goes (outputs near zero, e.g. a slip margin, have elasticities of order 100 and large curvature)."""
+    goes (outputs near zero, e.g. a slip margin, have elasticities of order 100 and large curvature).
+    A factor a rule set gives from ``par`` (a safety factor from the suspended length) follows it."""
+
+    def at(value):
+        point = {**x, par: value}
+        point.update(problem.scene.rule_values(point, [par]))
+        return problem.function(**point)
 
     def central(step):
-        up = problem.function(**{**x, par: x[par] * (1 + step)})
-        dn = problem.function(**{**x, par: x[par] * (1 - step)})
+        up, dn = at(x[par] * (1 + step)), at(x[par] * (1 - step))
         return {o: (math.log(abs(float(up[o]))) - math.log(abs(float(dn[o])))) / (math.log1p(step) - math.log1p(-step))
                 for o in outputs}
 

@@ -16,7 +16,8 @@ A submodel contributes
   acausal: the solver may use it for any of its variables;
 * ``citations``: keys into :data:`ropemodel.citations.CITATIONS`;
 * ``rules(values)``: cross-parameter checks (e.g. L_ul ≤ L_u) on SI values, one message per
-  broken rule (or ``validate(values)`` raising :class:`~ropemodel.errors.InputError`).
+  broken rule (or ``validate(values)`` raising :class:`~ropemodel.errors.InputError`);
+* ``where(values)``: where each output taken at its worst (over positions, loads, manoeuvres) occurs.
 
 Every quantity is declared once per model: a second, different declaration of the same name
 raises at import (:func:`register`), so a default or a range cannot silently differ between
@@ -145,6 +146,11 @@ class Submodel:
     def invalid_needs_for(self, outputs) -> tuple[str, ...]:
         """The quantities whose values decide whether ``outputs`` are valid (default: ``invalid_needs``)."""
         return self.invalid_needs
+
+    def where(self, values: dict[str, float]) -> dict[str, str]:
+        """Where each of this submodel's worst-case outputs occurs (output → text), for an output taken at its
+        worst over positions, loads or manoeuvres; ``values`` as :meth:`invalid`.  ``{}`` for none."""
+        return {}
 
     def frames(self, values: dict[str, float], scene, where: dict | None = None) -> dict:
         """Extra tables (title → pandas DataFrame with units in its columns) for a solved point; ``where``:

@@ -124,8 +124,11 @@ def voigt_slip_guess(F_up, F_down, M_up, M_down, n_head, mu, alpha, C):
     return log((F_down + M_down * (F_up - T_U) / M_up) / F_down)
 
 
-def _newton_step(y, F_up, F_down, M_up, M_down, n_head, mu, alpha, C):
-    """Newton's step −f/f' for :func:`voigt_slip_residual` (f' = −(M_U/M_D)(T_D/T_U)(1 + κ T_U) − 1, κ = C/n)."""
+def voigt_newton_step(y, F_up, F_down, M_up, M_down, n_head, mu, alpha, C):
+    """Newton's step −f/f' for :func:`voigt_slip_residual` (f' = −(M_U/M_D)(T_D/T_U)(1 + κ T_U) − 1, κ = C/n).
+
+    From :func:`voigt_slip_guess` the steps are monotone (docs/physics.md §7); floats, numpy arrays and CasADi
+    expressions alike (a model may unroll them)."""
     T_U, T_D = _tensions(y, F_up, F_down, M_up, M_down)
     kappa = C / n_head
     slope = -(M_up / M_down) * T_D * (1.0 / T_U + kappa) - 1.0
@@ -158,7 +161,7 @@ def voigt_slip_acceleration(F_up, F_down, M_up, M_down, n_head, mu, alpha, R, v,
     args = (F_up, F_down, M_up, M_down, n_head, mu, alpha, C)
     y = np.asarray(voigt_slip_guess(*args), dtype=float)
     for _ in range(MAX_NEWTON):
-        step = np.asarray(_newton_step(y, *args), dtype=float)
+        step = np.asarray(voigt_newton_step(y, *args), dtype=float)
         y = y + step
         if np.all(np.abs(step) <= STEP_TOL * np.maximum(1.0, np.abs(y))):
             return _as_float(acceleration_from_log(y, F_down, M_down))

@@ -23,6 +23,7 @@ GOVERNS: dict[str, tuple[str, str]] = {
     "connector_safety": ("1", "least safety factor of connecting devices (couplings, pins, shackles)"),
     "termination_efficiency": ("1", "least strength of a rope's load-end attachment, as a fraction of the rope's"),
     "lining_friction": ("1", "least coefficient of friction of the drum lining against the rope"),
+    "emergency_deceleration_min": ("m/s^2", "least deceleration of an emergency stop (the safety brake)"),
 }
 
 #: machine → what it is (a rule set names the machines it is written for)
@@ -30,7 +31,7 @@ MACHINES: dict[str, str] = {
     "winch": "endless-rope haulage on an incline: a friction drum, a return sheave and a tensioner "
              "(ropemodel model 'winch', Krauze et al. 2025)",
     "koepe": "friction (Koepe) hoist in a shaft: head ropes over a friction wheel, optional tail ropes "
-             "(issue 25; not yet a ropemodel model)",
+             "(ropemodel model 'koepe')",
     "drum-hoist": "winding-drum hoist in a shaft or slope (not a ropemodel model)",
 }
 

@@ -7,7 +7,9 @@ The pictures (:meth:`ResultViews.plot`):
   load is (docs/physics.md §1), on a route of segments they change where the load crosses a joint
   (§4);
 * sheave: the tension along the arc S(α)/S_0 against Euler–Eytelwein's e^{μα} (Hajduk 1992, §3);
-* capstan: the load curve, the equivalent stiffness K against the load F_T (Li et al., eq. (26), §5).
+* capstan: the load curve, the equivalent stiffness K against the load F_T (Li et al., eq. (26), §5);
+* koepe: the static tension ratio T_1/T_2 as the conveyances move through the wind, loaded and empty, against
+  the traction limit (docs/physics.md §7).
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ class ResultViews:
     given: list[str]
     find: list[str]
     frames: dict
+    where: dict[str, str]
 
     def _rows(self) -> list[tuple[str, str, str]]:
         """(name, role, source or note) in the order of :meth:`Result.table`."""
@@ -42,7 +45,8 @@ class ResultViews:
         rows = [(n, "given" if n in self.given else "input", r._mark(n))
                 for n in [n for n in self.model.parameters if n not in self.find] + self.given]
         rows += [(n, "found", "solved for") for n in self.find]
-        rows += [(n, "result", r._source(n)) for n in r.outputs if n not in self.find]
+        rows += [(n, "result", r._source(n) + (f"; worst case: {self.where[n]}" if n in self.where else ""))
+                 for n in r.outputs if n not in self.find]
         return rows
 
     def to_frame(self, si: bool = False):
@@ -166,5 +170,21 @@ def _load_curve(result: ResultViews, ax):
     return finish(ax, f"{result.scene.name}: load curve", "F_T, load [N]", f"K [{unit}]")
 
 
+def _wind(result: ResultViews, ax):
+    """T_1/T_2 at rest against the depth of conveyance L (the payload's), loaded and empty, and the traction
+    limit of the worst static state (:func:`ropemodel.papers.koepe.side_tensions`)."""
+    from ropemodel.papers.koepe import side_tensions
+
+    v = result.values
+    y = np.linspace(0.0, v["H"], POINTS)
+    tail = (v.get("n_tail", 0.0), v.get("q_tail", 0.0), v.get("h_loop", 0.0))    # none without tail ropes
+    for payload, label in ((v["m_payload"], "loaded"), (0.0, "empty")):
+        T_L, T_E = side_tensions(y, v["m_conveyance"], payload, v["H"], v["H_head"], v["n_head"], v["q_head"], *tail)
+        ax.plot(y, np.maximum(T_L, T_E) / np.minimum(T_L, T_E), label=f"T_1/T_2, {label}")
+    ax.axhline(v["traction_limit"], color="0.3", ls="--", label="traction limit (worst static state)")
+    return finish(ax, f"{result.scene.name}: tension ratio through the wind", "depth of conveyance L below its "
+                  "upper position [m]", "T_1/T_2 [-]")
+
+
 #: model → its picture
-PICTURES = {"winch": _route, "sheave": _arc, "capstan": _load_curve}
+PICTURES = {"winch": _route, "sheave": _arc, "capstan": _load_curve, "koepe": _wind}

@@ -64,7 +64,8 @@ def results(ctx):
         html += page.table(["quantity", "down", "up", "meaning", "equation"], rows,
                            kinds=["name", "num", "num", "", ""], cls="pairs")
     if singles:
-        rows = [[n, page.show(q[n], values[n]), q[n].description, _source(model, n)] for n in singles]
+        rows = [[n, page.show(q[n], values[n]), _meaning(q[n].description, result.where.get(n)), _source(model, n)]
+                for n in singles]
         html += page.fragment("<h3>Single quantities</h3>")
         html += page.table(["quantity", "value", "meaning", "equation"], rows, kinds=["name", "num", "", ""],
                            cls="singles")
@@ -92,6 +93,11 @@ def worst_html(result) -> str:
                               "(given at one point with <code>--set x_m=...</code>): {{ n }}.</p>",
                               n=", ".join(env.no_worst))
     return html
+
+
+def _meaning(description: str, where: str | None) -> str:
+    """A quantity's meaning, and where its worst case is when it is taken at its worst."""
+    return f"{description}; worst case: {where}" if where else description
 
 
 def frame_html(title: str, frame):
@@ -158,7 +164,7 @@ def checks(ctx):
                          "(0.1: 10 % to spare), the others in the quantity's unit.{{ e }}</p>", w=where,
                          e=_span(result))
     return html + checks_html({n: result.values[n] for n in margins_of(result.outputs)}, result.model.quantities,
-                              result.scene, getattr(result, "where", None))
+                              result.scene, result.where)
 
 
 def _span(result) -> str:

@@ -2,8 +2,9 @@
 
 Headline results are the ones a designer sizes with: the rope force F_C, the tensioner's stroke need
 ΔF and the drive power N_p of a winch (the direction with the larger magnitude), the tension S of a
-sheave, the stiffness K and the rotation of a capstan drive.  A model with none of them shows the
-results that depend on the most inputs.
+sheave, the stiffness K and the rotation of a capstan drive, the largest rope pull T_max, the static
+anti-slip factor and the slip limit of an emergency stop lowering the load of a Koepe hoist.  A model
+with none of them shows the results that depend on the most inputs.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ from ropemodel.reports import figures, page
 from ropemodel.reports.registry import section
 
 #: headline results, by name (``base`` matches ``base``, ``base_up`` and ``base_down``), in order
-HEADLINE = ("F_C", "dF", "N_p", "S", "K", "delta_alpha")
+HEADLINE = ("F_C", "dF", "N_p", "S", "K", "delta_alpha", "T_max", "sigma_static", "a_slip_lower_decel")
 #: how many outputs, and how many inputs per chart
 OUTPUTS, TOP = 3, 8
 
