@@ -94,8 +94,9 @@ class Context:
 
     @once
     def result(self):
-        """The forward solve (:class:`~ropemodel.result.Result`) at :attr:`point`."""
-        from ropemodel.problem import run
+        """The forward solve (:class:`~ropemodel.result.Result`) at :attr:`point`: each result at its worst over
+        the load's places and the manoeuvres the scene leaves open (:func:`ropemodel.envelope.run`)."""
+        from ropemodel.envelope import run
 
         return run(self.point)
 
