@@ -9,9 +9,11 @@
    (largest relative difference), so the peer is also a correctness check.
    The ratio is also given in-process (no start-up on either side).
 2. **Cost vs number of points**: in-process sweeps to Parquet of 10^3 … 3·10^6
-   points against the numpy peer; the fitted exponent of time ∝ N^k over
-   N ≥ 5·10^4 (k = 1 is linear; below, the fixed cost of a sweep dominates), and
-   the least-squares fixed cost and cost per point.
+   points against the numpy peer, and the model t = a + b·N^k fitted to the
+   sweep's times (:func:`cost_model`): a, the fixed cost of a sweep (building
+   the chunks' function, opening the file), and the exponent k of the part
+   that grows with N (k = 1: linear).  The slope of log t against log N would
+   read the fixed cost as sub-linear growth wherever it is not negligible.
 3. **Peak memory** (full mode): the peak resident set (VmHWM) of a fresh
    process sweeping 10^6 and 10^7 points to Parquet (chunks of 65536 points),
    and of one that only imports and compiles: the chunking keeps it flat; the
@@ -220,6 +222,29 @@ def memory(tmp: Path, sizes) -> list[dict]:
     return rows
 
 
+def cost_model(sizes, times) -> tuple[float, float, float]:
+    """The fixed cost a [s], the cost b [s] and the exponent k of t = a + b·N^k fitted to sweep times
+    ``times`` [s] of ``sizes`` points (at least three sizes); k = 1 is a cost linear in N.
+
+    Least squares on log t, so each size weighs by its relative error: the small sweeps fix a, the large
+    ones b and k.  Written t = a + c·(N/N_max)^k (b = c/N_max^k), with a and c by their logarithms
+    (positive), so the three unknowns are of one scale.
+    """
+    from scipy.optimize import least_squares
+
+    n, t = np.asarray(sizes, float), np.asarray(times, float)
+    if n.size < 3:
+        raise ValueError(f"t = a + b N^k needs at least three sizes, got {n.size}")
+    x = np.log(n / n.max())
+
+    def residual(p):
+        return np.logaddexp(p[0], p[1] + p[2] * x) - np.log(t)
+
+    start = [np.log(t.min()), np.log(max(t.max() - t.min(), 1e-3 * t.max())), 1.0]
+    log_a, log_c, k = least_squares(residual, start, method="lm").x
+    return float(np.exp(log_a)), float(np.exp(log_c) / n.max() ** k), float(k)
+
+
 def _plot(scale, mem, path):
     import matplotlib
 
@@ -266,14 +291,8 @@ def main(out_dir=None, fast: bool = False, publish: bool = True) -> dict:
         else:  # memory first: fresh processes, measured before this one grows
             mem = memory(tmp, [1_000_000, 10_000_000])
             head = cli_vs_numpy(tmp, 1000, 1000, repeat=3)
-            scale = scaling(tmp, [1_000, 10_000, 100_000, 1_000_000, 3_000_000], repeat=2)
-    sizes = np.array([r["points"] for r in scale], float)
-    times = np.array([r["ropemodel_s"] for r in scale])
-    big = sizes >= 5e4  # the fixed cost of a sweep (~0.1 s: build, compile lookup, files) hides N below
-    if big.sum() < 2:
-        big[:] = True
-    k = float(np.polyfit(np.log(sizes[big]), np.log(times[big]), 1)[0])
-    per_point, fixed = (float(c) for c in np.polyfit(sizes, times, 1))  # t = fixed + per_point * N
+            scale = scaling(tmp, [1_000, 10_000, 100_000, 1_000_000, 3_000_000], repeat=3)
+    fit = cost_model([r["points"] for r in scale], [r["ropemodel_s"] for r in scale]) if len(scale) > 2 else None
     pd.DataFrame([head]).to_csv(out / "cli_vs_numpy.csv", index=False)
     pd.DataFrame(scale).to_csv(out / "scaling.csv", index=False)
     if mem:
@@ -289,13 +308,16 @@ def main(out_dir=None, fast: bool = False, publish: bool = True) -> dict:
     for r in scale:
         print(f"  in-process {r['points']:>9.0f} points: ropemodel / numpy = {r['ratio']:.2f}, "
               f"ropemodel {r['ropemodel_s'] / r['points'] * 1e9:.0f} ns/point")
-    print(f"cost ~ N^{k:.2f} for N >= {sizes[big].min():.0f} (1 = linear); least squares t = a + b N: "
-          f"fixed a = {fixed * 1e3:.0f} ms, b = {per_point * 1e9:.0f} ns/point (this machine)")
+    if fit:
+        print(f"cost t = a + b N^k: k = {fit[2]:.3f} (1 = linear), fixed a = {fit[0] * 1e3:.0f} ms, "
+              f"b N at 10^6 points = {fit[1] * 1e6 ** fit[2]:.2f} s (this machine)")
+    else:
+        print("cost t = a + b N^k: not fitted (--fast times two sizes)")
     for r in mem:
         label = "imports + compile only" if r["points"] == 0 else f"{r['points']:.0e} points"
         print(f"  peak RSS {label}: {r['peak_rss_bytes'] / 2 ** 20:.0f} MiB")
-    return {"cli_vs_numpy": head, "scaling": scale, "exponent": k, "fixed_s": fixed, "per_point_s": per_point,
-            "memory": mem}
+    a, b, k = fit or (None, None, None)
+    return {"cli_vs_numpy": head, "scaling": scale, "exponent": k, "fixed_s": a, "b": b, "memory": mem}
 
 
 if __name__ == "__main__":
