@@ -165,6 +165,10 @@ class SteadyMotion(Submodel):
     """Steady motion: no inertia force (the paper's forces)."""
 
     description = "steady motion: no inertia force"
+
+    def rope_force_per_metre(self, v):
+        """The inertia force per metre of rope [N/m] (0: steady motion), for a side's tension profile."""
+        return 0.0
     assumptions = ("Steady motion: the forces are those at constant speed; starting and stopping add inertia "
                    "(inertia = \"rigid\", or the transient).",)
 
@@ -185,6 +189,10 @@ class RigidInertia(Submodel):
         Q("I_S", "N", "inertia force of the unwinding rope, q_l L_u/g a_h", "kN",
           equation="rigid-body inertia (not in the paper)"),
     )
+
+    def rope_force_per_metre(self, v):
+        """The rope's inertia per metre, I_S/L_u = q_l a_h/g [N/m] (the same on both sides)."""
+        return v["I_S"] / v["L_u"]
 
     def equations(self, v):
         return [
@@ -224,6 +232,24 @@ class ResistanceCase2(Submodel):
     citations = ("krauze2025",)
 
 
+#: the rope's stiffness and the elongations every elongation variant defines (declared once, shared)
+Q_LW = Q("q_lw", "m/N", "unit elongation of the installed rope", "mm/kN", guess=5.8e-6,
+         **usual(3e-7, 1.2e-3, "q_lw = L_u/(E C d^2) for routes of 100-3000 m and EN 12385-4 ropes of 8-60 mm "
+                               "(E C of 40-70 GPa); the paper's rope: 5.8 mm/kN"), **POSITIVE)
+EA = Q("EA", "N", "axial stiffness of the rope, L_u/q_lw", "MN",
+       equation="Hooke's law over the route (not in the paper)")
+_AS_BUILT = "as built: the side's tension profile integrated (docs/physics.md §8)"
+DF_NWL = Q("dF_nwl", "m", "elongation under the initial tension", "mm",
+           equation=f"{SRC}, eq. (22)")
+DF_SIDES = (*per_direction("dF_C", "m", "elongation of the winding rope", "mm",
+                           equation=f"{SRC}, eq. (19); {_AS_BUILT}"),
+            *per_direction("dF_S", "m", "elongation of the unwinding rope", "mm",
+                           equation=f"{SRC}, eq. (20); {_AS_BUILT}"),
+            *per_direction("dF_CS", "m", "elongation of both ropes", "mm", equation=f"{SRC}, eq. (21)"))
+DF = per_direction("dF", "m", "minimum stroke of the return sheave", "mm",
+                   equation=f"{SRC}, eq. (23); as built: with reeving, constructional stretch, temperature")
+
+
 @register(MODEL, "elongation", "krauze2025")
 class Elongation(Submodel):
     """Rope elongation and the minimum tensioner stroke, Krauze et al. (2025) eq. (19)-(23)."""
@@ -237,19 +263,11 @@ class Elongation(Submodel):
         "The tensioner takes up the loop's whole elongation: its reeving (number of falls) is not modelled.",
     )
     citations = ("krauze2025",)
-    quantities = (
-        Q("q_lw", "m/N", "unit elongation of the installed rope", "mm/kN", guess=5.8e-6,
-          **usual(3e-7, 1.2e-3, "q_lw = L_u/(E C d^2) for routes of 100-3000 m and EN 12385-4 ropes of 8-60 mm "
-                                "(E C of 40-70 GPa); the paper's rope: 5.8 mm/kN"), **POSITIVE),
-        Q("dF_nwl", "m", "elongation under the initial tension", "mm", equation=f"{SRC}, eq. (22)"),
-        *per_direction("dF_C", "m", "elongation of the winding rope", "mm", equation=f"{SRC}, eq. (19)"),
-        *per_direction("dF_S", "m", "elongation of the unwinding rope", "mm", equation=f"{SRC}, eq. (20)"),
-        *per_direction("dF_CS", "m", "elongation of both ropes", "mm", equation=f"{SRC}, eq. (21)"),
-        *per_direction("dF", "m", "minimum stroke of the return sheave", "mm", equation=f"{SRC}, eq. (23)"),
-    )
-
+    quantities = (Q_LW, EA, DF_NWL, *DF_SIDES, *DF)
     def equations(self, v):
-        eqs = [Equation("dF_nwl", v["dF_nwl"] - kr.elongation(v["q_lw"], v["F_nwl"]), "eq. (22)")]
+        eqs = [Equation("dF_nwl", v["dF_nwl"] - kr.elongation(v["q_lw"], v["F_nwl"]), "eq. (22)"),
+               Equation("EA", v["EA"] - v["L_u"] / v["q_lw"], "Hooke's law over the route: EA = L_u/q_lw "
+                                                              "(not in the paper)")]
         for d in DIRECTIONS:
             eqs += [
                 Equation(f"dF_C_{d}", v[f"dF_C_{d}"] - kr.elongation(v["q_lw"], v[f"F_C_{d}"]), "eq. (19)"),

@@ -27,6 +27,8 @@ from ropemodel.effects.winch_rope import D_ROPE, F_MIN
 
 SRC = "Krauze et al. 2025"
 
+N_ROPE = Q("n_rope", "1", "required safety factor of the rope F_min / F_C", low=1.0, guess=5.0)
+
 define_effect(MODEL, "checks", "none", "design checks with their margins: safety, slack, stroke, drum")
 
 #: (margin name, check text, unit of the margin) in report order; slip comes from the lining effect
@@ -71,7 +73,7 @@ class DesignChecks(Submodel):
         D_ROPE,
         F_MIN,
         D_DRUM,
-        Q("n_rope", "1", "required safety factor of the rope F_min / F_C", low=1.0, guess=5.0),
+        N_ROPE,
         Q("F_S_min", "N", "least tension allowed in either rope (unwinding F_S and winding F_C)", "kN", low=0.0,
           default=0.0, default_note="no least tension given: the ropes need only stay taut (> 0)"),
         STROKE,

@@ -90,6 +90,12 @@ class StraightRoute(Submodel):
         ]
         return eqs
 
+    def pieces(self, v):
+        """The route from the drive as straight pieces (lengths, inclinations, winding-rope coefficients):
+        [0, L_ul] with μ_pl2 and [L_ul, L_u] with μ_pl1 (eq. (8)-(9)), for a side's tension profile."""
+        a = v["alpha_u"]
+        return [v["L_ul"], v["L_u"] - v["L_ul"]], [a, a], [v["mu_pl2"], v["mu_pl1"]]
+
     def rules(self, values):
         if "L_ul" in values and "L_u" in values and values["L_ul"] > values["L_u"]:
             return [f"L_ul = {values['L_ul']:g} m is beyond L_u = {values['L_u']:g} m: point A must lie on the "
@@ -169,6 +175,11 @@ class SegmentedRoute(Submodel):
             Equation("T_ls", v["T_ls"] - rt.rope_resistance_along_route(v["q_l"], L, alpha, [v["mu_pl"]] * n),
                      f"eq. (11), {src}"),
         ]
+
+    def pieces(self, v):
+        """The route from the drive as straight pieces (lengths, inclinations, winding-rope coefficients)."""
+        n = range(1, len(self.segments) + 1)
+        return [v[f"L_{i}"] for i in n], [v[f"alpha_{i}"] for i in n], [v[f"mu_w{i}"] for i in n]
 
     def transient_route(self, values: dict, numbers: dict):
         """The route as the transient's rope model asks it (:class:`ropemodel.effects.transient.route.Segments`):
