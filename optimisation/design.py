@@ -49,6 +49,8 @@ class Design(DesignViews):
     units: dict[str, str] = field(default_factory=dict)
     message: str = ""
     lexicographic_ok: bool | None = None
+    #: the rope's stiffness at the recommended design: EA [N], q_lw [m/N] (what the stroke rests on)
+    rope: dict[str, float] = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         """The JSON contract of ``ropemodel size --json`` (SI numbers)."""
@@ -70,12 +72,16 @@ class Design(DesignViews):
                                  "relax_alone": self.diagnosis.alone, "elastic": self.diagnosis.elastic,
                                  "where": self.diagnosis.where.strip(), "needs": self.diagnosis.needs}
         out["message"] = self.message
+        out.update(self.rope)
+        out["elongation"] = self.scene.effects.get("elongation")
         rules = rules_summary(self.scene)
         if rules:
             out["rules"] = rules
         return out
 
 
+#: the rope's stiffness a design states (the stroke rests on it)
+ROPE_STIFFNESS = ("EA", "q_lw")
 #: steps the recommended F_nwl [N] and stroke [m] are rounded up to, coarsest first
 ROUNDING = ((100.0, 1e-3), (10.0, 1e-4), (1.0, 1e-5))
 
@@ -210,6 +216,7 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     design.power = {k: values[k] for k in ("N_p_up", "N_p_down") if k in values}
     if problem.least_drum:
         design.least_drum = values["D"]
+    design.rope = {k: values[k] for k in ROPE_STIFFNESS if k in values}
     design.message = "design found"
     if sol.lexicographic_ok is False:
         design.message += ("; warning: the rope mass alone is not optimal at this design (the pretension or "

@@ -78,7 +78,7 @@ def per_direction(name, unit, description, display=None, symbol="", **kw) -> tup
 define_effect(MODEL, "route", "straight", "the route: the paper's single incline, or a list of straight segments")
 define_effect(MODEL, "forces", "krauze2025", "haulage forces of both directions, eq. (12)-(14)")
 define_effect(MODEL, "resistance", "case1", "resistance coefficients of the winding rope, eq. (15)-(18)")
-define_effect(MODEL, "elongation", "krauze2025", "rope elongation and tensioner stroke, eq. (19)-(23)")
+define_effect(MODEL, "elongation", "krauze2025", "rope elongation and tensioner stroke: eq. (19)-(23), or as built")
 define_effect(MODEL, "power", "none", "drive power per direction")
 
 
@@ -254,7 +254,8 @@ DF = per_direction("dF", "m", "minimum stroke of the return sheave", "mm",
 class Elongation(Submodel):
     """Rope elongation and the minimum tensioner stroke, Krauze et al. (2025) eq. (19)-(23)."""
 
-    description = "elongation of both ropes and the minimum stroke of the return sheave"
+    description = ("eq. (19)-(23): each whole rope side under its force at the drive, the return sheave taking up "
+                   "the loop's whole elongation")
     assumptions = (
         "Each rope side stretches under its largest force over its whole length, eq. (19)-(20): the elastic "
         "elongation is bounded from above.",

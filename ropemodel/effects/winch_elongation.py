@@ -43,7 +43,7 @@ QUANTITIES = (
       default=0.0, symbol="ΔT_rope", low=-100.0, high=100.0,
       default_note="not given: the rope at its installation temperature"),
     Q("eps_c", "1", "constructional (permanent) stretch of the rope still to come", "%", symbol="ε_c",
-      equation=f"rope makers' table by core and safety factor ({rs.STRETCH_SOURCE})"),
+      equation=f"the rope makers' table by core and safety factor: {rs.STRETCH_SOURCE}"),
     Q("dF_c", "m", "constructional stretch of the loop, eps_c 2 L_u", "mm", symbol="ΔF_c", equation=SRC),
     Q("dF_T", "m", "thermal elongation of the loop, alpha_T dT_rope 2 L_u", "mm", symbol="ΔF_T", equation=SRC),
 )
@@ -101,7 +101,7 @@ class ElongationAsBuilt(Submodel):
                      f"{SRC}: the loop under 0.5 F_nwl per side (= eq. (22)), reported, not added"),
             Equation("eps_c", v["eps_c"] - v["c_stretch"] * rs.constructional_stretch(v["n_rope"],
                                                                                       self._fibre_core()),
-                     f"constructional stretch, {rs.STRETCH_SOURCE}"),
+                     "constructional stretch: the rope makers' table by core and safety factor (rope_extension)"),
             Equation("dF_c", v["dF_c"] - v["eps_c"] * loop, SRC),
             Equation("dF_T", v["dF_T"] - rs.thermal_elongation(v["alpha_T"], v["dT_rope"], loop), SRC),
         ]
