@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import ropemodel as rm
-from tests import _route3
+import _route3
 
 G = 9.80665
 SEGMENTS = [(600.0, 12.0), (700.0, 20.0), (500.0, 6.0)]          # (length m, inclination deg), from the drive
