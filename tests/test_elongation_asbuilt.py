@@ -112,3 +112,24 @@ def test_temperature_adds_thermal_expansion():
 def test_pretension_alone_is_eq22():
     r = run(scene(950.0))
     assert r["dF_nwl"] == pytest.approx(F_NWL * 1800.0 / (E * C_IWRC * D**2), rel=1e-12)
+
+
+def test_sizing_takes_the_stroke_as_built():
+    """IPOPT sizes with the variant: the stroke it recommends is the closed form's at the design it chose
+    (Fig. 9 route, straight: ∫T_C = T_0 L + w_C L²/2 + J L, ∫T_S = T_0 L + w_S L²/2; a movable return sheave)."""
+    from importlib import resources
+
+    from optimisation.design import size
+
+    d = tomllib.loads(resources.files("ropemodel.data").joinpath("winch_sizing_fig9.toml").read_text())
+    d["effects"]["elongation"] = "asbuilt"
+    d["parameters"]["n_falls"] = 2
+    design = size(rm.from_dict(d))
+    assert design.feasible and "stroke_margin_up" in design.active
+    dd, F = design.design["d"], design.design["F_nwl"]
+    q, EA, L, a = G * W_IWRC * dd**2, E * C_IWRC * dd**2, 1150.0, math.radians(16.0)
+    w_C, w_S = q * (math.sin(a) + MU * math.cos(a)), q * (math.sin(a) - MU * math.cos(a))
+    J = 467e3 * (math.sin(a) + MU * math.cos(a))
+    eps = 0.0025 + 0.0025 * (1 / 4.5 - 1 / 5) / (1 / 3 - 1 / 5)          # steel core at n_rope = 4.5
+    stroke = ((F * L + (w_C + w_S) * L**2 / 2 + J * L) / EA + eps * 2 * L) / 2
+    assert 0.0 <= design.design["stroke"] - stroke < 1e-3                # rounded up to the next mm

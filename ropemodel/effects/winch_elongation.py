@@ -16,17 +16,23 @@ installation temperature; eq. (23) adds ΔF_nwl = q_lw F_nwl once more to ΔF_C 
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 from ropemodel._math import cos, sin
 from ropemodel.effects.base import REGISTRY, Equation, Submodel, register
 from ropemodel.effects.transient.travel import X_M
 from ropemodel.effects.winch import DF, DF_NWL, DF_SIDES, DIRECTIONS, EA, MODEL, Q, Q_LW, usual
 from ropemodel.effects.winch_checks import N_ROPE
+from ropemodel.effects.winch_rope import RopeCatalogue
 from ropemodel.papers import ropestretch as rs
 
 #: where the equations come from
 SRC = "as built, docs/physics.md §8 (not in Krauze et al. 2025)"
 #: the rope cores the constructional-stretch table has a steel column for (others: the fibre column)
 STEEL_CORES = ("IWRC", "WSC")
+
+#: the rope's metallic area (an output of a catalogue rope; a parameter with a rope given by q_l, q_lw)
+A_M = next(q for q in RopeCatalogue.quantities if q.name == "A_m")
 
 QUANTITIES = (
     Q("n_falls", "1", "falls of the tensioner's reeving: it moves 1/n_falls of the rope it takes up", low=1.0,
@@ -56,7 +62,7 @@ class ElongationAsBuilt(Submodel):
 
     description = ("elongation of each rope side from its tension profile along the route, the tensioner's "
                    "falls, constructional stretch and temperature")
-    citations = ("krauze2025", "rope_extension")
+    citations: ClassVar[tuple[str, ...]] = ("krauze2025", "rope_extension")
     assumptions = (
         "Hooke's law along each rope side with its tension profile (load position x_m; not given: the load at "
         "the return sheave, where the winding side stretches most); the rope on the drum and sheaves is left out.",
@@ -76,8 +82,9 @@ class ElongationAsBuilt(Submodel):
         construction = getattr(rope, "construction", None)
         return getattr(construction, "core", "") not in STEEL_CORES
 
-    def _profiles(self, v, sign):
-        """(∫T_C dx, ∫T_S dx) [N·m] of the direction ``sign`` (+1 up, −1 down)."""
+    def _sides(self, v, sign):
+        """The tension profiles of the direction ``sign`` (+1 up, −1 down): T_0 at the return sheave, the
+        pieces' lengths, the winding and unwinding rope's rise per metre w_C, w_S [N/m] and the load's step J."""
         spec = REGISTRY[MODEL]
         route = spec["route"].variants[self.effects.get("route", spec["route"].default)](self.options, self.effects)
         inertia = spec["inertia"].variants[self.effects.get("inertia", spec["inertia"].default)](self.options,
@@ -90,14 +97,23 @@ class ElongationAsBuilt(Submodel):
         d = "up" if sign > 0 else "down"
         rise_C = sum(w * length for w, length in zip(w_C, lengths))
         J = v[f"F_C_{d}"] - T_0 - rise_C           # the load's share of F_C (eq. (13)): its step at x_m
-        return (rs.side_tension_integral(T_0, w_C, lengths, J, v["x_m"]),
-                rs.side_tension_integral(T_0, w_S, lengths, 0.0, v["x_m"]))
+        return T_0, lengths, w_C, w_S, J
+
+    def elastic(self, v, sign):
+        """(ΔF_C, ΔF_S) [m]: Hooke's law integrated along each side."""
+        T_0, lengths, w_C, w_S, J = self._sides(v, sign)
+        return (rs.elastic_elongation(rs.side_tension_integral(T_0, w_C, lengths, J, v["x_m"]), v["EA"]),
+                rs.elastic_elongation(rs.side_tension_integral(T_0, w_S, lengths, 0.0, v["x_m"]), v["EA"]))
+
+    def pretension(self, v):
+        """The loop's elastic elongation under the pretension alone [m]."""
+        return v["F_nwl"] * v["L_u"] / v["EA"]
 
     def equations(self, v):
         loop = 2.0 * v["L_u"]
         eqs = [
             Equation("EA", v["EA"] - v["L_u"] / v["q_lw"], "Hooke's law over the route: EA = L_u/q_lw"),
-            Equation("dF_nwl", v["dF_nwl"] - v["F_nwl"] * v["L_u"] / v["EA"],
+            Equation("dF_nwl", v["dF_nwl"] - self.pretension(v),
                      f"{SRC}: the loop under 0.5 F_nwl per side (= eq. (22)), reported, not added"),
             Equation("eps_c", v["eps_c"] - v["c_stretch"] * rs.constructional_stretch(v["n_rope"],
                                                                                       self._fibre_core()),
@@ -106,15 +122,52 @@ class ElongationAsBuilt(Submodel):
             Equation("dF_T", v["dF_T"] - rs.thermal_elongation(v["alpha_T"], v["dT_rope"], loop), SRC),
         ]
         for d, sign in DIRECTIONS.items():
-            int_C, int_S = self._profiles(v, sign)
+            elastic_C, elastic_S = self.elastic(v, sign)
             loop_change = v[f"dF_CS_{d}"] + v["dF_c"] + v["dF_T"]
             eqs += [
-                Equation(f"dF_C_{d}", v[f"dF_C_{d}"] - rs.elastic_elongation(int_C, v["EA"]),
-                         f"{SRC}, eq. (19) along the profile"),
-                Equation(f"dF_S_{d}", v[f"dF_S_{d}"] - rs.elastic_elongation(int_S, v["EA"]),
-                         f"{SRC}, eq. (20) along the profile"),
+                Equation(f"dF_C_{d}", v[f"dF_C_{d}"] - elastic_C, f"{SRC}, eq. (19) along the profile"),
+                Equation(f"dF_S_{d}", v[f"dF_S_{d}"] - elastic_S, f"{SRC}, eq. (20) along the profile"),
                 Equation(f"dF_CS_{d}", v[f"dF_CS_{d}"] - (v[f"dF_C_{d}"] + v[f"dF_S_{d}"]), "eq. (21)"),
                 Equation(f"dF_{d}", v[f"dF_{d}"] - rs.take_up(loop_change, v["n_falls"]),
                          f"{SRC}: the tensioner's take-up through its falls"),
             ]
         return eqs
+
+
+MODULUS = (
+    Q("r_E0", "1", "rope modulus at zero tension relative to its modulus under load, E_0/E", low=0.0, high=1.0,
+      low_open=True, guess=0.6, symbol="r_E0", **usual(0.3, 1.0, "stranded ropes stiffen as they bed in (Feyrer "
+                                                                 "2015, §1.3); take it from the maker's curve")),
+    Q("sigma_E", "Pa", "rope tensile stress over which the modulus rises toward E (1 - 1/e of the way)", "N/mm^2",
+      low=0.0, low_open=True, guess=1e8, symbol="σ_E", **usual(1e7, 5e8, "a fraction of the working stress "
+                                                                         "(judgement); the maker's curve")),
+)
+
+
+@register(MODEL, "elongation", "asbuilt_stress")
+class ElongationStressModulus(ElongationAsBuilt):
+    """The stroke as built with a rope modulus that rises with the rope tensile stress σ = T/A_m:
+    E_t(σ) = E (1 − (1 − r_E0) e^{−σ/σ_E}), E = EA/A_m, each side's strain ε(T(x)/A_m) integrated along it by
+    Gauss–Legendre (:func:`ropemodel.papers.ropestretch.rope_strain`, ``side_strain_integral``).  Smooth for
+    IPOPT; r_E0 = 1 is ``asbuilt``."""
+
+    description = ("as built (tension profile, falls, constructional stretch, temperature) with a rope modulus "
+                   "rising with the rope tensile stress")
+    citations = ("krauze2025", "rope_extension", "feyrer2015")
+    assumptions = (*ElongationAsBuilt.assumptions[:-1],
+                   "The rope's tangent modulus rises from r_E0 E at zero stress toward E = EA/A_m over a stress "
+                   "σ_E (an exponential form with the behaviour Feyrer describes, not his own fit).")
+    quantities = (*ElongationAsBuilt.quantities, A_M, *MODULUS)
+
+    def _strain(self, v):
+        E = v["EA"] / v["A_m"]
+        return lambda T: rs.rope_strain(T / v["A_m"], E, v["r_E0"], v["sigma_E"])
+
+    def elastic(self, v, sign):
+        T_0, lengths, w_C, w_S, J = self._sides(v, sign)
+        strain = self._strain(v)
+        return (rs.side_strain_integral(T_0, w_C, lengths, J, v["x_m"], strain),
+                rs.side_strain_integral(T_0, w_S, lengths, 0.0, v["x_m"], strain))
+
+    def pretension(self, v):
+        return 2.0 * v["L_u"] * self._strain(v)(0.5 * v["F_nwl"])

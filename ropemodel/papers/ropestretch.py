@@ -134,3 +134,65 @@ def thermal_elongation(alpha_T, dT, length):
     0.575
     """
     return alpha_T * dT * length
+
+
+def rope_strain(sigma, E_inf, r_0, sigma_E):
+    """Strain of a rope whose tangent modulus rises with its tensile stress σ [Pa] (metallic area):
+    ε(σ) = ∫_0^σ ds/E_t(s) with E_t(s) = E_∞ (1 − (1 − r_0) e^{−s/σ_E}), in closed form
+
+        ε(σ) = [σ + σ_E ln((1 − (1 − r_0) e^{−σ/σ_E}) / r_0)] / E_∞.
+
+    E_∞ [Pa] the modulus under load (rope_E, or EA/A_m), r_0 = E_0/E_∞ (0 < r_0 <= 1) the modulus at zero
+    stress relative to it, σ_E [Pa] the stress over which the modulus rises (1 − 1/e of the way).  Smooth in
+    every argument (no branch: IPOPT-safe); r_0 = 1 is Hooke's law ε = σ/E_∞.  Stranded ropes stiffen as
+    the strands bed in under tension (Feyrer, *Wire Ropes*, 2nd ed. 2015, §1.3: the rope modulus rises with
+    the rope tensile stress); this exponential form is ropemodel's smooth choice with that behaviour, not
+    Feyrer's own fit (status: to verify against the source); r_0 and σ_E come from the rope maker's
+    load-extension curve.  Valid for σ >= 0.
+
+    Examples
+    --------
+    >>> rope_strain(300e6, 100e9, 1.0, 50e6)              # Hooke: 300 MPa on 100 GPa
+    0.003
+    >>> round(rope_strain(300e6, 100e9, 0.5, 50e6) * 1e3, 3)    # softer at first: more strain [1e-3]
+    3.346
+    """
+    from ropemodel._math import exp, log
+
+    return (sigma + sigma_E * log((1.0 - (1.0 - r_0) * exp(-sigma / sigma_E)) / r_0)) / E_inf
+
+
+def side_strain_integral(T_0, w, lengths, J, x_J, strain, nodes: int = 8):
+    """∫_0^{L_u} ε(T(x)) dx [m] of one rope side, the tension profile of :func:`side_tension_integral` and
+    ``strain(T)`` [-] a smooth function of the tension: Gauss–Legendre with ``nodes`` points on each piece
+    (the segments, each split at x_J where the winding side's tension steps by J).  Exact for a strain
+    polynomial in T of degree < 2 nodes (Hooke's law with any ``nodes``).
+
+    Examples
+    --------
+    >>> round(side_strain_integral(1e4, [25.0], [1000.0], 1e5, 400.0, lambda T: T / 1e8), 9)   # Hooke
+    0.625
+    >>> side_tension_integral(1e4, [25.0], [1000.0], 1e5, 400.0) / 1e8
+    0.625
+    """
+    import numpy as np
+
+    t, wt = np.polynomial.legendre.leggauss(nodes)
+    ends, total = [], 0.0
+    for length in lengths:
+        total = total + length
+        ends.append(total)
+    tail, out, start = T_0, 0.0, 0.0
+    tails: list = []
+    for length, w_i in reversed(list(zip(lengths, w))):      # the tension at each segment's return-sheave end
+        tails.insert(0, tail)
+        tail = tail + w_i * length
+    for w_i, end, T_end in zip(w, ends, tails):
+        cut = _clamp(x_J, start, end)
+        for a, b, step in ((start, cut, J), (cut, end, 0.0)):
+            half, mid = 0.5 * (b - a), 0.5 * (a + b)
+            for t_k, w_k in zip(t, wt):
+                x = mid + half * float(t_k)
+                out = out + float(w_k) * half * strain(T_end + w_i * (end - x) + step)
+        start = end
+    return out
