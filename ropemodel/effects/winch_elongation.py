@@ -76,6 +76,9 @@ class ElongationAsBuilt(Submodel):
     missing = ("The rope maker's constructional stretch and a measured modulus of the installed rope: the table's "
                "values are approximate (\"cannot be accurately determined by calculation\").",)
     quantities = (Q_LW, EA, X_M, N_ROPE, *QUANTITIES, DF_NWL, *DF_SIDES, *DF)
+    #: how each side's elongation is computed where no closed form shows it, and its relative tolerance
+    elastic_method: ClassVar[str] = ""
+    elastic_tolerance: ClassVar[float | None] = None
 
     def _fibre_core(self) -> bool:
         rope = REGISTRY[MODEL]["rope"].variants.get(self.effects.get("rope", ""))
@@ -125,8 +128,10 @@ class ElongationAsBuilt(Submodel):
             elastic_C, elastic_S = self.elastic(v, sign)
             loop_change = v[f"dF_CS_{d}"] + v["dF_c"] + v["dF_T"]
             eqs += [
-                Equation(f"dF_C_{d}", v[f"dF_C_{d}"] - elastic_C, f"{SRC}, eq. (19) along the profile"),
-                Equation(f"dF_S_{d}", v[f"dF_S_{d}"] - elastic_S, f"{SRC}, eq. (20) along the profile"),
+                Equation(f"dF_C_{d}", v[f"dF_C_{d}"] - elastic_C, f"{SRC}, eq. (19) along the profile",
+                         method=self.elastic_method, tolerance=self.elastic_tolerance),
+                Equation(f"dF_S_{d}", v[f"dF_S_{d}"] - elastic_S, f"{SRC}, eq. (20) along the profile",
+                         method=self.elastic_method, tolerance=self.elastic_tolerance),
                 Equation(f"dF_CS_{d}", v[f"dF_CS_{d}"] - (v[f"dF_C_{d}"] + v[f"dF_S_{d}"]), "eq. (21)"),
                 Equation(f"dF_{d}", v[f"dF_{d}"] - rs.take_up(loop_change, v["n_falls"]),
                          f"{SRC}: the tensioner's take-up through its falls"),
@@ -158,6 +163,8 @@ class ElongationStressModulus(ElongationAsBuilt):
                    "The rope's tangent modulus rises from r_E0 E at zero stress toward E = EA/A_m over a stress "
                    "σ_E (an exponential form with the behaviour Feyrer describes, not his own fit).")
     quantities = (*ElongationAsBuilt.quantities, A_M, *MODULUS)
+    elastic_method = "8-point Gauss-Legendre on each piece of the side (the segments, split at x_m)"
+    elastic_tolerance = 1e-9          # against scipy's adaptive quadrature, tests/test_elongation_stress.py
 
     def _strain(self, v):
         E = v["EA"] / v["A_m"]
