@@ -165,12 +165,12 @@ class SteadyMotion(Submodel):
     """Steady motion: no inertia force (the paper's forces)."""
 
     description = "steady motion: no inertia force"
+    assumptions = ("Steady motion: the forces are those at constant speed; starting and stopping add inertia "
+                   "(inertia = \"rigid\", or the transient).",)
 
     def rope_force_per_metre(self, v):
         """The inertia force per metre of rope [N/m] (0: steady motion), for a side's tension profile."""
         return 0.0
-    assumptions = ("Steady motion: the forces are those at constant speed; starting and stopping add inertia "
-                   "(inertia = \"rigid\", or the transient).",)
 
 
 @register(MODEL, "inertia", "rigid")
@@ -261,10 +261,12 @@ class Elongation(Submodel):
         "elongation is bounded from above.",
         "No constructional (permanent) stretch of a new rope: it comes on top of the elastic elongation and usually "
         "dominates the first months.",
-        "The tensioner takes up the loop's whole elongation: its reeving (number of falls) is not modelled.",
+        "The tensioner takes up the loop's whole elongation: its reeving (number of falls) is not modelled "
+        "(elongation = \"asbuilt\" models the profile, the falls, constructional stretch and temperature).",
     )
     citations = ("krauze2025",)
     quantities = (Q_LW, EA, DF_NWL, *DF_SIDES, *DF)
+
     def equations(self, v):
         eqs = [Equation("dF_nwl", v["dF_nwl"] - kr.elongation(v["q_lw"], v["F_nwl"]), "eq. (22)"),
                Equation("EA", v["EA"] - v["L_u"] / v["q_lw"], "Hooke's law over the route: EA = L_u/q_lw "
