@@ -92,7 +92,7 @@ class ElongationAsBuilt(Submodel):
         route = spec["route"].variants[self.effects.get("route", spec["route"].default)](self.options, self.effects)
         inertia = spec["inertia"].variants[self.effects.get("inertia", spec["inertia"].default)](self.options,
                                                                                                  self.effects)
-        lengths, alphas, mus = route.pieces(v)
+        lengths, alphas, mus = route.profile(v)
         a_rope = inertia.rope_force_per_metre(v)
         q, T_0 = v["q_l"], 0.5 * v["F_nwl"]
         w_C = [q * (sin(a) + sign * mu * cos(a)) + sign * a_rope for a, mu in zip(alphas, mus)]
