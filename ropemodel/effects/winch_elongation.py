@@ -19,6 +19,7 @@ from __future__ import annotations
 from typing import ClassVar
 
 from ropemodel._math import cos, sin
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import REGISTRY, Equation, Submodel, register
 from ropemodel.effects.transient.travel import X_M
 from ropemodel.effects.winch import DF, DF_NWL, DF_SIDES, DIRECTIONS, EA, MODEL, Q, Q_LW, usual
@@ -35,18 +36,21 @@ STEEL_CORES = ("IWRC", "WSC")
 A_M = next(q for q in RopeCatalogue.quantities if q.name == "A_m")
 
 QUANTITIES = (
-    Q("n_falls", "1", "falls of the tensioner's reeving: it moves 1/n_falls of the rope it takes up", low=1.0,
+    Q("n_falls", "1", "falls of the tensioner's reeving: it moves 1/n_falls of the rope it takes up",
+      **dom.domain(1.0, 100.0, "at least 1 (the loop itself); tensioners reeve 1 to 8 falls"),
       guess=1.0, default=1.0, symbol="n_falls",
       default_note="not given: the tensioner takes up the loop's whole elongation (Krauze et al. 2025, eq. (23)); "
                    "a movable return sheave carrying both rope sides: 2"),
     Q("c_stretch", "1", "share of the table's constructional stretch still to come (1 new rope, 0 run in)",
-      low=0.0, high=1.0, guess=1.0, default=1.0,
+      **dom.domain(0.0, 1.0, "physics: a share of the table's stretch, none to all of it"), guess=1.0, default=1.0,
       default_note="not given: a new rope, not pre-stretched (the whole constructional stretch to come)"),
-    Q("alpha_T", "1/K", "linear thermal expansion coefficient of the rope", "1/K", low=0.0, guess=12.5e-6,
+    Q("alpha_T", "1/K", "linear thermal expansion coefficient of the rope", "1/K", guess=12.5e-6,
+      **dom.domain(0.0, 1e-3, "0 to 1e-3 /K, fifty times steel's (12e-6 /K) and beyond any polymer's (about 2e-4 /K)"),
       default=rs.ALPHA_STEEL_ROPE, symbol="α_T", default_note=rs.ALPHA_SOURCE,
       **usual(10e-6, 14e-6, "carbon steel 11-13e-6 /K")),
     Q("dT_rope", "K", "rope temperature above its installation temperature (< 0: colder)", "K", guess=0.0,
-      default=0.0, symbol="ΔT_rope", low=-100.0, high=100.0,
+      default=0.0, symbol="ΔT_rope",
+      **dom.domain(-100.0, 100.0, "±100 K: beyond the range of mine air (about -40 to +50 °C) around an installation"),
       default_note="not given: the rope at its installation temperature"),
     Q("eps_c", "1", "constructional (permanent) stretch of the rope still to come", "%", symbol="ε_c",
       equation=f"the rope makers' table by core and safety factor: {rs.STRETCH_SOURCE}"),
@@ -140,11 +144,13 @@ class ElongationAsBuilt(Submodel):
 
 
 MODULUS = (
-    Q("r_E0", "1", "rope modulus at zero tension relative to its modulus under load, E_0/E", low=0.0, high=1.0,
-      low_open=True, guess=0.6, symbol="r_E0", **usual(0.3, 1.0, "stranded ropes stiffen as they bed in (Feyrer "
+    Q("r_E0", "1", "rope modulus at zero tension relative to its modulus under load, E_0/E",
+      **dom.domain(0.0, 1.0, "physics: a fraction of the modulus under load, above 0", low_open=True),
+      guess=0.6, symbol="r_E0", **usual(0.3, 1.0, "stranded ropes stiffen as they bed in (Feyrer "
                                                                  "2015, §1.3); take it from the maker's curve")),
     Q("sigma_E", "Pa", "rope tensile stress over which the modulus rises toward E (1 - 1/e of the way)", "N/mm^2",
-      low=0.0, low_open=True, guess=1e8, symbol="σ_E", **usual(1e7, 5e8, "a fraction of the working stress "
+      **dom.domain(0.0, 1e10, "above 0, up to 10 GPa: beyond the strongest drawn steel wire (about 3 GPa)",
+                   low_open=True), guess=1e8, symbol="σ_E", **usual(1e7, 5e8, "a fraction of the working stress "
                                                                          "(judgement); the maker's curve")),
 )
 

@@ -87,7 +87,9 @@ class RopeCatalogue(Submodel):
         Q("rope_E", "Pa", "modulus of the rope referred to its metallic area", "kN/mm^2", **dom.MODULUS,
           symbol="E", warn_low=5e10, warn_high=2.1e11,
           usual_source="rope makers quote 80-120 GPa on the metallic area; steel wire itself is 210 GPa", guess=1e11),
-        Q("A_m", "m^2", "metallic cross-section of the rope", "mm^2", equation=f"{SRC}: metallic cross-section"),
+        Q("A_m", "m^2", "metallic cross-section of the rope", "mm^2", equation=f"{SRC}: metallic cross-section",
+          **dom.domain(1e-8, 1.0, "0.01 mm^2 (a 0.1-mm wire) to 1 m^2, beyond the metallic area of any rope "
+                                  "(a 300-mm rope: about 0.05 m^2)")),
         Q("m_l", "kg/m", "mass of the rope per metre", "kg/m", equation=f"{SRC}: nominal length mass"),
     )
 
