@@ -35,6 +35,8 @@ REMEDIES = {
     "safety_margin": (("n_rope", "max"), ("rope_grade", "min")),
     "slip_margin": (("n_slip", "max"), ("mu_d", "min"), ("alpha_d", "min")),
     "slack_margin": (("F_S_min", "max"),),
+    "taut_margin": (("F_S_min", "max"),),
+    "sheave_margin": (("F_S_min", "max"),),
     "drum_margin": (("D", "min"), ("D_ratio_min", "max")),
 }
 OPTS: dict[str, Any] = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False,
@@ -58,7 +60,9 @@ class Diagnosis:
     def text(self, units: dict[str, str]) -> str:
         if self.feasible:
             return "a design meeting every check exists"
-        lines = [f"no design meets every check{self.where}: these checks conflict: " + ", ".join(self.conflicting)]
+        lines = [f"no design meets every check{self.where}: " + (
+            "these checks conflict: " + ", ".join(self.conflicting) if self.conflicting else   # none with a multiplier
+            "these checks cannot hold: " + ", ".join(self.elastic))]                         # above 1e-6: the relaxed
         if self.needs:
             lines.append("  each of these alone makes a design exist: " + "; ".join(self.needs))
         for c in self.conflicting:

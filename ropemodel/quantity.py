@@ -9,6 +9,9 @@ from typing import Any
 from ropemodel.errors import InputError
 from ropemodel.units import factor, to_si
 
+#: the extremes an output's worst case can be (:attr:`Quantity.worst`)
+SENSES = ("least", "largest")
+
 
 @dataclass(frozen=True)
 class Quantity:
@@ -21,7 +24,8 @@ class Quantity:
     description: one line for tables and error messages.
     display: unit for human-readable tables (the paper's unit, e.g. ``"kN"``).
     low, high: valid range in SI; ``low_open``/``high_open`` make an end exclusive.  Outside it a
-        value is an error.
+        value is an error, even where it is not used.  Every input has finite ends
+        (:mod:`ropemodel.effects.domains`), with ``range_source`` saying where they come from.
     warn_low, warn_high: the range *usual for the field* (SI); outside it a valid value gets a warning
         that states this range and ``usual_source``, where the range comes from.
     usual_source: where the usual range comes from (documented in the README's scene section).
@@ -36,6 +40,10 @@ class Quantity:
         of a drive power); tables print it next to the number (:meth:`sign_text`).
     symbol: the symbol formulas show, plain Unicode with ``_`` before a subscript (``"m_safety,up"``);
         ``""``: made from the name (:func:`symbol_of`: ``alpha_u`` → ``α_u``, ``F_C_up`` → ``F_C,up``).
+    worst: which extreme of an output is its worst case where the load's place or the manoeuvre varies
+        (:mod:`ropemodel.envelope`): ``("least",)`` (a margin, a least tension), ``("largest",)`` (a rope
+        force, a stroke), or both (a signed power: largest motoring and largest braking); ``()``: none
+        (an intermediate quantity, given only at one place).
     """
 
     name: str
@@ -46,6 +54,7 @@ class Quantity:
     high: float = math.inf
     low_open: bool = False
     high_open: bool = False
+    range_source: str = ""
     warn_low: float = -math.inf
     warn_high: float = math.inf
     usual_source: str = ""
@@ -58,6 +67,11 @@ class Quantity:
     default_note: str = ""
     signs: tuple[str, ...] = ()
     symbol: str = ""
+    worst: tuple[str, ...] = ()
+
+    def __post_init__(self):
+        if not set(self.worst) <= set(SENSES):
+            raise ValueError(f"{self.name}: worst must be among {SENSES}, got {self.worst}")
 
     @property
     def typeset(self) -> str:

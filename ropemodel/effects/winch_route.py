@@ -16,35 +16,38 @@
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 from ropemodel.effects.base import Equation, Submodel, register
-from ropemodel.effects.transient.travel import X_M
-from ropemodel.effects.winch import COEFFICIENT, JUDGEMENT, MODEL, NONNEGATIVE, POSITIVE, ROPE_MU, SRC, Q, usual
+from ropemodel.effects import domains as dom
+from ropemodel.effects.transient.travel import X_M, beyond_route
+from ropemodel.effects.winch import JUDGEMENT, MODEL, POSITIVE, ROPE_MU, SRC, Q, usual
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
 
 INPUTS = (
         Q("G_m", "N", "weight of the transported load", "kN", guess=4e5,
-          **usual(1e3, 5e6, f"{JUDGEMENT} (467 kN): from one light car to a heavy train"), **POSITIVE),
+          **usual(1e3, 5e6, f"{JUDGEMENT} (467 kN): from one light car to a heavy train"), **POSITIVE,
+          **dom.FORCE_POSITIVE),
         Q("L_u", "m", "length of the inclined route", "m", guess=1000.0,
           **usual(20.0, 5000.0, f"{JUDGEMENT} (1150 m): rope-winch routes are tens of metres to a few km"),
-          **POSITIVE),
-        Q("L_ul", "m", "distance of point A from the guiding sheave K_K", "m", guess=500.0, **NONNEGATIVE),
-        Q("alpha_u", "rad", "inclination of the route", "deg", low=-math.pi / 2, high=math.pi / 2,
-          low_open=True, high_open=True, guess=0.3,
+          **POSITIVE, **dom.ROUTE_LENGTH),
+        Q("L_ul", "m", "distance of point A from the guiding sheave K_K", "m", guess=500.0, **dom.ROUTE_POSITION),
+        Q("alpha_u", "rad", "inclination of the route", "deg", **dom.INCLINATION, guess=0.3,
           **usual(-math.pi / 4, math.pi / 4,
                   f"{SRC}, introduction: rope winches serve workings inclined up to 45 deg")),
         Q("mu_pm", "1", "coefficient of resistance of the load", guess=0.05,
           **usual(0.005, 0.2, f"{JUDGEMENT} (0.05): mine cars roll at about 0.01, a sliding load up to 0.2"),
-          **COEFFICIENT),
-        Q("mu_pl", "1", "coefficient of resistance of the unwinding rope", guess=0.05, **ROPE_MU, **COEFFICIENT),
+          **dom.RESISTANCE),
+        Q("mu_pl", "1", "coefficient of resistance of the unwinding rope", guess=0.05, **ROPE_MU, **dom.RESISTANCE),
         Q("mu_pl1", "1", "coefficient of resistance of the winding rope from K_ZN to point A", guess=0.05,
-          **ROPE_MU, **COEFFICIENT),
+          **ROPE_MU, **dom.RESISTANCE),
         Q("mu_pl2", "1", "coefficient of resistance of the winding rope from point A to the drive", guess=0.05,
-          **ROPE_MU, **COEFFICIENT),
+          **ROPE_MU, **dom.RESISTANCE),
         Q("q_l", "N/m", "weight of the rope per metre", "kN/m", guess=80.0,
           **usual(1.0, 200.0, "EN 12385-4 ropes of 8 to 60 mm, q_l = g W d^2 (the paper's 42 mm rope: 0.08 kN/m)"),
-          **POSITIVE),
+          **POSITIVE, **dom.domain(1e-3, 1e5, "0.1 g/m (a 0.1-mm wire) to 10 t/m, ten times a 500-mm steel rope "
+                                              "(g W d^2, about 10 kN/m)")),
 )
 OUTPUTS = (
         Q("G_ml", "N", "load weight along the incline", "kN", equation=f"{SRC}, eq. (1)"),
@@ -61,6 +64,15 @@ OUTPUTS = (
         Q("T_ls", "N", "resistance of the unwinding rope", "kN", equation=f"{SRC}, eq. (11)"),
 )
 _Q = {q.name: q for q in INPUTS + OUTPUTS}
+
+
+class Profile(NamedTuple):
+    """The route as straight pieces from the drive: their lengths [m], inclinations [rad] and the winding
+    rope's resistance coefficient on each [-] (symbols of the model, or numbers)."""
+
+    lengths: list
+    inclinations: list
+    mus: list
 
 
 @register(MODEL, "route", "straight")
@@ -90,11 +102,19 @@ class StraightRoute(Submodel):
         ]
         return eqs
 
+    def profile(self, v) -> Profile:
+        """The incline as one piece, or, where the winding rope's resistance changes at point A (case 2), two
+        pieces either side of it: μ_pl2 toward the drive, μ_pl1 beyond (eq. (17))."""
+        if getattr(self.sibling("resistance"), "split_at_A", False):
+            return Profile([v["L_ul"], v["L_u"] - v["L_ul"]], [v["alpha_u"]] * 2, [v["mu_pl2"], v["mu_pl1"]])
+        return Profile([v["L_u"]], [v["alpha_u"]], [v["mu_pl1"]])
+
     def rules(self, values):
+        out = beyond_route(values)
         if "L_ul" in values and "L_u" in values and values["L_ul"] > values["L_u"]:
-            return [f"L_ul = {values['L_ul']:g} m is beyond L_u = {values['L_u']:g} m: point A must lie on the "
-                    f"route, 0 <= L_ul <= L_u"]
-        return []
+            out.append(f"L_ul = {values['L_ul']:g} m is beyond L_u = {values['L_u']:g} m: point A must lie on the "
+                       f"route, 0 <= L_ul <= L_u")
+        return out
 
 
 
@@ -103,12 +123,12 @@ def segment_quantities(i: int, has_mu: bool) -> tuple:
     """The parameters of segment ``i`` (1 = at the drive): ``L_i``, ``alpha_i``, ``mu_wi``."""
     return (
         Q(f"L_{i}", "m", f"length of route segment {i} (segments counted from the drive)", "m", guess=500.0,
-          **usual(1.0, 5000.0, f"{JUDGEMENT}: a segment of a rope-winch route"), **POSITIVE),
+          **usual(1.0, 5000.0, f"{JUDGEMENT}: a segment of a rope-winch route"), **POSITIVE, **dom.ROUTE_LENGTH),
         Q(f"alpha_{i}", "rad", f"inclination of route segment {i} (> 0: rising toward the drive)", "deg",
-          low=-math.pi / 2, high=math.pi / 2, low_open=True, high_open=True, guess=0.3,
+          **dom.INCLINATION, guess=0.3,
           **usual(-math.pi / 4, math.pi / 4, f"{SRC}, introduction: workings inclined up to 45 deg")),
         Q(f"mu_w{i}", "1", f"resistance coefficient of the winding rope in route segment {i}"
-          + ("" if has_mu else " (not given: mu_pl)"), guess=0.05, **ROPE_MU, **COEFFICIENT,
+          + ("" if has_mu else " (not given: mu_pl)"), guess=0.05, **ROPE_MU, **dom.RESISTANCE,
           equation="" if has_mu else "route segment without mu_winding: mu_pl"),
     )
 
@@ -117,8 +137,9 @@ def segment_quantities(i: int, has_mu: bool) -> tuple:
 class SegmentedRoute(Submodel):
     """A route of straight segments (``[[route]]`` tables), the load at ``x_m``: :mod:`ropemodel.papers.route`.
 
-    ``x_m`` not given is the start of a trip (:data:`ropemodel.effects.transient.travel.X_M`): for the
-    static forces, the load at the return sheave's end (the last segment), where an upward trip starts.
+    ``x_m`` not given (:data:`ropemodel.effects.transient.travel.X_M`) is every place on the route: the
+    commands take each result at its worst (:mod:`ropemodel.envelope`); evaluated at one point, the load is
+    then on the last segment.
 
     Builds L_u = Σ L_i, the load's weight and resistance on its segment (eq. (1), (5), (7)) and the
     sums over the route of the rope's weight and resistance (eq. (2), (6), (10), (11)); the forces
@@ -146,9 +167,7 @@ class SegmentedRoute(Submodel):
 
     def equations(self, v):
         n = len(self.segments)
-        L = [v[f"L_{i}"] for i in range(1, n + 1)]
-        alpha = [v[f"alpha_{i}"] for i in range(1, n + 1)]
-        mu = [v[f"mu_w{i}"] for i in range(1, n + 1)]
+        L, alpha, mu = self.profile(v)
         x, G_m = v["x_m"], v["G_m"]
         src = "route of segments"
         eqs = [Equation(f"mu_w{i}", v[f"mu_w{i}"] - v["mu_pl"], "mu_winding not given: mu_pl")
@@ -173,6 +192,11 @@ class SegmentedRoute(Submodel):
                      f"eq. (11), {src}"),
         ]
 
+    def profile(self, v) -> Profile:
+        """The segments: L_i, α_i, μ_wi."""
+        n = range(1, len(self.segments) + 1)
+        return Profile([v[f"L_{i}"] for i in n], [v[f"alpha_{i}"] for i in n], [v[f"mu_w{i}"] for i in n])
+
     def transient_route(self, values: dict, numbers: dict):
         """The route as the transient's rope model asks it (:class:`ropemodel.effects.transient.route.Segments`):
         lengths as numbers (geometry), inclinations and coefficients as the values (may be symbols)."""
@@ -188,7 +212,7 @@ class SegmentedRoute(Submodel):
             return []
         total, out = sum(lengths), []
         for name, what in (("x_m", "the load"), ("L_ul", "point A")):
-            # x_m not given (inf) is the start of an upward trip: the load on the last segment
+            # x_m not given (inf): anywhere on the route
             if name in values and math.isfinite(values[name]) and not 0.0 <= values[name] <= total:
                 out.append(f"{name} = {values[name]:g} m is beyond the route: {what} must be on it, 0 <= {name} <= "
                            f"L_u = {total:g} m (the sum of the segments)")
