@@ -149,8 +149,7 @@ class Scene(SceneViews):
         return out
 
     def with_effects(self, effects: dict[str, str], optional=(), emit: bool = False) -> Scene:
-        """The same scene file read again with some effects set (e.g. sizing's ``checks = "design"``), with
-        every value given on top of the file, used or not by the old effects, where it came from."""
+        """The scene file read again with ``effects`` set, every value given on top of it kept with its origin."""
         if not self.raw:
             raise InputError("this scene was not loaded from a file or dict; build it again with those effects")
         data = {k: dict(v) if isinstance(v, dict) else v for k, v in self.raw.items()}
