@@ -122,3 +122,20 @@ def test_a_profile_on_a_straight_route_is_refused(tmp_path, capsys):
     path.write_text(path.read_text().replace('route = "segments"', ""))
     assert main(["run", str(path)]) == 2
     assert '[route_profile] is given but the route effect is "straight"' in capsys.readouterr().err
+
+
+def test_a_surveyed_profile_against_numpy(tmp_path):
+    """300 surveyed points (an undulating 2 km incline): run's worst forces over every place of the load equal
+    the forces written out in numpy at every joint (docs/physics.md §4, eq. (12)-(13) summed over segments)."""
+    x = np.linspace(0.0, 2000.0, 300)
+    h = 500.0 - x * math.tan(math.radians(10.0)) - 15.0 * np.sin(2.0 * math.pi * x / 700.0)
+    text = "distance [m],height [m]\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(x, h))
+    r = rm.run(rm.load_scene(str(_scene_file(tmp_path, text, x_m=None))))
+    L, a = np.hypot(np.diff(x), np.diff(h)), np.arctan2(-np.diff(h), np.diff(x))
+    q, G_m, mu, F_end = 80.0, 467e3, 0.05, 15e3
+    rise, drag = q * np.sum(L * np.sin(a)), mu * q * np.sum(L * np.cos(a))
+    for way, s in (("up", 1.0), ("down", -1.0)):
+        F_C = F_end + rise + s * drag + G_m * (np.sin(a) + s * mu * np.cos(a))
+        assert r.values[f"F_C_{way}"] == pytest.approx(np.max(F_C), rel=1e-12)
+        assert r.values[f"F_S_{way}"] == pytest.approx(F_end + rise - s * drag, rel=1e-12)
+    assert r.where["F_C_up"].startswith(f"segment {int(np.argmax(np.sin(a) + mu * np.cos(a))) + 1},")

@@ -68,8 +68,10 @@ def compile_solver(model, structure: Structure, guesses: dict[str, float] | None
     if not expandable:
         # identical calls (two call equations slicing one integrator, inlined) are evaluated once
         outputs = ca.cse(outputs)
+    # one scalar input per known: a route of thousands of segments has thousands (CasADi would warn, a solver log)
+    quiet = {"max_io": 0}
     fun = ca.Function(name, [value[k] for k in structure.knowns], outputs,
-                      list(structure.knowns), list(structure.unknowns))
+                      list(structure.knowns), list(structure.unknowns), quiet)
     return fun.expand() if expandable else fun
 
 
