@@ -140,6 +140,10 @@ def independent(scene, command: str, name: str) -> str | None:
       with rigid-body inertia each force is affine in the acceleration, each check and power monotone in the
       forces and each least tension the least of affine ones, so each worst lies at an extreme acceleration
       (docs/physics.md §4); the nudge takes a_e to at most max(1.5 a_e, 0.05 m/s²).
+    * A Koepe machine's inertia m_machine enters the static model only through the deceleration without brake,
+      d_free = (s (T_L − T_E) + F_r)/M_total: where a_brake_min is above it in both directions the window's floor is
+      a_brake_min, and a larger m_machine only lowers d_free (a transient's wheel feels it).
+    * A Koepe transient's v_eps smooths the shaft resistance F_r: without one it has nothing to smooth.
     * A Koepe brake's largest deceleration bounds its window only below the slip limits (the window's top is
       min(a_slip_decel, a_brake_max), docs/physics.md §7): not given (unlimited) and nudged to 5 m/s², above
       both slip limits, the window is the same.
@@ -165,6 +169,12 @@ def independent(scene, command: str, name: str) -> str | None:
         r = rm.run(scene)
         if max(r["a_slip_hoist_decel"], r["a_slip_lower_decel"]) < 5.0:
             return "the brake's window is the slip limits' below 5 m/s²"
+    if name == "m_machine" and scene.model == "koepe" and command != "report":
+        r = rm.run(scene)
+        if all(r[f"a_brake_low_{d}"] == v["a_brake_min"] for d in ("hoist", "lower")):
+            return "the machine's inertia only lowers the deceleration without brake, below a_brake_min here"
+    if name == "v_eps" and scene.model == "koepe" and v.get("F_r", 0.0) == 0.0:
+        return "it smooths the shaft resistance, 0 here"
     if command == "simulate" and name == "n_slip":
         return "the static slip check's factor"
     if command == "simulate" and name == "eta":
@@ -304,6 +314,7 @@ def report_reads(scene):
     """What a report's sections read: the union of the commands it runs (a transient reads everything); the
     results, equations and checks are at the scene's own values (its design too, where it gives one)."""
     from ropemodel.reports.context import load as context
+    from ropemodel.reports.sections.koepe_transient import has_koepe_transient
     from ropemodel.reports.sections.transient import has_transient
     from ropemodel.reports.sections.trip import has_trip
 
@@ -313,7 +324,7 @@ def report_reads(scene):
         reads = reads | size_reads(ctx.scene)[1]
     if has_trip(ctx):
         reads = reads | trip_reads(ctx.scene)[1]
-    if has_transient(ctx):
+    if has_transient(ctx) or has_koepe_transient(ctx):
         reads = reads | set(ctx.scene.parameters)
     return ctx.scene, reads, {}
 

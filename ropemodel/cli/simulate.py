@@ -7,7 +7,8 @@ from ropemodel.errors import InputError
 
 NAME = "simulate"
 HELP = ("simulate the start-up or braking of a winch scene, or a whole trip (dynamics = \"start\", \"stop\" "
-        "or \"trip\")")
+        "or \"trip\"); the braking or start of a Koepe hoist with elastic ropes (dynamics = \"braking\" or "
+        "\"start\")")
 
 
 def add_arguments(parser) -> None:

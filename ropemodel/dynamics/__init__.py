@@ -11,6 +11,7 @@ parameters (for dynamic sizing).  Modules: :mod:`.assemble` (the scene's variant
 (integration and event location), :mod:`.history` (results), :mod:`.smooth` (the symbolic smooth mode).
 """
 
+from ropemodel.dynamics import koepe as _koepe  # noqa: F401 - registers the Koepe's simulate
 from ropemodel.dynamics.history import Simulation
 from ropemodel.dynamics.simulate import simulate
 from ropemodel.dynamics.smooth import SmoothMode, smooth_mode

@@ -95,7 +95,7 @@ class Simulation(SimulationViews):
         return dict(self.summary)
 
     def to_json(self) -> str:
-        return json.dumps(_finite(self.summary), indent=2, allow_nan=False)
+        return json.dumps(finite_summary(self.summary), indent=2, allow_nan=False)
 
     def report(self) -> str:
         """A readable account of the transient in kN, mm, s."""
@@ -116,11 +116,11 @@ class Simulation(SimulationViews):
         return "\n".join(lines + [line for p in self.system.parts for line in p.ending(s)])
 
 
-def _finite(obj):
+def finite_summary(obj):
     if isinstance(obj, float) and not math.isfinite(obj):
         raise ValueError(f"non-finite value {obj} in a simulation summary")
     if isinstance(obj, dict):
-        return {k: _finite(v) for k, v in obj.items()}
+        return {k: finite_summary(v) for k, v in obj.items()}
     if isinstance(obj, list):
-        return [_finite(v) for v in obj]
+        return [finite_summary(v) for v in obj]
     return obj

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 
 from ropemodel.dynamics.assemble import build
 from ropemodel.dynamics.history import Simulation
 from ropemodel.dynamics.hybrid import HybridIntegrator
 from ropemodel.scene import SceneLike, as_scene
+
+#: model → the simulate of a machine that has its own result (registered by its module; the winch's is below)
+SIMULATORS: dict[str, Callable] = {}
 
 
 def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | None = None) -> Simulation:
@@ -50,6 +53,8 @@ def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | N
     from ropemodel.progress import bar, status
 
     scene = as_scene(scene)
+    if scene.model in SIMULATORS:
+        return SIMULATORS[scene.model](scene, values, progress)
     if values:
         scene = scene.with_values(values)
     with status(f"simulating {scene.name}: building the transient", progress):

@@ -69,6 +69,26 @@ class EnvelopeResult(Result):
                                      "manoeuvre": c.manoeuvre}
         return out
 
+    def critical(self) -> tuple[LoadCase, str]:
+        """The one case a sheet of equations is written at, and why: an inverse question's governing case, else
+        where the winding rope pulls hardest hauling up (F_C_up: the rope's safety, the stroke and the drive's
+        largest power govern there on a route), else where the first output with a worst governs."""
+        if self.governing is not None:
+            return self.governing, f"where {', '.join(self.given)} governs"
+        name = "F_C_up" if "F_C_up" in self.envelope.extremes else next(iter(self.envelope.extremes))
+        return self.envelope.worst(name).case, f"where {name} is worst"
+
+    def point(self) -> tuple[Result, str]:
+        """The plain :class:`~ropemodel.result.Result` at :meth:`critical`'s case, where every equation holds
+        with its own inputs (each worst of this result may come from another case), and that case in words."""
+        from ropemodel.problem import Problem
+
+        case, why = self.critical()
+        params = {**self.envelope.params, **{f: self.values[f] for f in self.find}}
+        values = {k: v for k, v in params.items() if k in self.scene.parameters}
+        result = Problem(self.scene).solve({**values, **case.values(params)})
+        return result, f"{case.label(params)} ({why})"
+
     def to_json(self, **extra) -> str:
         return super().to_json(worst_case=self.worst_case(), **extra)
 

@@ -20,8 +20,13 @@ DISPLAY = {"N": "kN", "W": "kW", "J": "kWh"}
 #: (those take the column's unit: F_C_max is the largest of ``F_C [N]``)
 SIMULATION_UNITS = {"x_m": "m", "stroke_used": "m", "stroke": "m", "slip_distance": "m", "t_end": "s",
                     "t_slack": "s", "dynamic_factor": "1", "traction_ratio": "1", "energy_residual": "1",
-                    "n_nodes": "1"}
-_SUFFIXES = ("_max", "_min", "_end", "_static")
+                    "n_nodes": "1",
+                    # a Koepe transient's (ropemodel.dynamics.koepe_history)
+                    **dict.fromkeys(("t_T_L_max", "t_T_L_min", "t_T_E_max", "t_T_E_min", "t_T_min", "t_worst",
+                                     "t_rest", "t_stopped"), "s"),
+                    **dict.fromkeys(("y_start", "travel_nominal", "reel", "overwind", "run"), "m"),
+                    "segments": "1", "sim_rtol": "1"}
+_SUFFIXES = ("_max", "_min", "_end", "_static", "_start")
 
 
 def shown(value: float, unit: str) -> tuple[float, str]:
