@@ -338,7 +338,7 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
             if key not in universe:
                 found.add(f"unknown parameter {key!r}{suggest(key, universe)}")
         found.raise_if_any()
-    route, route_values = tables.read_route(data, effects, given, found, _folder(source))
+    route, route_values = tables.read_route(data, effects, given, found, tables.scene_folder(source))
     model = Model(model_name, effects, tables.options(numerics, route, "L_ul" in given))
     params, checks, unused, origin, kept = tables.read_parameters(model, given, bare, found, notes)
     tables.route_parameters(model, route_values, bare, params, origin, found)
@@ -359,15 +359,6 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
         for note in scene.warnings:
             warnings.warn(note, SceneWarning, stacklevel=2)
     return scene
-
-
-def _folder(source: str | None) -> Path | None:
-    """The folder of a scene file (where its ``[route_profile]`` file is found); None for a scene not read
-    from a file (a relative profile path is then relative to the working folder); the package's data for a
-    built-in scene."""
-    if source and source.startswith("built-in scene "):
-        return Path(str(resources.files("ropemodel.data")))
-    return Path(source).parent if source and Path(source).is_file() else None
 
 
 def _verify_checks(scene: Scene, found: Problems) -> Problems:

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from importlib import resources
 from pathlib import Path
 
 from ropemodel.core.model import Model
@@ -94,6 +95,15 @@ def read_route(data: dict, effects: dict, given: dict, found: Problems, base: Pa
                           f"{chr(34)}{'400 m' if key == 'length' else '10 deg'}{chr(34)})")
                 values[ROUTE_KEYS[key].format(i=i)] = (None, None)   # said: not "missing" again
     return tuple("mu_winding" in seg for seg in segments), values
+
+
+def scene_folder(source: str | None) -> Path | None:
+    """The folder of a scene file (where its ``[route_profile]`` file is found); None for a scene not read
+    from a file (a relative profile path is then relative to the working folder); the package's data for a
+    built-in scene."""
+    if source and source.startswith("built-in scene "):
+        return Path(str(resources.files("ropemodel.data")))
+    return Path(source).parent if source and Path(source).is_file() else None
 
 
 def _no_L_u(given: dict, found: Problems) -> None:
