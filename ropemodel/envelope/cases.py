@@ -21,12 +21,10 @@ scene's ramp shape (k = 1 for the linear ramp, π/2 for the cosine one); with ``
 ``*_down`` the downward's, at the same place and acceleration in their own direction of travel.
 
 Survey scale (n in the thousands): each case evaluates the whole model, whose cost grows with n, so the
-cases cost O(n²).  They can be pruned without evaluating the model, because a place enters the forces only
-through the load's term G_m (sin α_j ± (μ_pm cos α_j + a/g)) and the least tension through where the
-profile's slope changes sign (which joint does not depend on q_l or F_nwl, docs/physics.md §4): the places
-worth keeping per direction and manoeuvre are the segments of the extreme load terms and the ends of the
-segments next to such joints.  :func:`load_cases` lists every place; a pruned list is a list of
-:class:`LoadCase` like it, and every consumer takes any list.
+cases cost O(n²).  :func:`load_cases` lists every place (the envelope of a result evaluates them all in one
+vectorised call); an NLP keeps only the places that can govern, found without the model
+(:mod:`ropemodel.envelope.prune`); a pruned list is a list of :class:`LoadCase` like it, and every consumer
+takes any list.
 """
 
 from __future__ import annotations
