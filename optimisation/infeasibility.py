@@ -60,7 +60,9 @@ class Diagnosis:
     def text(self, units: dict[str, str]) -> str:
         if self.feasible:
             return "a design meeting every check exists"
-        lines = [f"no design meets every check{self.where}: these checks conflict: " + ", ".join(self.conflicting)]
+        lines = [f"no design meets every check{self.where}: " + (
+            "these checks conflict: " + ", ".join(self.conflicting) if self.conflicting else   # none with a multiplier
+            "these checks cannot hold: " + ", ".join(self.elastic))]                         # above 1e-6: the relaxed
         if self.needs:
             lines.append("  each of these alone makes a design exist: " + "; ".join(self.needs))
         for c in self.conflicting:

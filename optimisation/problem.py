@@ -57,7 +57,7 @@ from ropemodel.envelope import RAMPS, Envelope, LoadCase, envelope, free, load_c
 from ropemodel.envelope.cases import depends_on, distinct
 from ropemodel.envelope.prune import prune
 from ropemodel.envelope.cases import reads as case_reads
-from ropemodel.errors import InputError
+from ropemodel.errors import InputError, Problems
 from ropemodel.problem import Problem
 from ropemodel.scene import Scene, SceneLike, SceneWarning, as_scene
 
@@ -75,19 +75,21 @@ D_OPTIONAL_LININGS = ("none", "rigid")
 D_OPTIONAL = ("D",)
 
 
-#: ratio checks written multiplied out in the NLP (same sign as the margin while the rope is taut, which
+#: ratio checks written as force differences in the NLP (same sign as the margin while the rope is taut, which
 #: the taut/slack checks ensure; no pole where F_C crosses 0, so IPOPT never meets an infinite margin)
 RATIO_FORMS = ("safety_margin", "slip_margin")
 
 
 def _nlp_form(name: str, out: dict, args: dict):
     """The constraint g >= 0 of check ``name`` in the NLP: rope safety F_min − n_rope·F_C [N], no slip
-    F_S·traction − n_slip·F_C [N]; every other margin as it is."""
+    F_S − n_slip·F_C/traction [N] (the tension the unwinding rope needs; divided by the traction e^{μα} > 0,
+    not multiplied: a drum of much friction has a traction of 10^20 and more, whose product scaled the
+    constraint out of IPOPT's reach); every other margin as it is."""
     way = name.rsplit("_", 1)[1]
     if name.startswith("safety_margin"):
         return out["F_min"] - args["n_rope"] * out[f"F_C_{way}"]
     if name.startswith("slip_margin"):
-        return out[f"F_S_{way}"] * out[f"traction_{way}"] - args["n_slip"] * out[f"F_C_{way}"]
+        return out[f"F_S_{way}"] - args["n_slip"] * out[f"F_C_{way}"] / out[f"traction_{way}"]
     return out[name]
 
 
@@ -132,9 +134,39 @@ def prepare(scene) -> Scene:
     if "t_ramp" in scene.unused or scene.effects.get("dynamics") == "trip":   # size through a trip's ramps
         effects.update(RAMPS, power="drive")
     optional = SIZED + (D_OPTIONAL if scene.effects.get("lining", "none") in D_OPTIONAL_LININGS else ())
+    if scene.effects.get("rope") == "given":
+        _refuse_given_rope(scene, effects, optional)
     if all(scene.effects.get(k) == v for k, v in effects.items()) and not (set(scene.absent) - set(optional)):
         return scene
     return scene.with_effects(effects, optional=optional)
+
+
+def _refuse_given_rope(scene, effects: dict, optional) -> None:
+    """:class:`InputError`: sizing chooses d, so it needs a rope construction; with it, every other problem
+    the scene would still have (e.g. a missing rope_grade or n_rope), at once."""
+    from ropemodel.effects import effects_of
+
+    named = [v for v in effects_of("winch")["rope"].variants if v not in ("given", "catalogue")]
+    usual = "6x36-IWRC" if "6x36-IWRC" in named else named[0]     # the README's sizing scene's
+    found = Problems()
+    found.add(f"sizing chooses the rope diameter d, so it needs a rope construction, not the rope given as q_l and "
+              f"q_lw (rope = \"given\"): set [effects] rope = \"{usual}\" or another of {', '.join(named)}, or "
+              f"\"catalogue\" with rope_K, rope_W and rope_C")
+    with found.collect():
+        scene.with_effects({**effects, "rope": usual}, optional=optional)
+    found.raise_if_any()
+
+
+def _check_work(scene, where: list) -> None:
+    """The NLP's size on a route, every check at every state through every segment, against its budget."""
+    from ropemodel import budget
+
+    segments = len(scene.route)
+    if segments:
+        budget.check("route sizing", len(where) * segments,
+                     f"sizing on a route of {segments} segments checks every check at {len(where)} load positions, "
+                     f"each through the {segments} segments: an NLP of {len(where)} x {segments}",
+                     "join neighbouring segments of nearly the same inclination")
 
 
 def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
@@ -159,9 +191,6 @@ class SizingProblem:
 
     def __init__(self, scene: Scene, prune_places: bool = True):
         scene = prepare(scene)
-        if scene.effects.get("rope") == "given":
-            raise InputError("sizing chooses the rope diameter: it needs [effects] rope = \"catalogue\" or a named "
-                             "construction such as \"6x36-IWRC\" (the scene has rope = \"given\")")
         self.scene = scene
         #: no drum diameter given: the drum check becomes a result, D = D_ratio_min * d (the least drum)
         self.least_drum = "D" in scene.absent
@@ -173,6 +202,7 @@ class SizingProblem:
         #: where the NLP makes the checks: the places that can govern (:func:`ropemodel.envelope.prune.prune`,
         #: for every rope and pretension; ``prune_places=False`` for a sweep varying the route or the load)
         self.cases = prune(self.all_cases, scene.parameters) if prune_places else self.all_cases
+        _check_work(scene, self.cases)
         self.params = [k for k in self.problem.knowns
                        if k not in VARIABLES and k not in self.problem.given and k not in self.free]
         self.p0 = np.array([scene.parameters[k] for k in self.params], dtype=float)

@@ -5,7 +5,7 @@ The README holds each table between ``<!-- generated: NAME -->`` and ``<!-- end:
 :func:`render` returns the tables, :func:`update` rewrites them in a README, and a test checks
 that the committed README equals what :func:`update` would write (so the tables never drift from
 the code).  Tables: ``effects`` (every effect and variant of every model), per model
-``parameters-MODEL`` (unit, meaning, default and why, valid range, usual range and its source)
+``parameters-MODEL`` (unit, meaning, default and why, valid range and usual range, each with its source)
 and ``outputs-MODEL`` (unit, meaning, equation), and ``rule-sets`` and ``rules`` (every shipped rule
 set and rule, with its source and status); the site's scene reference (``docs/scenes.md``) holds these
 and, per model, ``variants-MODEL`` (every variant of every effect: what it builds, its parameters, what
@@ -60,14 +60,16 @@ def _unit(q) -> str:
 def parameters_table(model: str) -> str:
     """Markdown: every parameter of ``model``, with default, valid range and usual range (and source)."""
     q = all_quantities(model)
-    rows = ["| name | unit | meaning | default | valid range | usual range (source) |", "|---|---|---|---|---|---|"]
+    rows = ["| name | unit | meaning | default | valid range (source) | usual range (source) |",
+            "|---|---|---|---|---|---|"]
     for name in _roles(model)[0]:
         x = q[name]
         default = "required" if x.default is None else (
             f"{x.show(x.default)}: {x.default_note}" if x.default_note else x.show(x.default))
         usual = ("" if x.warn_low == -math.inf and x.warn_high == math.inf
                  else f"{x.usual_text()}" + (f" ({x.usual_source})" if x.usual_source else ""))
-        rows.append(f"| `{name}` | {_unit(x)} | {x.description} | {default} | {x.range_text()} | {usual} |")
+        valid = x.range_text() + (f" ({x.range_source})" if x.range_source else "")
+        rows.append(f"| `{name}` | {_unit(x)} | {x.description} | {default} | {valid} | {usual} |")
     return "\n".join(rows)
 
 

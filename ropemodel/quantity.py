@@ -24,7 +24,8 @@ class Quantity:
     description: one line for tables and error messages.
     display: unit for human-readable tables (the paper's unit, e.g. ``"kN"``).
     low, high: valid range in SI; ``low_open``/``high_open`` make an end exclusive.  Outside it a
-        value is an error.
+        value is an error, even where it is not used.  Every input has finite ends
+        (:mod:`ropemodel.effects.domains`), with ``range_source`` saying where they come from.
     warn_low, warn_high: the range *usual for the field* (SI); outside it a valid value gets a warning
         that states this range and ``usual_source``, where the range comes from.
     usual_source: where the usual range comes from (documented in the README's scene section).
@@ -53,6 +54,7 @@ class Quantity:
     high: float = math.inf
     low_open: bool = False
     high_open: bool = False
+    range_source: str = ""
     warn_low: float = -math.inf
     warn_high: float = math.inf
     usual_source: str = ""

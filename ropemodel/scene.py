@@ -102,6 +102,7 @@ class Scene(SceneViews):
     rules: rules_apply.Applied | None = None
     #: the filed report's data, ``[report]`` (:class:`ropemodel.scene_report.Filing`), or None
     filing: Filing | None = None
+    #: SI values of the parameters in ``unused`` (in their domain, and meeting the rules)
     unused_values: dict[str, float] = field(default_factory=dict)
 
     @cached_property
@@ -127,7 +128,7 @@ class Scene(SceneViews):
         if self.rules is not None:
             with found.collect():
                 params.update(rules_apply.refresh(self.rules, params, origin_of, values))
-        for problem in model.problems({k: v for k, v in params.items() if k in model.parameters}):
+        for problem in model.problems({**kept, **{k: v for k, v in params.items() if k in model.parameters}}):
             found.add(problem)
         found.raise_if_any()
         out = replace(self, parameters=params, origin=origin_of, defaults=defaults, unused=unused,
@@ -298,6 +299,7 @@ def from_toml(text: str, source: str | None = None, optional=(), emit: bool = Tr
     """Parse and validate a scene from TOML text (see :func:`from_dict`)."""
     if "\x00" in text:
         raise InputError(f"{source or 'scene'} is a binary file, not TOML text")
+    text = text.removeprefix("\ufeff")   # the byte-order mark Windows editors write before UTF-8 text
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -347,7 +349,7 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
     rules = rules_apply.read_rules(data, model, params, origin, given, found)
     filing = read_report(data, found)
     defaults, absent = tables.fill_missing(model, params, origin, tuple(optional), found)
-    for problem in model.problems(params):
+    for problem in model.problems({**kept, **params}):   # an unused value meets the rules too (x_m <= L_u)
         found.add(problem)
     scene = Scene(str(name if name is not None else source or "unnamed"), model_name, effects, params, numerics,
                   source, defaults, unused, checks, absent, tuple(notes), origin, digest,

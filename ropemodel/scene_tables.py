@@ -187,7 +187,7 @@ def read_numerics(model: str, given: dict, found: Problems) -> dict:
 
 def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes: list):
     """SI values of the given parameters; checks (computed quantities given); unused ones (who would use
-    them, and their SI values)."""
+    them, and their SI values: in their domain, as any value)."""
     params: dict[str, float] = {}
     checks: dict[str, Check] = {}
     unused: dict[str, str] = {}
@@ -214,14 +214,20 @@ def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes
             if note:
                 notes.append(note)
         else:
-            keep_unused(model, key, si, "scene", origin, unused, kept, notes)
+            keep_unused(model, key, si, "scene", origin, unused, kept, notes, found)
     return params, checks, unused, origin, kept
 
 
 def keep_unused(model: Model, key: str, si: float, where: str, origin: dict, unused: dict, kept: dict,
-                notes: list) -> None:
+                notes: list, found: Problems) -> None:
     """A valid parameter the chosen effects do not use: named (with the variants that would use it), its
-    value and origin kept for a command that switches effects."""
+    value and origin kept for a command that switches effects.  A value outside its physical domain is an
+    error all the same (no effect could use it)."""
+    problem = model.universe[key].range_problem(si)
+    if problem:
+        found.add(f"{problem}; {key} is not used by this scene's effects, but no value outside its valid range "
+                  f"is accepted")
+        return
     unused[key] = " or ".join(model.owners(key)) or "no effect of this model"
     kept[key], origin[key] = si, where
     note = f"{key} is not used: it belongs to {unused[key]}"
@@ -246,7 +252,7 @@ def set_values(model: Model, values: Mapping, bare: str, origin_label: str, para
             origin[key] = f"{origin_label} (refused)"
             continue
         if key not in model.parameters:
-            keep_unused(model, key, si, origin_label, origin, unused, kept, notes)
+            keep_unused(model, key, si, origin_label, origin, unused, kept, notes, found)
             continue
         params[key], origin[key] = si, origin_label
         note = q.unusual(si)

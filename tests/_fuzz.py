@@ -26,11 +26,15 @@ INPUT, FAIL = frozenset({2}), frozenset({1})
 @dataclass
 class Case:
     command: str
-    kind: str                     # scene, option, data, output
+    kind: str                     # scene, option, data, output, edge, ...
     what: str                     # short description (the test id)
     argv: list[str]
     files: dict = field(default_factory=dict)
     codes: frozenset = INPUT
+    #: "fail": a clean failure with one of ``codes``; "sound": exit 0 with a sound result, or a clean failure
+    expect: str = "fail"
+    #: words the error message must hold (e.g. the parameter or the flag it names)
+    words: tuple = ()
 
 
 def builtin(name: str) -> str:
@@ -55,7 +59,7 @@ BASES = {
     # a new command: its base here gets every scene case; its own options in _fuzz_cli.option_cases
 }
 #: scenes run also through 'run', so that every model's tables and numerics are fuzzed
-EXTRA_RUN_SCENES = ("sheave_thirion", "capstan_li_experiment")
+EXTRA_RUN_SCENES = ("sheave_thirion", "capstan_li_experiment", "koepe_example")
 
 
 def base_case(command: str, scene_text: str | bytes | None = None, scene_path: str = "{d}/scene.toml",

@@ -30,7 +30,7 @@ def scene(**changes):
     ({"G_m": math.inf}, r"G_m: value must be finite"),
     ({"G_m": "inf kN"}, r"G_m: value must be finite"),
     ({"G_m": 10 ** 400}, r"G_m: 1000.*\.\.\. is too large to be a number"),
-    ({"L_u": "-5 m"}, r"L_u = -5 m is outside the valid range \(0, inf\) m"),
+    ({"L_u": "-5 m"}, r"L_u = -5 m is outside the valid range \[0.001, 100000\] m"),
     ({"L_u": "0 m"}, r"L_u = 0 m is outside the valid range"),
     ({"L_ul": "-1 m"}, r"L_ul = -1 m is outside"),
     ({"L_ul": "1200 m"}, r"L_ul = 1200 m is beyond L_u = 1150 m"),

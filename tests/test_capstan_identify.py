@@ -1,6 +1,7 @@
 """Identification of mu and EA from (F_T, delta_alpha) points: synthetic data with known truth."""
 
 import math
+import re
 
 import numpy as np
 import pandas as pd
@@ -74,11 +75,17 @@ def test_flags_mu_when_loads_are_too_small_to_slip(scene):
     assert res.estimates["EA"] == pytest.approx(TRUE["EA"], abs=min(3 * res.standard_errors["EA"], 1e-3 * TRUE["EA"]))
 
 
-def test_flags_everything_when_no_load_is_applied(scene):
-    data = pd.DataFrame({"F_T [N]": np.zeros(5), "delta_alpha [rad]": np.zeros(5)})
-    res = identify(scene, data)
-    assert not any(res.identifiable.values())
-    assert all(math.isinf(v) for v in res.standard_errors.values())
+@pytest.mark.parametrize("loads, words", [
+    (np.zeros(5), "0 distinct loads F_T > 0 in 5 rows (0 repeat a load, 5 at F_T = 0"),   # no load applied
+    (np.full(6, 40.0), "1 distinct load F_T > 0 in 6 rows (5 repeat a load, 0 at F_T = 0"),   # one row, repeated
+    (np.array([0.0, 40.0, 40.0, 0.0]), "1 distinct load F_T > 0 in 4 rows (1 repeat a load, 2 at F_T = 0"),
+])
+def test_data_without_information_refused(scene, loads, words):
+    """A rotation at F_T = 0 is 0 whatever mu and EA, and a repeated row repeats one equation: fewer distinct
+    loads > 0 than parameters to fit cannot determine them (the least-squares normal matrix is singular)."""
+    data = pd.DataFrame({"F_T [N]": loads, "delta_alpha [rad]": loads * 1e-4})
+    with pytest.raises(InputError, match=re.escape(words)):
+        identify(scene, data)
 
 
 def test_csv_with_torque_and_degrees_equals_dataframe(scene, tmp_path):

@@ -99,4 +99,4 @@ def test_sweep_refuses_structural_parameters(tmp_path, capsys):
     assert main(["sweep", str(scene_file), "--sizing", "--dynamic", "--vary", "t_end=10s:14s:2", "-o", str(out)]) == 2
     assert main(["sweep", str(scene_file), "--dynamic", "--vary", "G_m=440kN:480kN:2", "-o", str(out)]) == 2
     err = capsys.readouterr().err
-    assert "cannot vary t_end" in err and "needs --sizing" in err and "Traceback" not in err
+    assert "cannot vary t_end" in err and "acts only with --sizing" in err and "Traceback" not in err

@@ -87,7 +87,7 @@ def test_four_segments_load_on_each_by_hand(x):
 @pytest.mark.parametrize("route, params, message", [
     (None, {}, r'route = "segments" needs the segments'),
     ([], {}, r"\[\[route\]\] must be a list of tables.*an empty route has no segment"),
-    ([{"length": "0 m", "inclination": "5 deg"}], {}, r"L_1 = 0 m is outside the valid range \(0, inf\) m"),
+    ([{"length": "0 m", "inclination": "5 deg"}], {}, r"L_1 = 0 m is outside the valid range \[0.001, 100000\] m"),
     ([{"length": "-40 m", "inclination": "5 deg"}], {}, r"L_1 = -40 m is outside the valid range"),
     ([{"length": "400 m", "inclination": "90 deg"}], {}, r"alpha_1 = 90 deg is outside the valid range \(-90, 90\)"),
     ([{"length": "400 m", "inclination": "-95 deg"}], {}, r"alpha_1 = -95 deg is outside the valid range"),

@@ -201,15 +201,20 @@ def test_a_mistake_elsewhere_does_not_hide_a_check():
 
 # --- a bare number for a dimensional quantity is refused everywhere ---------------------------------
 
+#: what a variant needs of the other effects (a scene rule): the capstan drum contact, a friction lining
+NEEDS = {("drum_contact", "capstan"): {"lining": "rigid"}}
+
+
 def _scene_data_using(model: str, effect: str, variant: str) -> dict:
     """A scene of ``model`` with ``effect = variant`` whose parameters are every quantity's guess, with units."""
-    m = Model(model, {effect: variant})
+    effects = {effect: variant, **NEEDS.get((effect, variant), {})}
+    m = Model(model, effects)
     params = {}
     for name in m.parameters:
         q = m.quantities[name]
         shown = q.to_display(q.guess)
         params[name] = shown if q.dimensionless else f"{shown!r} {q.display_unit}"
-    data = {"scene": {"model": model}, "effects": {effect: variant}, "parameters": params}
+    data = {"scene": {"model": model}, "effects": effects, "parameters": params}
     if "x_m" in params:
         params["x_m"] = "500 m"                 # the guesses would put the load at the return sheave
     if (effect, variant) == ("route", "segments"):   # the segment's values come from its [[route]] table

@@ -11,8 +11,8 @@ The checks through a manoeuvre (:data:`CHECKS`, each ≥ 0 at every instant; doc
 
 * rope safety: the rope force at the drum's tangent points against the static check's rope safety,
   F_min − n_rope·F_C(t) ≥ 0 and the same for F_S(t) (the margin shown as F_min/(n_rope F) − 1);
-* no slip on the drum: the switching functions of the hybrid simulator, slip_fwd = ρ(F_S)·F_S − F_C
-  and slip_back = ρ(F_C)·F_C − F_S ≥ 0 [N] (the transient is the force history itself: no n_slip);
+* no slip on the drum: the switching functions of the hybrid simulator, slip_fwd = F_S − F_C/ρ(F_S)
+  and slip_back = F_C − F_S/ρ(F_C) ≥ 0 [N] (the transient is the force history itself: no n_slip);
 * unwinding rope taut, F_S(t) − F_S_min ≥ 0, and winding rope taut, F_C(t) − F_S_min ≥ 0 [N], as in
   static sizing; every element of the rope loop in tension, T_e(t) ≥ 0 [N] (the lumped rope model's
   validity; the simulator's terminal ``slack`` event);
@@ -112,9 +112,9 @@ CHECKS = (
           lambda o, a: a["F_min"] - a["n_rope"] * o["F_C"], _ratio("F_C")),
     Check("safety_margin_S", "rope safety F_min/F_S(t) >= n_rope", "N", "1", "F_S",
           lambda o, a: a["F_min"] - a["n_rope"] * o["F_S"], _ratio("F_S")),
-    Check("slip_margin_fwd", "no slip, drum ahead: rho F_S(t) >= F_C(t)", "N", "N", "slip_fwd",
+    Check("slip_margin_fwd", "no slip, drum ahead: F_S(t) >= F_C(t)/rho", "N", "N", "slip_fwd",
           lambda o, a: o["slip_fwd"], lambda o, a: o["slip_fwd"]),
-    Check("slip_margin_back", "no slip, rope overruns: rho F_C(t) >= F_S(t)", "N", "N", "slip_back",
+    Check("slip_margin_back", "no slip, rope overruns: F_C(t) >= F_S(t)/rho", "N", "N", "slip_back",
           lambda o, a: o["slip_back"], lambda o, a: o["slip_back"]),
     Check("slack_margin", "unwinding rope taut F_S(t) >= F_S_min", "N", "N", "F_S",
           lambda o, a: o["F_S"] - a["F_S_min"], lambda o, a: o["F_S"] - a["F_S_min"]),

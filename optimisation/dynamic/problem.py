@@ -72,9 +72,9 @@ class DynamicSizingProblem(SizingProblem):
         self.grids = grids or [path.uniform_grid(self.pp0(path), DT_GRID) for path in paths]
         self._add_paths()
 
-    def _path(self, manoeuvre, design) -> Path:
+    def _path(self, manoeuvre, design, scene=None) -> Path:
         optional = SIZED + D_OPTIONAL
-        sc = manoeuvre_scene(self.scene, manoeuvre, design, optional)
+        sc = manoeuvre_scene(scene or self.scene, manoeuvre, design, optional)
         structural = {n for q in transient_parts(sc, chosen(sc)) for n in q.structural}
         shared = [k for k in self.params if k in sc.parameters and k not in structural and k not in FIXED]
         return Path(manoeuvre, sc, VARIABLES + tuple(shared))
@@ -137,6 +137,42 @@ class DynamicSizingProblem(SizingProblem):
                            ["x", "p", "lam_f", "lam_g"], ["hess"])
         return {"hess_lag": hess, "ipopt.mu_init": MU_INIT, "ipopt.max_iter": MAX_ITER}
 
+    def relinearised(self, xs, p=None) -> DynamicSizingProblem | None:
+        """This problem with its manoeuvres' smooth modes built again at the design ``xs`` (scaled) and the
+        parameters ``p``, when a choice they made from the numbers of the design they were built at differs
+        there (the branch of Li's law the capstan drum contact takes, eq. (12) or (15), is chosen from the
+        steady forces); None when both give the same transient at ``xs``.
+
+        A solve ends on a design far from the one its transients were built at (the start); with another
+        branch there, the NLP's transient is not the simulator's (measured: the test scene with the capstan
+        contact, 11 N of slip margin apart at the optimum, whose simulation slips)."""
+        p = self.p0 if p is None else np.asarray(p, float)
+        changed = {k: float(p[i]) for i, k in enumerate(self.params) if p[i] != self.p0[i]}
+        scene = self.scene.with_values(changed) if changed else self.scene
+        paths = [self._path(m, self.to_si(xs), scene) for m in self.manoeuvres]
+        for old, new in zip(self.paths, paths):
+            if not _same_transient(self.pp0(old, xs, p), old, self.pp0(new, xs, p), new, self.F_ref):
+                return DynamicSizingProblem(self.scene, None, paths)
+        return None
+
     def refined(self, grids) -> DynamicSizingProblem:
         """The same problem on other grids (the manoeuvres' smooth modes re-used)."""
         return DynamicSizingProblem(self.scene, grids, self.paths)
+
+
+#: step [s] on which two builds of a manoeuvre's smooth mode are compared (:meth:`DynamicSizingProblem.relinearised`)
+DT_SAME = 0.05
+
+
+def _same_transient(pp_a, a: Path, pp_b, b: Path, force: float) -> bool:
+    """Whether two builds of one manoeuvre's smooth mode give the same transient (to 1e-9 of ``force`` [N] and
+    1e-9 m) at their parameter vectors."""
+    grid_a, grid_b = a.uniform_grid(pp_a, DT_SAME), b.uniform_grid(pp_b, DT_SAME)
+    if [len(g) for g in grid_a] != [len(g) for g in grid_b]:
+        return False
+    _, oa, _ = a.samples(pp_a, grid_a)
+    _, ob, _ = b.samples(pp_b, grid_b)
+    tol = {"take_up": 1e-9}
+    return oa.keys() == ob.keys() and all(
+        np.allclose(np.asarray(oa[k], float), np.asarray(ob[k], float), rtol=0.0, atol=tol.get(k, 1e-9 * force))
+        for k in oa)

@@ -96,8 +96,8 @@ def _margins(sim, a: dict) -> dict:
     ratio = traction_of(sim.setup)
     if ratio is not None:
         v = h["v_drum [m/s]"].to_numpy()
-        o["slip_fwd"] = _rho(ratio, o["F_S"], v) * o["F_S"] - o["F_C"]
-        o["slip_back"] = _rho(ratio, o["F_C"], v) * o["F_C"] - o["F_S"]
+        o["slip_fwd"] = o["F_S"] - o["F_C"] / _rho(ratio, o["F_S"], v)
+        o["slip_back"] = o["F_C"] - o["F_S"] / _rho(ratio, o["F_C"], v)
     return {c.name: np.asarray(c.margin(o, a), float).ravel() for c in CHECK.values() if c.needs in o}
 
 

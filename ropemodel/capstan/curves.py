@@ -89,7 +89,8 @@ def load_curve(scene: SceneLike, F_max: float | str, n: int = 201, F_min: float 
     torque = scene.effects.get("load") == "torque"
     problem = Problem(scene)
     columns = {"T": 2.0 * p["R"] * F} if torque else {"F_T": F}
-    scene.built.validate({**p, **{k: v[-1] for k, v in columns.items()}})  # ranges and the unwrap check at F_max
+    for end in (0, -1):   # ranges and rules at both ends: the unwrap check at F_max, L = 0 at F_T = 0
+        scene.built.validate({**p, **{k: v[end] for k, v in columns.items()}})
     out = problem.evaluate(columns)
     values = {**columns, "F_T": F, **{k: np.asarray(v) for k, v in out.items()}}
     bad = [k for k, v in values.items() if not np.all(np.isfinite(v))]

@@ -231,6 +231,7 @@ def identify(scene: SceneLike, data: pd.DataFrame | str | Path, fit: Sequence[st
     n, k = F.size, len(fit)
     if n <= k:
         raise InputError(f"{n} data points cannot determine {k} parameters")
+    _check_information(F, fit)
     variant = variant or scene.effects["stiffness"]
     _check_unwrap(scene, F, meas, variant)
     fun = rotation_function(variant, scene.numerics.get("steps", STEPS), scene.numerics.get("sharpness", 30.0),
@@ -282,6 +283,19 @@ def _least_squares(fun, F: np.ndarray, meas: np.ndarray, p0: dict, fit, theta0: 
                             "ipopt.acceptable_iter": 4, "ipopt.max_iter": 100, "hess_lag": hess}
     opts.update({f"ipopt.{a}": b for a, b in (ipopt_options or {}).items()})
     return ca.nlpsol("capstan_fit", "ipopt", nlp, opts), pred, x
+
+
+def _check_information(F: np.ndarray, fit) -> None:
+    """:class:`InputError` if the loads cannot determine ``fit``: each distinct load F_T > 0 gives one
+    equation (a repeated row only repeats it, and at F_T = 0 the rotation is 0 whatever the parameters)."""
+    loads = np.unique(F[F > 0])
+    if loads.size >= len(fit):
+        return
+    zeros, repeats = int(np.count_nonzero(F == 0)), int(np.count_nonzero(F > 0)) - loads.size
+    raise InputError(f"the identification data hold {loads.size} distinct load{'s' if loads.size != 1 else ''} "
+                     f"F_T > 0 in {F.size} rows ({repeats} repeat a load, {zeros} at F_T = 0, where the rotation "
+                     f"is 0 whatever the parameters): fitting {', '.join(fit)} needs at least {len(fit)} distinct "
+                     f"loads > 0; measure at more loads, or fit fewer (--fit)")
 
 
 def _check_unwrap(scene, F: np.ndarray, meas: np.ndarray, variant: str) -> None:

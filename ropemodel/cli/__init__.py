@@ -20,6 +20,8 @@ import warnings
 from ropemodel.errors import InputError, RopeModelError
 
 EXIT_OK, EXIT_FAIL, EXIT_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
+NO_LIMIT = ("run a job above its work budget (a transient's history rows, a Sobol study's evaluations, a sizing "
+            "NLP on a long route; the refusal says how big it is)")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -51,12 +53,14 @@ def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="ropemodel", description="Rope and cable friction drives: forces, traction, stiffness.")
     parser.add_argument("--version", action=_Version, nargs=0, help="show the version and exit")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress bars or status lines on stderr")
+    parser.add_argument("--no-limit", action="store_true", help=NO_LIMIT)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name, mod in _commands().items():
         p = sub.add_parser(name, help=mod.HELP, description=mod.HELP)
         mod.add_arguments(p)
         p.add_argument("-q", "--quiet", action="store_true", default=argparse.SUPPRESS,
                        help="no progress bars or status lines on stderr")
+        p.add_argument("--no-limit", action="store_true", default=argparse.SUPPRESS, help=NO_LIMIT)
         p.set_defaults(_main=mod.main)
     return parser
 
@@ -99,6 +103,9 @@ def _run(argv, guard) -> int:
             from ropemodel import progress
 
             progress.quiet()
+        from ropemodel import budget
+
+        budget.lift(args.no_limit)   # this command's, not a previous one's in the same process
         if not getattr(args, "_main", None):
             raise InputError("no command given; try 'ropemodel run' or 'ropemodel --help'")
         return args._main(args)

@@ -31,6 +31,40 @@ def assignments(items, option: str) -> dict[str, str]:
     return out
 
 
+def name_list(items, option: str, example: str) -> list[str]:
+    """The names of a comma-separated option, repeated or not (``--outputs F_C_up,dF_up --outputs N_p_up``);
+    [] when the option is not given.  An empty list (``--outputs ''``), an empty item (``a,,b``) or a
+    name given twice is refused naming the option; example: a valid value for the message."""
+    items = [items] if isinstance(items, str) else list(items or [])
+    out: list[str] = []
+    found = Problems()
+    for item in items:
+        names = [n.strip() for n in item.split(",")]
+        if not any(names):
+            found.add(f"{option} {item!r} names nothing: give NAME[,NAME...], e.g. {option} {example}, "
+                      f"or leave {option} out")
+            continue
+        if not all(names):
+            found.add(f"{option} {item!r} has an empty name between its commas: e.g. {option} {example}")
+        for n in filter(None, names):
+            if n in out:
+                found.add(f"{option} names {n} twice")
+            else:
+                out.append(n)
+    found.raise_if_any()
+    return out
+
+
+def refuse_without(args, needs: str, *flags: str) -> None:
+    """:class:`InputError` naming every flag of ``flags`` (attribute names of ``args``) that was given
+    although it only acts with ``needs``."""
+    given = [f for f in flags if getattr(args, f) not in (None, False, [])]
+    if given:
+        shown = ", ".join("--" + f.replace("_", "-") for f in given)
+        raise InputError(f"{shown} {'acts' if len(given) == 1 else 'act'} only with {needs}: add {needs} or "
+                         f"leave {shown} out")
+
+
 def named(items, option: str, form: str) -> dict[str, str]:
     """``NAME=SPEC`` of a repeated option (``--vary``, ``--sobol``) → {name: spec}; a name given
     twice is refused.  form: what an item looks like, for the message (e.g. ``NAME=LOW:HIGH``)."""

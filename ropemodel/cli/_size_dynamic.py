@@ -77,7 +77,10 @@ def main(scene, args, to_json) -> int:
     from optimisation.dynamic.ramp import shortest_ramp
     from ropemodel.errors import InputError
 
-    if args.find:
+    if args.discrete is not None:
+        raise InputError("--discrete chooses how static sizing picks the catalogue diameter; --dynamic picks the "
+                         "next size up and verifies it by simulation: leave --discrete out")
+    if args.find is not None:
         if args.find not in FINDS:
             raise InputError(f"--find {args.find!r}: with --dynamic it finds {', '.join(FINDS)}")
         with status(f"{scene.name}: the shortest ramp that keeps the design safe"):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn_unread
+from ropemodel.cli._common import add_scene_arguments, name_list, scene_from_args, warn_unread
 from ropemodel.errors import SolveError
 from ropemodel.progress import status
 from ropemodel.units import to_si
@@ -27,7 +27,7 @@ def main(args) -> int:
 
     sigma = to_si("--sigma", args.sigma, "rad", "deg") if args.sigma is not None else None
     scene = scene_from_args(args)
-    fit = [n.strip() for n in args.fit.split(",") if n.strip()]
+    fit = name_list(args.fit, "--fit", "mu,EA")
     warn_unread(scene, "identify", *reads(scene, fit))
     with status(f"identifying {', '.join(fit)} from {args.data}"):
         res = identify(scene, args.data, fit, sigma=sigma)

@@ -125,16 +125,20 @@ def main(args) -> int:
         sheet = args.format == "json"
         text, page, lines, incomplete = _make(ctx, sheet, page=pdf is not None or not sheet)
         writers = ((html, lambda p: _write_text(p, text)), (pdf, lambda p: _write_pdf(p, page, exe)))
+        written: list[Path] = []
         for path, write in writers:
             if path is None:
                 continue
+            kept = f"; {written[0]} was written" if written else "; nothing was written"
             try:
                 write(path)
             except OSError as exc:
-                raise OutputError(f"cannot write {path}: {cause(exc)}; nothing was written") from None
+                raise OutputError(f"cannot write {path}: {cause(exc)}{kept}") from None
             except OutputError as exc:   # the browser could not print
-                raise OutputError(f"cannot write {path}: {exc}") from None
-            print(f"wrote {path}")
+                raise OutputError(f"cannot write {path}: {exc}{kept if written else ''}") from None
+            written.append(path)
+    for path in written:
+        print(f"wrote {path}")
     for line in lines:
         print(line)
     for name, why in incomplete:

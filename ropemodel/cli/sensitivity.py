@@ -12,8 +12,8 @@ from __future__ import annotations
 import json
 import math
 
-from ropemodel.cli._common import (add_at_argument, add_scene_arguments, named, sizing_scene_from_args, warn_unread,
-                                   worst_case_scene)
+from ropemodel.cli._common import (add_at_argument, add_scene_arguments, name_list, named, refuse_without,
+                                   sizing_scene_from_args, warn_unread, worst_case_scene)
 from ropemodel.errors import InputError
 from ropemodel.progress import status
 
@@ -30,16 +30,12 @@ def add_arguments(parser) -> None:
     parser.add_argument("--plot", metavar="FILE.png", help="tornado chart of the elasticities")
     parser.add_argument("--sobol", action="append", metavar="NAME=LOW:HIGH", default=[],
                         help="a uniform range for Sobol indices, e.g. alpha_u=10deg:20deg (repeat per input)")
-    parser.add_argument("--samples", type=int, default=1024,
+    parser.add_argument("--samples", type=int, default=None,
                         help="Sobol base samples N, a power of two >= 4 (N*(D+2) evaluations; default 1024)")
-    parser.add_argument("--seed", type=int, default=0, help="seed of the Sobol sequence scrambling, 0 to 2**32 - 1")
+    parser.add_argument("--seed", type=int, default=None, help="seed of the Sobol sequence scrambling, 0 to 2**32 - 1")
     add_at_argument(parser)
     parser.add_argument("--sizing", action="store_true",
                         help="Sobol indices of the sizing optimum (d, F_nwl, stroke) instead of the outputs")
-
-
-def _names(items):
-    return [n.strip() for item in items for n in item.split(",") if n.strip()]
 
 
 def _num(v):
@@ -53,14 +49,24 @@ def main(args) -> int:
     from ropemodel.sweeps.files import OutputLock
 
     ranges = named(args.sobol, "--sobol", "NAME=LOW:HIGH, e.g. alpha_u=10deg:20deg")
+    outputs = name_list(args.outputs, "--outputs", "F_C_up,dF_up") or None
+    parameters = name_list(args.parameters, "--parameters", "G_m,alpha_u") or None
     if ranges and args.plot is not None:
         raise InputError("--plot draws elasticities; it does not combine with --sobol")
     if ranges:
+        if parameters:
+            raise InputError("--parameters chooses the inputs of elasticities; with --sobol the inputs are the "
+                             "--sobol ranges: leave --parameters out")
+        if args.sizing and outputs:
+            raise InputError("--sizing analyses d, F_nwl and stroke; it takes no --outputs")
+        args.samples = 1024 if args.samples is None else args.samples
+        args.seed = 0 if args.seed is None else args.seed
         check_samples(args.samples, len(ranges))
         check_seed(args.seed)
+    else:
+        refuse_without(args, "--sobol ranges", "samples", "seed", "sizing")
     plot = check_plot(args.plot) if args.plot is not None else None   # before any work
     scene = sizing_scene_from_args(args) if args.sizing and ranges else worst_case_scene(args)
-    outputs = _names(args.outputs) or None
     if outputs:
         scene.built.check_names(outputs, "output")
     if not (args.sizing and ranges):
@@ -81,11 +87,9 @@ def main(args) -> int:
             print(json.dumps([{k: _num(v) for k, v in r.items()} for r in frame.to_dict("records")], indent=1))
         else:
             print(f"Sobol indices, N = {args.samples} base samples (95 % bootstrap half-widths)")
-            print(frame.to_string(index=False, float_format=lambda x: f"{x:.3f}"))
+            print(frame.to_string(index=False, float_format=lambda x: f"{x:.3f}", na_rep="-"))   # not defined: -
         return 0
-    if args.sizing:
-        raise InputError("--sizing needs --sobol ranges")
-    frame = elasticities(scene, outputs=outputs, parameters=_names(args.parameters) or None)
+    frame = elasticities(scene, outputs=outputs, parameters=parameters)
     if plot is not None:
         with OutputLock(plot):
             tornado(frame, outputs, path=plot, title=scene.name)

@@ -71,8 +71,9 @@ def _text(design) -> str:
         lines.append("")
         lines.append(f"{'check margin':<22}{'value':>14}  {'unit':<6}{'':<6}where it is least; rule")
         for k, v in design.margins.items():
-            unit = "-" if q[k].display_unit == "1" else q[k].display_unit
-            shown = q[k].to_display(v) if abs(v) > 1e-9 else 0.0  # an active check prints as 0, not -8.9e-13
+            c = q[k.split(" @ ")[0]]       # on a route: "slip_margin_up @ segment 2"
+            unit = "-" if c.display_unit == "1" else c.display_unit
+            shown = c.to_display(v) if abs(v) > 1e-9 else 0.0  # an active check prints as 0, not -8.9e-13
             lines.append(f"{k:<22}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS':<6}"
                          f"{where_text(design.governing.get(k))}; {design.scene.check_basis(k)}")
     lines.append("")
@@ -88,7 +89,7 @@ def main(args) -> int:
         from ropemodel.cli import _size_dynamic
 
         return _size_dynamic.main(scene, args, _num)
-    if args.find:
+    if args.find is not None:
         raise InputError("--find needs --dynamic (size --dynamic --find t_ramp)")
     with status(f"sizing {scene.name}: rope, pretension and stroke"):
         design = size(scene, method=args.discrete or DEFAULT_DISCRETE)

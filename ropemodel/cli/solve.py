@@ -6,7 +6,8 @@ that governs it (:func:`ropemodel.envelope.solve`)."""
 
 from __future__ import annotations
 
-from ropemodel.cli._common import add_at_argument, add_scene_arguments, assignments, warn_unread, worst_case_scene
+from ropemodel.cli._common import (add_at_argument, add_scene_arguments, assignments, name_list, warn_unread,
+                                   worst_case_scene)
 from ropemodel.errors import InputError
 
 NAME = "solve"
@@ -26,7 +27,7 @@ def main(args) -> int:
     from ropemodel.envelope import solve
 
     given = assignments(args.given, "--given")
-    find = [n.strip() for item in args.find for n in item.split(",") if n.strip()]
+    find = name_list(args.find, "--find", "q_lw")
     if not given and not find:
         raise InputError("solve needs --given NAME=VALUE and --find NAME (use 'run' for the forward problem)")
     scene = worst_case_scene(args)

@@ -15,9 +15,9 @@ import json
 import sys
 from typing import cast
 
-from ropemodel.cli._common import (add_scene_arguments, assignments, named, scene_from_args, sizing_scene_from_args,
-                                   warn_unread)
-from ropemodel.errors import InputError
+from ropemodel.cli._common import (add_scene_arguments, assignments, name_list, named, refuse_without, scene_from_args,
+                                   sizing_scene_from_args, warn_unread)
+from ropemodel.errors import InputError, Problems
 
 NAME = "sweep"
 HELP = "evaluate a scene over grids or a table of points; write CSV or Parquet (resumable)"
@@ -36,10 +36,10 @@ def add_arguments(parser) -> None:
     parser.add_argument("--find", action="append", metavar="NAME", default=[],
                         help="a parameter to solve for at every point, freed by a --given")
     parser.add_argument("-o", "--output", required=True, metavar="FILE", help="FILE.csv or FILE.parquet")
-    parser.add_argument("--chunk-size", type=int, default=65536, help="points per chunk, 1 to 1e8 (default 65536)")
+    parser.add_argument("--chunk-size", type=int, default=None, help="points per chunk, 1 to 1e8 (default 65536)")
     parser.add_argument("--threads", type=int, default=None,
                         help="threads, a positive whole number (default: number of CPUs)")
-    parser.add_argument("--backend", default="auto", choices=["auto", "casadi", "compiled"],
+    parser.add_argument("--backend", default=None, choices=["auto", "casadi", "compiled"],
                         help="evaluation backend (default auto: compiled C if a compiler works)")
     parser.add_argument("--si", action="store_true", help="SI units in the columns (default: display units)")
     parser.add_argument("--mark-failures", action="store_true",
@@ -57,34 +57,32 @@ def add_arguments(parser) -> None:
                         help="no progress bar, as --quiet (default: a bar on stderr when it is a terminal)")
 
 
-def _names(items):
-    return [n.strip() for item in items for n in item.split(",") if n.strip()]
-
-
 def main(args) -> int:
     from ropemodel.progress import enabled
-    from ropemodel.sweeps import read_points, sweep
+    from ropemodel.sweeps import CHUNK, read_points, sweep
+    from ropemodel.sweeps.points import split_label
     from ropemodel.sweeps.runner import SweepFile, SweepInterrupted
 
     vary = named(args.vary, "--vary", "NAME=START:STOP:N, e.g. alpha_u=5deg:45deg:1000")
+    if not args.sizing:
+        refuse_without(args, "--sizing", "dynamic", "cold")
     points = read_points(args.points) if args.points else None
     if points is not None and vary:
         raise InputError("give either --vary grids or --points FILE, not both")
-    if args.dynamic and not args.sizing:
-        raise InputError("--dynamic needs --sizing (a sweep of the dynamic sizing optimum)")
     if args.sizing:
         return _sizing(vary, points, args)
+    given, find = _given(args.given), name_list(args.find, "--find", "q_lw")
+    outputs = name_list(args.outputs, "--outputs", "F_C_up,dF_up") or None
+    _check_roles(given, find, list(vary) + ([split_label(str(c))[0] for c in points.columns]
+                                            if points is not None else []), outputs or [])
     scene = scene_from_args(args)
-    outputs = _names(args.outputs) or None
     if outputs:
         scene.built.check_names(outputs, "output")
     warn_unread(scene, "this sweep", scene.built.inputs_of(outputs) if outputs else None)
-    given: dict[str, str | None] = {g.strip(): None for g in args.given if "=" not in g}
-    given.update(assignments([g for g in args.given if "=" in g], "--given"))
     try:
-        written = sweep(scene, vary or None, outputs, points=points, given=given,
-                        find=_names(args.find), out=args.output, chunk_size=args.chunk_size,
-                        threads=args.threads, backend=args.backend, si=args.si,
+        written = sweep(scene, vary or None, outputs, points=points, given=given, find=find,
+                        out=args.output, chunk_size=CHUNK if args.chunk_size is None else args.chunk_size,
+                        threads=args.threads, backend=args.backend or "auto", si=args.si,
                         errors="mark" if args.mark_failures else "raise",
                         progress=enabled(False if args.no_progress else None),
                         restart=args.restart, collect=False)
@@ -94,6 +92,38 @@ def main(args) -> int:
     file = cast(SweepFile, written)             # collect=False: the output file, not a DataFrame
     _summary(file.path, args.json, file.rows, file.columns, file.status)
     return 0
+
+
+def _given(items) -> dict[str, str | None]:
+    """``--given NAME`` (values from --vary or --points) and ``--given NAME=VALUE``, every mistake at once."""
+    bare = [g for g in items if "=" not in g]
+    given: dict[str, str | None] = {n: None for n in name_list(bare, "--given", "F_C_up")} if bare else {}
+    for name, value in assignments([g for g in items if "=" in g], "--given").items():
+        if name in given:
+            raise InputError(f"--given {name} given twice")
+        given[name] = value
+    return given
+
+
+def _check_roles(given: dict, find: list[str], varied: list[str], outputs: list[str]) -> None:
+    """A name has one role: given a value, varied, found, or an output; every contradiction at once."""
+    found = Problems()
+    for name in outputs:
+        if name in given or name in varied:
+            flag = "--given" if name in given else "--vary/--points"
+            found.add(f"--outputs {name} and {flag} {name}: {name} is an input of this sweep, not a result; leave "
+                      f"it out of --outputs or out of {flag}")
+    for name in given:
+        if given[name] is not None and name in varied:
+            found.add(f"--given {name}={given[name]} and --vary/--points {name} both give {name}'s values: give "
+                      f"them once (--given {name} alone takes them from --vary or --points)")
+    for name in find:
+        if name in varied:
+            found.add(f"--find {name} solves for {name} at every point, so it cannot also be varied: "
+                      f"leave {name} out of --vary/--points, or out of --find")
+        if name in given:
+            found.add(f"--find {name} and --given {name}: a name is either known (--given) or solved for (--find)")
+    found.raise_if_any()
 
 
 def _summary(path, as_json: bool, rows: int, columns: list[str], status: str = "written") -> None:
@@ -115,6 +145,13 @@ def _sizing(vary, points, args) -> int:
 
     if args.given or args.find or args.outputs:
         raise InputError("--sizing computes d, F_nwl and stroke; it takes no --given, --find or --outputs")
+    for flag in ("chunk_size", "threads", "backend", "si", "mark_failures", "restart"):
+        if getattr(args, flag) not in (None, False):
+            raise InputError(f"--{flag.replace('_', '-')} acts on a sweep of the outputs, not on --sizing (a sizing "
+                             f"sweep is one optimisation per point, not chunked, not resumable): leave it out")
+    if args.dynamic and args.cold:
+        raise InputError("--cold acts on static --sizing only (--dynamic starts each point from its neighbour's "
+                         "design, the first from the static one): leave --cold out")
     out = check_output(args.output)
     with OutputLock(out):
         scene = sizing_scene_from_args(args)

@@ -65,6 +65,7 @@ def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | N
     sim = Simulation(scene, system)
     integrator = HybridIntegrator(system, num["sim_rtol"], num["sim_dt"], num["sim_integrator"], atol)
     t_end = float(integrator.phases[-1].t1)
+    _check_work(t_end, num["sim_dt"])
     with bar(t_end, "simulate", unit="s", flag=progress, bar_format="{l_bar}{bar}| {n:.1f}/{total:.1f} s") as shown:
         def record(times, X, out, mode):
             sim.record(times, X, out, mode)
@@ -73,3 +74,18 @@ def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | N
         events = integrator.run(x0, mode, record)
     sim.finish(events)
     return sim
+
+
+#: the fewest columns a history has (time, speeds, forces, take-up, modes): a lower bound of its memory
+HISTORY_COLUMNS = 10
+
+
+def _check_work(t_end: float, dt: float) -> None:
+    """The history's rows t_end/sim_dt against the work budget, and against memory whatever the budget."""
+    from ropemodel import budget
+    from ropemodel.sweeps.files import check_size
+
+    rows = t_end / dt + 1
+    budget.check("history", rows, f"a transient of {t_end:.6g} s at [numerics] sim_dt = {dt:g} s",
+                 "take a larger sim_dt, or shorten t_end (a trip: its route or t_ramp)")
+    check_size(int(min(rows, 2**62)), HISTORY_COLUMNS, what="a transient's history is kept in memory")

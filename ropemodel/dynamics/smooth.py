@@ -61,7 +61,7 @@ class SmoothMode(NamedTuple):
 
     f: (x, t, p) → xdot; out: (x, t, p) → F_C [N], F_S [N], take_up [m], T_min [N] (least tension of the
     rope), T [N] (every element's tension; empty for a rigid rope) and, with a friction lining,
-    slip_fwd = ρ(F_S)·F_S − F_C and slip_back = ρ(F_C)·F_C − F_S [N] (≥ 0: no slip); x0: (p) → the
+    slip_fwd = F_S − F_C/ρ(F_S) and slip_back = F_C − F_S/ρ(F_C) [N] (≥ 0: no slip); x0: (p) → the
     state at t = 0.  params: the names in p; p0: their scene values (SI); layout: the named states of x;
     t_end [s] and phase_ends [s] (at p0: where the profile has kinks); pieces: one :class:`Piece` per
     phase; bounds: (p) → the phases' starts and ends [s] (``t0``, ``t1``, one entry per phase).

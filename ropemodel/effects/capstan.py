@@ -50,10 +50,11 @@ import casadi as ca
 
 from ropemodel.numerics.capstan_laws import LAWS, regime_number
 from ropemodel.numerics.capstan_rotation import ARGS, RTOL, STEPS, check_wrap, rotation_function
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import Equation, Submodel, define_effect, define_numerics, positive_number, register
 from ropemodel.errors import InputError, SolveError
 from ropemodel.papers import li_capstan as li
-from ropemodel.quantity import Quantity, positive
+from ropemodel.quantity import Quantity
 
 MODEL = "capstan"
 SRC = "Li et al."
@@ -76,16 +77,19 @@ define_numerics(MODEL, "sharpness", 30.0, "sharpness s of the smooth law's logis
                 positive_number(0.0, 1e6))
 
 PARAMS = (
-    positive("mu", "1", "friction coefficient between cable and wheel", guess=0.25, warn_high=1.0),
-    positive("EA", "N", "axial stiffness of the cable", "kN", guess=5e4),
-    positive("R", "m", "wheel radius", "mm", guess=0.075),
-    Quantity("L", "m", "free length of the cable between the wheels", "mm", low=0.0, guess=0.36),
-    positive("alpha_0", "rad", "initial wrap angle on each side", "deg", guess=1.117),
-    positive("F_p", "N", "preload", "N", guess=60.0),
+    Quantity("mu", "1", "friction coefficient between cable and wheel", guess=0.25, warn_high=1.0, positive=True,
+             **dom.FRICTION),
+    Quantity("EA", "N", "axial stiffness of the cable", "kN", guess=5e4, positive=True,
+             **dom.domain(1e-3, 1e11, "1 mN (a thread) to 10^11 N, twice the stiffest rope (500 mm of steel: "
+                                      "about 5e10 N)")),
+    Quantity("R", "m", "wheel radius", "mm", guess=0.075, positive=True, **dom.WHEEL),
+    Quantity("L", "m", "free length of the cable between the wheels", "mm", guess=0.36, **dom.ROUTE_POSITION),
+    Quantity("alpha_0", "rad", "initial wrap angle on each side", "deg", guess=1.117, positive=True, **dom.WRAP),
+    Quantity("F_p", "N", "preload", "N", guess=60.0, positive=True, **dom.FORCE_POSITIVE),
 )
-F_T_PARAM = Quantity("F_T", "N", "load: tension change in the free span, T/(2R)", "N", low=0.0, guess=10.0,
+F_T_PARAM = Quantity("F_T", "N", "load: tension change in the free span, T/(2R)", "N", guess=10.0, **dom.FORCE,
                      equation=f"{SRC}, section 3: F_T = T/(2R)")
-T_PARAM = Quantity("T", "N*m", "load torque on the capstan", "N*m", low=0.0, guess=1.0,
+T_PARAM = Quantity("T", "N*m", "load torque on the capstan", "N*m", guess=1.0, **dom.TORQUE,
                    equation=f"{SRC}, section 3: T = 2 R F_T")
 
 

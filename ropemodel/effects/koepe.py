@@ -39,6 +39,7 @@ import math
 from typing import cast
 
 from ropemodel._math import fabs, fmax
+from ropemodel.effects import domains as dom
 from ropemodel.effects import koepe_states as st
 from ropemodel.effects.base import REGISTRY, Equation, Submodel, define_effect, register
 from ropemodel.quantity import Quantity
@@ -57,40 +58,55 @@ def usual(low, high, source) -> dict:
     return dict(warn_low=low, warn_high=high, usual_source=source)
 
 
-def positive(low, high) -> dict:
-    """A strictly positive quantity's domain (low, high] (an unknown solved for in log space)."""
-    return dict(low=low, high=high, low_open=low == 0.0, positive=True)
+def positive(low, high, source: str) -> dict:
+    """A strictly positive quantity's domain (low, high] (an unknown solved for in log space) and its source."""
+    return dict(low=low, high=high, low_open=low == 0.0, positive=True, range_source=source)
+
+
+# --- the domains' sources (the module docstring; ropemodel/effects/domains.py for those shared with the winch)
+SHAFT = "40 km: ten times the deepest shafts (about 4 km)"
+#: a head rope above a conveyance, a tail loop below it
+SPAN = dom.domain(0.0, 1e3, "0 to 1 km: ten times the tallest headframes and the deepest tail loops (about 100 m)")
+MASS = "1000 t: ten times the heaviest conveyances with their payloads (about 100 t)"
+#: a count of ropes
+COUNT = dom.domain(1.0, 100.0, "physics: at least one rope; 100 is ten times the most a friction hoist hangs (10)")
+ROPE_MASS = "1 g/m to 1 t/m: the heaviest hoisting and balance ropes weigh about 30 kg/m"
+WHEEL = "ten times the largest Koepe wheels (about 10 m)"
 
 
 # --- quantities several effects share, declared once (the registry refuses a second declaration)
 H = Q("H", "m", "winding distance: between a conveyance's upper and lower positions", "m", guess=905.0,
-      **positive(0.0, 4e4), **usual(20.0, 3000.0, JUDGEMENT))
+      **positive(0.0, 4e4, SHAFT), **usual(20.0, 3000.0, JUDGEMENT))
 H_HEAD = Q("H_head", "m", "head-rope length from the wheel's tangent point to a conveyance at its upper position",
-           "m", low=0.0, high=1e3, guess=56.7, **usual(5.0, 200.0, JUDGEMENT))
+           "m", **SPAN, guess=56.7, **usual(5.0, 200.0, JUDGEMENT))
 M_CONVEYANCE = Q("m_conveyance", "kg", "mass of each conveyance with its attachments", "t", guess=3e4, symbol="m_c",
-                 **positive(1e-3, 1e6), **usual(500.0, 1.5e5, JUDGEMENT))
-M_PAYLOAD = Q("m_payload", "kg", "payload of the loaded conveyance", "t", guess=2e4, symbol="m_p", **positive(0.0, 1e6),
-              **usual(100.0, 1e5, JUDGEMENT))
-N_HEAD = Q("n_head", "1", "number of head ropes (a whole number)", guess=4.0, low=1.0, high=100.0, symbol="n_h",
+                 **positive(1e-3, 1e6, f"1 g to {MASS}"), **usual(500.0, 1.5e5, JUDGEMENT))
+M_PAYLOAD = Q("m_payload", "kg", "payload of the loaded conveyance", "t", guess=2e4, symbol="m_p",
+              **positive(0.0, 1e6, MASS), **usual(100.0, 1e5, JUDGEMENT))
+N_HEAD = Q("n_head", "1", "number of head ropes (a whole number)", guess=4.0, **COUNT, symbol="n_h",
            **usual(1.0, 10.0, "multi-rope friction hoists carry 1 to 10 head ropes (judgement)"))
-Q_HEAD = Q("q_head", "kg/m", "mass per metre of one head rope", "kg/m", guess=8.6, symbol="q_h", **positive(1e-3, 1e3),
+Q_HEAD = Q("q_head", "kg/m", "mass per metre of one head rope", "kg/m", guess=8.6, symbol="q_h",
+           **positive(1e-3, 1e3, ROPE_MASS),
            **usual(0.5, 40.0, "EN 12385-4 ropes of 10 to 90 mm (W d², W about 4000 kg/m³)"))
-MU = Q("mu", "1", "friction coefficient of the head ropes on the wheel's lining", guess=0.25, low=1e-3, high=10.0,
+MU = Q("mu", "1", "friction coefficient of the head ropes on the wheel's lining", guess=0.25, **dom.FRICTION,
        **usual(0.15, 0.4, "BPVS § 27(5): a lining of at least 0.25, not below 0.18 wet; polymer linings 0.2-0.3 "
                           "(judgement)"))
-ALPHA = Q("alpha", "rad", "wrap of the head ropes on the wheel", "deg", guess=math.pi, low=1e-3, high=20 * math.pi,
+ALPHA = Q("alpha", "rad", "wrap of the head ropes on the wheel", "deg", guess=math.pi, **dom.WRAP,
           **usual(math.radians(150), math.radians(400), "tower Koepes wrap 180°-200°, with a deflection sheave or a "
                                                          "double wrap more (judgement)"))
-D_WHEEL = Q("D", "m", "diameter of the friction wheel at the rope centre", "m", guess=4.5, **positive(1e-3, 100.0),
+D_WHEEL = Q("D", "m", "diameter of the friction wheel at the rope centre", "m", guess=4.5,
+            **positive(1e-3, 100.0, f"1 mm to 100 m: {WHEEL}"),
             **usual(0.8, 10.0, "Koepe wheels of 1 to 9 m (judgement)"))
-V_MAX = Q("v_max", "m/s", "largest rope speed: the hoisting speed", "m/s", guess=10.0, **positive(0.0, 100.0),
+V_MAX = Q("v_max", "m/s", "largest rope speed: the hoisting speed", "m/s", guess=10.0,
+            **positive(0.0, 100.0, "100 m/s: five times the fastest mine hoists (20 m/s)"),
           **usual(1.0, 20.0, "mine hoists run at 1 to 20 m/s (judgement)"))
 F_R = Q("F_r", "N", "shaft resistance (guides, air) on the loaded conveyance, against its velocity", "kN",
-        low=0.0, high=1e9, guess=1e3, default=0.0, default_note="not given: no shaft resistance")
+        **dom.FORCE, guess=1e3, default=0.0, default_note="not given: no shaft resistance")
 M_SHEAVE = tuple(
     Q(f"m_sheave_{c}", "kg", f"mass equivalent to the sheaves compartment {c}'s head ropes run over between the "
-      f"wheel and the conveyance, J/r² (moment of inertia over radius squared)", "t", low=0.0, high=1e6,
-      guess=1e3, default=0.0, default_note="not given: no sheave, the ropes hang from the wheel (a tower Koepe)")
+      f"wheel and the conveyance, J/r² (moment of inertia over radius squared)", "t",
+      **dom.domain(0.0, 1e6, f"0 to {MASS}; a sheave's equivalent mass is far less"), guess=1e3,
+      default=0.0, default_note="not given: no sheave, the ropes hang from the wheel (a tower Koepe)")
     for c in st.COMPARTMENTS)
 T_MAX = Q("T_max", "N", "largest static tension at the wheel (all head ropes of a side): the largest rope pull",
           "kN", equation=f"{PRACTICE}: T = g (m + n_head q_head L_h + n_tail q_tail L_t)")

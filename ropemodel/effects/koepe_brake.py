@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 
 from ropemodel._math import fmax, fmin
+from ropemodel.effects import domains as dom
 from ropemodel.effects import koepe_states as st
 from ropemodel.effects.base import Equation, Submodel, register
 from ropemodel.effects.koepe import ALPHA, D_WHEEL, F_R, M_SHEAVE, MODEL, Q, partner, tail_terms, usual
@@ -31,7 +32,7 @@ from ropemodel.papers import koepe_slip as ks
 
 SRC = "docs/physics.md §7, braking window"
 DIRECTIONS = {"hoist": (+1.0, "hoisting"), "lower": (-1.0, "lowering")}
-DECELERATION = dict(low=0.0, high=100.0)   # up to ten g: far beyond any brake a person survives
+DECELERATION = dom.domain(0.0, 100.0, "0 to 100 m/s² (ten g): far beyond any brake a person survives")
 
 QUANTITIES = (
     ALPHA, D_WHEEL, F_R, *M_SHEAVE,
@@ -39,12 +40,15 @@ QUANTITIES = (
       guess=1.5, **DECELERATION, **usual(0.5, 5.0, "regulations ask 1 to 2 m/s² (e.g. New Brunswick Reg. 96-105 "
                                                       "s. 192: more than 1.5 m/s², drum hoists)")),
     Q("a_brake_max", "m/s^2", "largest deceleration allowed in an emergency stop", "m/s^2", guess=5.0,
-      low=0.0, high=100.0, low_open=True, unlimited=True, default=math.inf,
+      **{**DECELERATION, "low_open": True}, unlimited=True, default=math.inf,
       default_note="not given: no largest deceleration (the slip limit bounds the window)"),
     Q("m_machine", "kg", "mass equivalent to the wheel, the motor's rotor and the brake discs, J/R² (their moment "
-      "of inertia about the wheel's axle over the wheel's radius squared)", "t", low=0.0, high=1e7, guess=2e4,
-      default=0.0, default_note="not given: left out; it can only lower the deceleration without brake, so the "
-                                "window's floor is on the safe side"),
+      "of inertia about the wheel's axle over the wheel's radius squared)", "t",
+      **dom.domain(0.0, 1e7, "0 to 10^4 t: far beyond a wheel, rotor and brake discs reduced to the rim "
+                             "(tens of tonnes)"),
+      guess=2e4, default=0.0,
+      default_note="not given: left out; it can only lower the deceleration without brake, so the window's floor "
+                   "is on the safe side"),
     *(q for d in DIRECTIONS for q in (
         Q(f"a_brake_low_{d}", "m/s^2", f"least admissible brake deceleration {DIRECTIONS[d][1]}", "m/s^2",
           equation=f"{SRC}: max(a_brake_min, d_free)"),

@@ -23,29 +23,34 @@ from __future__ import annotations
 import math
 from typing import cast
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import Equation, Submodel, register
-from ropemodel.effects.koepe import D_WHEEL, DT_MAX, MODEL, Q, T_MAX, TailRopes, partner, positive
+from ropemodel.effects.koepe import WHEEL, D_WHEEL, DT_MAX, MODEL, Q, T_MAX, TailRopes, partner, positive
 from ropemodel.effects.koepe_ropes import D_HEAD, F_MIN_HEAD
 
-FACTOR = dict(low=1.0, high=1e3)
+FACTOR = dom.FACTOR
 SAFETY = "rope safety check: breaking force over the static force (not in the sources of §7)"
 
 QUANTITIES = (
     D_WHEEL, D_HEAD, F_MIN_HEAD, T_MAX, DT_MAX,
     Q("n_safety_head", "1", "required safety factor of a head rope: F_min_head over its static force", guess=6.0,
       **FACTOR),
-    Q("F_min_tail", "N", "minimum breaking force of one tail rope", "kN", guess=2e6, **positive(1e-3, 1e9)),
+    Q("F_min_tail", "N", "minimum breaking force of one tail rope", "kN", guess=2e6,
+      **positive(1e-3, 1e9, dom.FORCE_POSITIVE["range_source"])),
     Q("n_safety_tail", "1", "required safety factor of a tail rope: F_min_tail over its static force", guess=7.0,
       **FACTOR),
     Q("D_ratio_min", "1", "least ratio of the wheel's diameter to the head ropes', D/d", guess=80.0, **FACTOR),
-    Q("D_min", "m", "least diameter of the wheel", "m", low=0.0, high=100.0, guess=1.2, default=0.0,
+    Q("D_min", "m", "least diameter of the wheel", "m",
+      **dom.domain(0.0, 100.0, f"0 (no least) to 100 m: {WHEEL}"), guess=1.2, default=0.0,
       default_note="not given: no least wheel diameter"),
     Q("T_rated", "N", "the machine's rated static rope pull (the largest T_max it is built for)", "kN", guess=1e6,
-      **positive(0.0, 1e9), unlimited=True, default=math.inf, default_note="not given: not checked"),
-    Q("dT_rated", "N", "the machine's rated static tension difference (the largest dT_max it is built for)", "kN",
-      symbol="ΔT_rated", guess=3e5, **positive(0.0, 1e9), unlimited=True, default=math.inf,
+      **positive(0.0, 1e9, dom.FORCE["range_source"]), unlimited=True, default=math.inf,
       default_note="not given: not checked"),
-    Q("sigma_static_min", "1", "least static anti-slip factor required", low=1.0, high=100.0, guess=1.75,
+    Q("dT_rated", "N", "the machine's rated static tension difference (the largest dT_max it is built for)", "kN",
+      symbol="ΔT_rated", guess=3e5, **positive(0.0, 1e9, dom.FORCE["range_source"]), unlimited=True, default=math.inf,
+      default_note="not given: not checked"),
+    Q("sigma_static_min", "1", "least static anti-slip factor required", guess=1.75,
+      **dom.domain(1.0, 100.0, "at least 1 (physics: below 1 the ropes slip at rest); 100 bounds any rule"),
       default=1.0, default_note="not given: 1, the onset of slip (rules and practice ask more)"),
     Q("head_safety_margin", "1", "margin of the head ropes' safety n_head F_min_head/(n_safety_head T_max) − 1 "
       "(>= 0 passes)", symbol="m_safety,head", equation=SAFETY),

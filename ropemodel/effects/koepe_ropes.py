@@ -14,29 +14,34 @@
 
 from __future__ import annotations
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import Equation, Submodel, register
-from ropemodel.effects.koepe import H, MODEL, PRACTICE, Q, Q_HEAD, TailRopes, positive, usual, whole_ropes
+from ropemodel.effects.koepe import (COUNT, H, MODEL, PRACTICE, ROPE_MASS, SPAN, Q, Q_HEAD, TailRopes, positive, usual,
+                                     whole_ropes)
 from ropemodel.papers import en12385 as ropes
 from ropemodel.papers.route import G_N
 
 SRC = "EN 12385-4"
 
-N_TAIL = Q("n_tail", "1", "number of tail (balance) ropes (a whole number)", guess=2.0, low=1.0, high=100.0,
+N_TAIL = Q("n_tail", "1", "number of tail (balance) ropes (a whole number)", guess=2.0, **COUNT,
            symbol="n_t", **usual(1.0, 10.0, "friction hoists hang 1 to 10 tail ropes (judgement)"))
-Q_TAIL = Q("q_tail", "kg/m", "mass per metre of one tail rope", "kg/m", guess=15.5, symbol="q_t", **positive(1e-3, 1e3),
+Q_TAIL = Q("q_tail", "kg/m", "mass per metre of one tail rope", "kg/m", guess=15.5, symbol="q_t",
+           **positive(1e-3, 1e3, ROPE_MASS),
            **usual(0.5, 60.0, "round and flat balance ropes (judgement, around the issue's 15.5 kg/m)"))
 H_LOOP = Q("h_loop", "m", "tail rope per side below a conveyance's lower position, half the loop's turn included: "
-           "(L_tail − H)/2", "m", low=0.0, high=1e3, guess=5.0, default=0.0,
+           "(L_tail − H)/2", "m", **SPAN, guess=5.0, default=0.0,
            default_note="not given: 0, the largest ratio T_1/T_2 (safe for slip); it understates each tension by "
                         "g n_tail q_tail h_loop (give the real loop for rope safety)")
 F_TAIL = Q("F_tail", "N", "largest static force in one tail rope, at its top with its conveyance at the upper "
            "position", "kN", equation=f"{PRACTICE}: g q_tail (H + h_loop)")
-D_HEAD = Q("d_head", "m", "nominal diameter of a head rope", "mm", guess=0.046, **positive(0.0, 0.5),
+D_HEAD = Q("d_head", "m", "nominal diameter of a head rope", "mm", guess=0.046,
+           **positive(0.0, 0.5, "500 mm: beyond the largest wire ropes made"),
            **usual(0.01, 0.09, "hoisting ropes of 10 to 90 mm (judgement)"))
 F_MIN_HEAD = Q("F_min_head", "N", "minimum breaking force of one head rope", "kN", guess=1.3e6,
-               **positive(1e-3, 1e9), **usual(5e4, 1e7, "EN 12385-4 ropes of 10 to 90 mm"))
+               **positive(1e-3, 1e9, dom.FORCE_POSITIVE["range_source"]),
+               **usual(5e4, 1e7, "EN 12385-4 ropes of 10 to 90 mm"))
 GRADE = Q("rope_grade", "Pa", "grade R_r of the head ropes (EN 12385-4: 1570-2160 N/mm^2)", "N/mm^2", guess=1770e6,
-          **positive(1e6, 1e10), **usual(1570e6, 2160e6, "EN 12385-4 rope grades"))
+          **positive(1e6, 1e10, dom.STRENGTH["range_source"]), **usual(1570e6, 2160e6, "EN 12385-4 rope grades"))
 
 
 @register(MODEL, "tail_ropes", "round")

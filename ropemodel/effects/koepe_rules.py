@@ -31,8 +31,10 @@ BRAKE = ("brake_margin_hoist", "brake_margin_lower")
 
 
 def suspended_inputs(names) -> tuple[str, ...]:
-    """The parameters the suspended length is read from (those of ``names`` among ``H_head``, ``H``)."""
-    return tuple(k for k in ("H_head", "H") if k in names)
+    """The parameters the suspended length is read from, ``H_head`` and ``H``; none while ``names`` lacks either
+    (a value left out or refused: the rule's value waits, the scene's problems name it)."""
+    both = ("H_head", "H")
+    return both if set(both) <= set(names) else ()
 
 
 def suspended_length(values):

@@ -35,6 +35,7 @@ from typing import ClassVar
 import numpy as np
 
 from ropemodel._math import exp, fabs, fmax, fmin, if_else
+from ropemodel.effects import domains as dom
 from ropemodel.effects import koepe_states as st
 from ropemodel.effects.base import Equation, Submodel, register
 from ropemodel.effects.koepe import (ALPHA, D_WHEEL, F_R, M_SHEAVE, MODEL, MU, V_MAX, Q, static_states,
@@ -225,14 +226,14 @@ class RigidWheel(WheelLining):
 
 VOIGT = (
     Q("Q_R", "1/N", "radial compliance of the wheel's lining per head rope (Hajduk 1992: h/(E R² a))", "1/N",
-      low=0.0, high=1.0, guess=2e-9, **usual(1e-11, 3e-7, "h/(E R² a) of linings 10-50 mm thick of E = 10-500 MPa "
+      **dom.COMPLIANCE, guess=2e-9, **usual(1e-11, 3e-7, "h/(E R² a) of linings 10-50 mm thick of E = 10-500 MPa "
                                                           "on wheels of R = 1-5 m under ropes 20-60 mm wide "
                                                           "(judgement)")),
-    Q("lambda_R", "s", "retardation time of the lining's radial Voigt bodies (η/E)", "s", low=0.0, high=1e3,
+    Q("lambda_R", "s", "retardation time of the lining's radial Voigt bodies (η/E)", "s", **dom.RETARDATION,
       guess=0.5, **usual(1e-3, 10.0, "polymer linings: milliseconds to seconds (judgement)")),
-    Q("Q_T", "1/N", "tangential compliance of the lining per head rope (Hajduk 1992: μ/(G R a))", "1/N", low=0.0,
-      high=1.0, guess=1e-9, default=0.0, default_note="not given: no tangential compliance"),
-    Q("lambda_T", "s", "retardation time of the lining's tangential Voigt bodies (η/G)", "s", low=0.0, high=1e3,
+    Q("Q_T", "1/N", "tangential compliance of the lining per head rope (Hajduk 1992: μ/(G R a))", "1/N",
+      **dom.COMPLIANCE, guess=1e-9, default=0.0, default_note="not given: no tangential compliance"),
+    Q("lambda_T", "s", "retardation time of the lining's tangential Voigt bodies (η/G)", "s", **dom.RETARDATION,
       guess=0.2, default=0.0, default_note="not given: 0 (a tangential compliance creeps at once)"),
 )
 

@@ -48,6 +48,7 @@ from typing import ClassVar
 import casadi as ca
 import numpy as np
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import (Equation, Submodel, choice, define_effect, define_numerics,
                                     positive_number, register, whole_number)
 from ropemodel.errors import InputError, SolveError
@@ -55,17 +56,20 @@ from ropemodel.numerics.hajduk_integrators import (DEFAULT, DESCRIPTIONS, INTEGR
                                                    segment_function)
 from ropemodel.papers import friction as fr
 from ropemodel.papers import hajduk1992 as hj
-from ropemodel.quantity import Quantity, non_negative, positive
+from ropemodel.quantity import Quantity, positive
 
 MODEL = "sheave"
 SRC = "Hajduk 1992"
 
 
-S_0 = positive("S_0", "N", "tension of the rope entering the arc (slack side)", "kN", guess=1e4)
-MU = positive("mu", "1", "friction coefficient of the rope on the lining (low-pressure limit with "
-              "friction = thirion)", warn_high=1.0, guess=0.2)
-ALPHA = positive("alpha", "rad", "wrap angle (arc of contact)", "deg", warn_high=10 * math.pi, guess=math.pi)
-OMEGA = non_negative("omega", "rad/s", "angular speed of the sheave (0: the slow-sheave limit)", guess=1.0)
+S_0 = Quantity("S_0", "N", "tension of the rope entering the arc (slack side)", "kN", guess=1e4, positive=True,
+               **dom.FORCE_POSITIVE)
+MU = Quantity("mu", "1", "friction coefficient of the rope on the lining (low-pressure limit with "
+              "friction = thirion)", warn_high=1.0, guess=0.2, positive=True, **dom.FRICTION)
+ALPHA = Quantity("alpha", "rad", "wrap angle (arc of contact)", "deg", warn_high=10 * math.pi, guess=math.pi,
+                 positive=True, **dom.WRAP)
+OMEGA = Quantity("omega", "rad/s", "angular speed of the sheave (0: the slow-sheave limit)", guess=1.0,
+                 **dom.domain(0.0, 1e3, "0 to 1000 rad/s (about 10 000 rpm): beyond any sheave's speed"))
 # guesses: starting points of Newton when an inverse question makes these unknowns of an implicit block
 S_OUT = Quantity("S", "N", "tension of the rope leaving the arc", "kN", equation=f"{SRC}, eq. (19)",
                  low=0.0, low_open=True, positive=True, guess=2e4)
@@ -73,18 +77,27 @@ S_RATIO = positive("S_ratio", "1", "tension ratio S/S_0 over the arc", equation=
 S_ERROR = Quantity("S_error", "1", "estimated relative error of S (method ode: the integrator's estimate, at most "
                    "rtol; closed: the next Newton step plus rounding)",
                    equation=f"{SRC}, eq. (19) (closed) or eq. (5)-(6) integrated (ode)", low=0.0, guess=1e-9)
-C_MU = non_negative("c_mu", "1/N", "pressure sensitivity of friction, mu(S) = mu/(1 + c_mu S) (0: constant)",
-                equation="1/(p_c R a)", guess=3e-5)
-R_SHEAVE = positive("R", "m", "sheave radius to the rope centre", "mm", guess=1.0)
-A_WIDTH = positive("a", "m", "width of the lining in contact with the rope", "mm", guess=0.03)
+C_MU = Quantity("c_mu", "1/N", "pressure sensitivity of friction, mu(S) = mu/(1 + c_mu S) (0: constant)",
+                equation="1/(p_c R a)", guess=3e-5,
+                **dom.domain(0.0, 1e3, "0 (constant friction) to 1000 1/N: friction halved by 1 mN of tension"))
+R_SHEAVE = Quantity("R", "m", "sheave radius to the rope centre", "mm", guess=1.0, positive=True, **dom.WHEEL)
+#: a width or thickness of a lining
+LINING_SIZE = dom.domain(1e-6, 10.0, "1 um to 10 m: beyond any lining")
+A_WIDTH = Quantity("a", "m", "width of the lining in contact with the rope", "mm", guess=0.03, positive=True,
+                   **LINING_SIZE)
+
+
+#: a viscosity of a lining
+VISCOSITY = dom.domain(0.0, 1e15, "0 to 10^15 Pa s: a modulus of up to 1 TPa times a retardation time of 1000 s")
 
 
 def _compliance(name, what):
-    return non_negative(name, "1/N", f"{what} compliance of the lining", guess=1e-5)
+    return Quantity(name, "1/N", f"{what} compliance of the lining", guess=1e-5, **dom.COMPLIANCE)
 
 
 def _retardation(name, what):
-    return non_negative(name, "s", f"{what} retardation time of the lining (eta/modulus)", guess=0.01)
+    return Quantity(name, "s", f"{what} retardation time of the lining (eta/modulus)", guess=0.01,
+                    **dom.RETARDATION)
 
 
 define_effect(MODEL, "lining", "voigt", "the sheave's lining: Voigt bodies (visco-elastic) or rigid")
@@ -265,11 +278,11 @@ class PhysicalVoigtLining(AnisotropicVoigtLining):
     description = "Voigt lining from thickness, moduli, viscosities and the contact geometry"
     quantities = (
         *AnisotropicVoigtLining.quantities[:4], R_SHEAVE, A_WIDTH,
-        positive("h", "m", "thickness of the lining", "mm", guess=0.02),
-        positive("E", "Pa", "Young's modulus of the lining", "MPa", guess=5e7),
-        positive("G", "Pa", "shear modulus of the lining", "MPa", guess=2e7),
-        non_negative("eta_R", "Pa*s", "viscosity of the lining in compression", "MPa*s", guess=1e5),
-        non_negative("eta_T", "Pa*s", "viscosity of the lining in shear", "MPa*s", guess=1e5),
+        Quantity("h", "m", "thickness of the lining", "mm", guess=0.02, positive=True, **LINING_SIZE),
+        Quantity("E", "Pa", "Young's modulus of the lining", "MPa", guess=5e7, positive=True, **dom.MODULUS),
+        Quantity("G", "Pa", "shear modulus of the lining", "MPa", guess=2e7, positive=True, **dom.MODULUS),
+        Quantity("eta_R", "Pa*s", "viscosity of the lining in compression", "MPa*s", guess=1e5, **VISCOSITY),
+        Quantity("eta_T", "Pa*s", "viscosity of the lining in shear", "MPa*s", guess=1e5, **VISCOSITY),
         *AnisotropicVoigtLining.quantities[4:8],   # computed here (eq. (1), (6)): the same quantities
         S_OUT, S_RATIO, S_ERROR,
     )
@@ -321,7 +334,8 @@ class ThirionFriction(Submodel):
     description = "friction falling with contact pressure (Thirion's law)"
     citations = ("thirion1946",)
     quantities = (C_MU, R_SHEAVE, A_WIDTH,
-                  positive("p_c", "Pa", "pressure at which friction halves (Thirion's law)", "MPa", guess=1e6))
+                  Quantity("p_c", "Pa", "pressure at which friction halves (Thirion's law)", "MPa", guess=1e6,
+                           positive=True, **dom.MODULUS))
 
     def equations(self, v):
         # multiplied out: linear in c_mu and in p_c, R, a, so either direction is explicit

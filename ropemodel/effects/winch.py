@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
@@ -30,11 +31,9 @@ MODEL = "winch"
 DIRECTIONS = {"up": kr.UP, "down": kr.DOWN}
 SRC = "Krauze et al. 2025"
 
-POSITIVE = dict(low=0.0, low_open=True, positive=True)
-NONNEGATIVE = dict(low=0.0)
+POSITIVE = dict(positive=True)      # solved for in log space where it is an unknown (its domain is > 0)
 #: an output whose worst case is its largest value (:attr:`ropemodel.quantity.Quantity.worst`)
 LARGEST = dict(worst=("largest",))
-COEFFICIENT = dict(low=0.0, high=1.0)
 
 #: what a signed power's sign means (four-quadrant convention)
 SIGNS = ("braking", "motoring")
@@ -55,16 +54,16 @@ def usual(low, high, source) -> dict:
 
 # quantities several winch effects share, declared once (the registry refuses a second declaration)
 V_PJ = Q("v_pj", "m/s", "haulage speed of the load", "m/s", guess=2.5,
-         **usual(0.1, 8.0, f"rope-winch haulage speeds; {JUDGEMENT} (2.5 m/s)"), **POSITIVE)
-ETA = Q("eta", "1", "efficiency of the drive train", low=0.0, high=1.0, low_open=True, guess=0.85, default=1.0,
+         **usual(0.1, 8.0, f"rope-winch haulage speeds; {JUDGEMENT} (2.5 m/s)"), **dom.SPEED, **POSITIVE)
+ETA = Q("eta", "1", "efficiency of the drive train", guess=0.85, default=1.0,
         default_note="no efficiency given: the power is the power at the drum rim",
-        **usual(0.5, 1.0, "gear-motor drive trains (judgement)"))
+        **usual(0.5, 1.0, "gear-motor drive trains (judgement)"), **dom.FRACTION)
 STROKE = Q("stroke", "m", "installed stroke of the tensioner (return sheave): the rope take-up it allows", "mm",
-           low=0.0, low_open=True, positive=True, unlimited=True, guess=1.0, default=math.inf,
-           default_note="not given: unlimited (the take-up needed is reported)")
+           positive=True, unlimited=True, guess=1.0, default=math.inf,
+           default_note="not given: unlimited (the take-up needed is reported)", **dom.ROUTE_LENGTH)
 D_DRUM = Q("D", "m", "diameter of the driving drum (at the rope centre line)", "mm", guess=3.0,
            **usual(0.2, 8.0, "drums of 30 d for ropes of 8-60 mm, with margin (Krauze et al. 2025, introduction: "
-                             "D >= 30 d)"), **POSITIVE)
+                             "D >= 30 d)"), **dom.WHEEL, **POSITIVE)
 
 
 def per_direction(name, unit, description, display=None, symbol="", **kw) -> tuple[Quantity, ...]:
@@ -85,7 +84,7 @@ define_effect(MODEL, "power", "none", "drive power per direction")
 
 
 F_NWL = Q("F_nwl", "N", "initial tension from the tensioner", "kN", guess=2e4,
-          **usual(500.0, 5e5, f"{JUDGEMENT} (20 kN)"), **NONNEGATIVE)
+          **usual(500.0, 5e5, f"{JUDGEMENT} (20 kN)"), **dom.FORCE)
 G_LMC = Q("G_lmC", "N", "weight along the incline of load and winding rope", "kN", equation=f"{SRC}, eq. (14)")
 _FORCES = ("F_S_up", "F_S_down", "F_C_up", "F_C_down")
 _ROPE = {"S": "unwinding", "C": "winding"}
@@ -192,7 +191,9 @@ class SteadyMotion(Submodel):
 #: the deceleration of an emergency stop: no default number (no source fits every safety brake), so without it
 #: no emergency stop is checked, and the output says so
 A_E = Q("a_e", "m/s^2", "deceleration of an emergency stop (the safety brake's, > 0); 0: none checked", "m/s^2",
-        low=0.0, guess=1.0, default=0.0,
+        guess=1.0, default=0.0,
+        **dom.domain(0.0, 100.0, "0 (none checked) to 10 g: beyond any safety brake (emergency brakes of mine "
+                                 "hoists about 5 m/s^2)"),
         default_note="not given: no emergency stop is checked (no general source gives a deceleration that fits "
                      "every safety brake: give the brake's rated deceleration)")
 
@@ -210,7 +211,9 @@ class RigidInertia(Submodel):
           guess=0.5, default=0.0,
           default_note="not given: every manoeuvre of the scene, each result at its worst (steady motion; a start "
                        "and a stop at the ramp's acceleration with t_ramp; an emergency stop at -a_e with a_e); "
-                       "steady motion at a single point (a trip sets it along its ramps)"),
+                       "steady motion at a single point (a trip sets it along its ramps)",
+          **dom.domain(-100.0, 100.0, "10 g either way: beyond any haulage's start or stop (emergency brakes "
+                                      "of mine hoists about 5 m/s^2)")),
         A_E,
         Q("I_C", "N", "inertia force of the winding side (load and winding rope), (G_m + q_l L_u)/g a_h", "kN",
           equation="rigid-body inertia (not in the paper)"),
@@ -280,7 +283,9 @@ class Elongation(Submodel):
     quantities = (
         Q("q_lw", "m/N", "unit elongation of the installed rope", "mm/kN", guess=5.8e-6,
           **usual(3e-7, 1.2e-3, "q_lw = L_u/(E C d^2) for routes of 100-3000 m and EN 12385-4 ropes of 8-60 mm "
-                                "(E C of 40-70 GPa); the paper's rope: 5.8 mm/kN"), **POSITIVE),
+                                "(E C of 40-70 GPa); the paper's rope: 5.8 mm/kN"), **POSITIVE,
+          **dom.domain(1e-12, 10.0, "q_lw = L_u/EA from 1 m of the stiffest rope (EA about 5e10 N) to 100 km "
+                                    "of an 8-mm synthetic rope (EA about 1e4 N)")),
         Q("dF_nwl", "m", "elongation under the initial tension", "mm", equation=f"{SRC}, eq. (22)"),
         *per_direction("dF_C", "m", "elongation of the winding rope", "mm", equation=f"{SRC}, eq. (19)", **LARGEST),
         *per_direction("dF_S", "m", "elongation of the unwinding rope", "mm", equation=f"{SRC}, eq. (20)", **LARGEST),

@@ -33,6 +33,7 @@ from __future__ import annotations
 from typing import Any
 
 from ropemodel._math import fmin
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.effects.transient.travel import X_M
 from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, STROKE, Q, per_direction, slack_masks, slack_reasons
@@ -90,12 +91,13 @@ class DesignChecks(Submodel):
         D_ROPE,
         F_MIN,
         D_DRUM,
-        Q("n_rope", "1", "required safety factor of the rope F_min / F_C", low=1.0, guess=5.0),
-        Q("F_S_min", "N", "least tension allowed anywhere in either rope (drum to return sheave)", "kN", low=0.0,
+        Q("n_rope", "1", "required safety factor of the rope F_min / F_C", guess=5.0, **dom.FACTOR),
+        Q("F_S_min", "N", "least tension allowed anywhere in either rope (drum to return sheave)", "kN", **dom.FORCE,
           default=0.0, default_note="no least tension given: the ropes need only stay taut (> 0)"),
         X_M,
         STROKE,
-        Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", low=1.0, default=30.0, symbol="(D/d)_min",
+        Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", default=30.0, symbol="(D/d)_min",
+          **dom.domain(1.0, 1e4, "at least 1 (a drum around its rope); rules ask 18 to 120"),
           equation=f"{SRC}, introduction: D >= 30 d"),
         *per_direction("F_S_least", "N", "least tension of the unwinding rope along the route (at its joints, "
                        "between the drum and the return sheave)", "kN", symbol="F_S,least", equation=LEAST,

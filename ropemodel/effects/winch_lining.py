@@ -34,6 +34,7 @@ from __future__ import annotations
 import math
 
 from ropemodel._math import fabs
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.errors import InputError
 from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, V_PJ, per_direction
@@ -42,13 +43,13 @@ from ropemodel.papers import hajduk1992 as hj
 from ropemodel.quantity import Quantity
 
 DRUM = (
-    Quantity("mu_d", "1", "friction coefficient of the rope on the drum", low=0.0, low_open=True,
+    Quantity("mu_d", "1", "friction coefficient of the rope on the drum", **dom.FRICTION,
              warn_low=0.05, warn_high=1.0, usual_source="steel rope on steel (about 0.1) to polymer drum linings "
              "(0.25-0.6), with margin (judgement)", guess=0.2),
-    Quantity("alpha_d", "rad", "wrap angle of the rope on the drum", "deg", low=0.0, low_open=True,
+    Quantity("alpha_d", "rad", "wrap angle of the rope on the drum", "deg", **dom.WRAP,
              warn_low=math.pi / 2, warn_high=10 * math.pi,
              usual_source="a quarter turn to five turns on a friction drum (judgement)", guess=math.pi),
-    Quantity("n_slip", "1", "required safety factor against slip of the rope on the drum", low=1.0,
+    Quantity("n_slip", "1", "required safety factor against slip of the rope on the drum", **dom.FACTOR,
              guess=1.5, default=1.0),
 )
 
@@ -82,6 +83,8 @@ class NoLining(Submodel):
 
     description = "no traction check"
     missing = ("No check of slip on the drum: choose lining = \"rigid\" or \"voigt\".",)
+    #: no friction engagement between rope and drum (the other linings have it)
+    friction = False
 
     def transient_traction(self, values):
         """No friction engagement: the transient's rope is fixed to the drum (no traction ratio, no slip)."""
@@ -135,8 +138,8 @@ class VoigtDrumLining(Submodel):
     quantities = (
         *DRUM,
         Quantity("Q", "1/N", "compliance of the drum lining (radial + tangential), Hajduk 1992",
-                 low=0.0, guess=1e-6),
-        Quantity("lambda", "s", "retardation time of the drum lining (eta/E)", low=0.0, guess=0.01),
+                 guess=1e-6, **dom.COMPLIANCE),
+        Quantity("lambda", "s", "retardation time of the drum lining (eta/E)", guess=0.01, **dom.RETARDATION),
         D_DRUM,
         V_PJ,
         *TRACTION,

@@ -19,26 +19,29 @@ from __future__ import annotations
 from typing import ClassVar
 
 from ropemodel.papers import en12385 as ropes
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.effects.winch import MODEL, Q
-from ropemodel.quantity import Quantity, positive
+from ropemodel.quantity import Quantity
 
 SRC = "EN 12385-4"
 
 define_effect(MODEL, "rope", "given", "the rope: q_l, q_lw given (paper) or from a catalogue construction and d")
 
 
-D_ROPE = positive("d", "m", "nominal rope diameter", "mm", guess=0.03, high=0.5, warn_low=0.008, warn_high=0.06,
-                  usual_source="the diameters of ropemodel/data/ropes.toml (EN 12385-4 classes)")
-F_MIN = positive("F_min", "N", "minimum breaking force of the rope", "kN", guess=1e6)
+D_ROPE = Q("d", "m", "nominal rope diameter", "mm", guess=0.03, positive=True, warn_low=0.008, warn_high=0.06,
+           usual_source="the diameters of ropemodel/data/ropes.toml (EN 12385-4 classes)",
+           **dom.domain(1e-4, 0.5, "0.1 mm (a wire) to 500 mm: beyond the largest wire ropes made"))
+F_MIN = Q("F_min", "N", "minimum breaking force of the rope", "kN", guess=1e6, positive=True, **dom.FORCE_POSITIVE)
 
 FACTORS = (
-    Q("rope_K", "1", "minimum breaking force factor K of the rope class", low=0.0, high=1.0, low_open=True, symbol="K",
-      guess=0.356),
+    Q("rope_K", "1", "minimum breaking force factor K of the rope class", symbol="K", guess=0.356, **dom.FRACTION),
     Q("rope_W", "kg/m^3", "nominal length mass factor W of the rope class (catalogue kg/(100 m*mm^2) x 1e4)", "kg/m^3",
-      symbol="W", low=1000.0, high=10000.0, guess=4090.0),
-    Q("rope_C", "1", "metallic cross-section factor C of the rope class", low=0.0, high=0.7854, low_open=True,
-      symbol="C", guess=0.46),
+      symbol="W", guess=4090.0, **dom.domain(1000.0, 10000.0, "W = m/d^2: fibre-core ropes to denser than solid "
+                                                              "steel (7850 pi/4 = 6165 kg/m^3); EN 12385-4 classes "
+                                                              "3000-5000")),
+    Q("rope_C", "1", "metallic cross-section factor C of the rope class", symbol="C", guess=0.46,
+      **dom.domain(1e-2, 0.7854, "physics: steel fills at most a round wire's pi/4 of d^2; below 1 % no rope")),
 )
 
 
@@ -79,9 +82,9 @@ class RopeCatalogue(Submodel):
         D_ROPE,
         F_MIN,
         *FACTORS,
-        Q("rope_grade", "Pa", "rope grade R_r (EN 12385-4: 1570-2160 N/mm^2)", "N/mm^2", low=0.0, low_open=True,
+        Q("rope_grade", "Pa", "rope grade R_r (EN 12385-4: 1570-2160 N/mm^2)", "N/mm^2", **dom.STRENGTH,
           symbol="R_r", warn_low=1570e6, warn_high=2160e6, usual_source="EN 12385-4 rope grades", guess=1770e6),
-        Q("rope_E", "Pa", "modulus of the rope referred to its metallic area", "kN/mm^2", low=0.0, low_open=True,
+        Q("rope_E", "Pa", "modulus of the rope referred to its metallic area", "kN/mm^2", **dom.MODULUS,
           symbol="E", warn_low=5e10, warn_high=2.1e11,
           usual_source="rope makers quote 80-120 GPa on the metallic area; steel wire itself is 210 GPa", guess=1e11),
         Q("A_m", "m^2", "metallic cross-section of the rope", "mm^2", equation=f"{SRC}: metallic cross-section"),

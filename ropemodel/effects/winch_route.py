@@ -19,33 +19,35 @@ import math
 from typing import NamedTuple
 
 from ropemodel.effects.base import Equation, Submodel, register
+from ropemodel.effects import domains as dom
 from ropemodel.effects.transient.travel import X_M, beyond_route
-from ropemodel.effects.winch import COEFFICIENT, JUDGEMENT, MODEL, NONNEGATIVE, POSITIVE, ROPE_MU, SRC, Q, usual
+from ropemodel.effects.winch import JUDGEMENT, MODEL, POSITIVE, ROPE_MU, SRC, Q, usual
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
 
 INPUTS = (
         Q("G_m", "N", "weight of the transported load", "kN", guess=4e5,
-          **usual(1e3, 5e6, f"{JUDGEMENT} (467 kN): from one light car to a heavy train"), **POSITIVE),
+          **usual(1e3, 5e6, f"{JUDGEMENT} (467 kN): from one light car to a heavy train"), **POSITIVE,
+          **dom.FORCE_POSITIVE),
         Q("L_u", "m", "length of the inclined route", "m", guess=1000.0,
           **usual(20.0, 5000.0, f"{JUDGEMENT} (1150 m): rope-winch routes are tens of metres to a few km"),
-          **POSITIVE),
-        Q("L_ul", "m", "distance of point A from the guiding sheave K_K", "m", guess=500.0, **NONNEGATIVE),
-        Q("alpha_u", "rad", "inclination of the route", "deg", low=-math.pi / 2, high=math.pi / 2,
-          low_open=True, high_open=True, guess=0.3,
+          **POSITIVE, **dom.ROUTE_LENGTH),
+        Q("L_ul", "m", "distance of point A from the guiding sheave K_K", "m", guess=500.0, **dom.ROUTE_POSITION),
+        Q("alpha_u", "rad", "inclination of the route", "deg", **dom.INCLINATION, guess=0.3,
           **usual(-math.pi / 4, math.pi / 4,
                   f"{SRC}, introduction: rope winches serve workings inclined up to 45 deg")),
         Q("mu_pm", "1", "coefficient of resistance of the load", guess=0.05,
           **usual(0.005, 0.2, f"{JUDGEMENT} (0.05): mine cars roll at about 0.01, a sliding load up to 0.2"),
-          **COEFFICIENT),
-        Q("mu_pl", "1", "coefficient of resistance of the unwinding rope", guess=0.05, **ROPE_MU, **COEFFICIENT),
+          **dom.RESISTANCE),
+        Q("mu_pl", "1", "coefficient of resistance of the unwinding rope", guess=0.05, **ROPE_MU, **dom.RESISTANCE),
         Q("mu_pl1", "1", "coefficient of resistance of the winding rope from K_ZN to point A", guess=0.05,
-          **ROPE_MU, **COEFFICIENT),
+          **ROPE_MU, **dom.RESISTANCE),
         Q("mu_pl2", "1", "coefficient of resistance of the winding rope from point A to the drive", guess=0.05,
-          **ROPE_MU, **COEFFICIENT),
+          **ROPE_MU, **dom.RESISTANCE),
         Q("q_l", "N/m", "weight of the rope per metre", "kN/m", guess=80.0,
           **usual(1.0, 200.0, "EN 12385-4 ropes of 8 to 60 mm, q_l = g W d^2 (the paper's 42 mm rope: 0.08 kN/m)"),
-          **POSITIVE),
+          **POSITIVE, **dom.domain(1e-3, 1e5, "0.1 g/m (a 0.1-mm wire) to 10 t/m, ten times a 500-mm steel rope "
+                                              "(g W d^2, about 10 kN/m)")),
 )
 OUTPUTS = (
         Q("G_ml", "N", "load weight along the incline", "kN", equation=f"{SRC}, eq. (1)"),
@@ -130,12 +132,12 @@ def segment_quantities(i: int, has_mu: bool) -> tuple:
     """The parameters of segment ``i`` (1 = at the drive): ``L_i``, ``alpha_i``, ``mu_wi``."""
     return (
         Q(f"L_{i}", "m", f"length of route segment {i} (segments counted from the drive)", "m", guess=500.0,
-          **usual(1.0, 5000.0, f"{JUDGEMENT}: a segment of a rope-winch route"), **POSITIVE),
+          **usual(1.0, 5000.0, f"{JUDGEMENT}: a segment of a rope-winch route"), **POSITIVE, **dom.ROUTE_LENGTH),
         Q(f"alpha_{i}", "rad", f"inclination of route segment {i} (> 0: rising toward the drive)", "deg",
-          low=-math.pi / 2, high=math.pi / 2, low_open=True, high_open=True, guess=0.3,
+          **dom.INCLINATION, guess=0.3,
           **usual(-math.pi / 4, math.pi / 4, f"{SRC}, introduction: workings inclined up to 45 deg")),
         Q(f"mu_w{i}", "1", f"resistance coefficient of the winding rope in route segment {i}"
-          + ("" if has_mu else " (not given: mu_pl)"), guess=0.05, **ROPE_MU, **COEFFICIENT,
+          + ("" if has_mu else " (not given: mu_pl)"), guess=0.05, **ROPE_MU, **dom.RESISTANCE,
           equation="" if has_mu else "route segment without mu_winding: mu_pl"),
     )
 

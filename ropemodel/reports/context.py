@@ -115,6 +115,19 @@ class Context:
         scene = prepare(self.point)
         return {d: trip(scene, d) for d in ("up", "down")}
 
+    @once
+    def reads(self) -> frozenset[str]:
+        """The parameters the report's numbers are computed from: every input of the equations it shows, and
+        what each section that applies computes from beyond them (:attr:`Section.reads
+        <ropemodel.reports.registry.Section.reads>`: a trip, the sizing, a transient)."""
+        from ropemodel.reports.registry import sections
+
+        out = set(self.scene.built.inputs_of())
+        for s in sections():
+            if s.reads is not None and s.applies(self):
+                out |= s.reads(self)
+        return frozenset(out)
+
     @property
     def quantities(self) -> dict:
         return self.scene.built.quantities

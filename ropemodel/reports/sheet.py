@@ -95,7 +95,7 @@ def basis(ctx, values: dict) -> dict:
     from ropemodel.reports import filing
 
     return {"rope": filing.rope_designation(ctx.scene, values), "normative": filing.normative_numbers(ctx.scene),
-            "statuses": filing.STATUS_TEXT, "assumptions": filing.assumptions(ctx.scene),
+            "statuses": filing.STATUS_TEXT, "assumptions": filing.assumptions(ctx.scene, ctx.reads),
             "missing": filing.missing(ctx.scene, values)}
 
 

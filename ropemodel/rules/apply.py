@@ -252,8 +252,9 @@ def _fill(applied: Applied, model, params: dict, origin: dict, given: set, found
                           f"{p} = {{ value = ..., reason = \"...\" }}")
             continue
         inputs = applied.inputs_of(p, params)
-        if rule.variables and (not inputs or any(k not in params for k in inputs)):
-            continue        # the missing length is named with the scene's other missing parameters
+        if rule.variables and (not inputs or any(k not in params or q[k].range_problem(params[k], k)
+                                                 for k in inputs)):
+            continue        # the missing or invalid length is named with the scene's other problems
         try:
             value = applied.value(p, params)
         except InputError as exc:

@@ -56,14 +56,18 @@ def _short(value) -> str:
 
 def check_samples(n, dimensions: int) -> None:
     """:class:`InputError` unless ``n`` base samples are a power of two >= 4 whose ``n (D + 2)`` points fit
-    in memory.  SALib's Sobol' sequence keeps its balance only at powers of two (it warns otherwise and
-    the indices lose their convergence rate); fewer than 4 give no usable variance or bootstrap."""
+    in memory and in the work budget (:data:`ropemodel.budget.BUDGETS`).  SALib's Sobol' sequence keeps its
+    balance only at powers of two (it warns otherwise and the indices lose their convergence rate); fewer
+    than 4 give no usable variance or bootstrap."""
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 4 or n & (n - 1):
         raise InputError(f"{_short(n)} base samples: the number must be a power of two >= 4 (4, 8, ..., 1024, "
                          f"...): SALib's Sobol' sequence is balanced only at powers of two, and fewer than 4 "
                          f"give no usable variance")
+    from ropemodel import budget
     from ropemodel.sweeps.files import check_size
 
+    budget.check("sobol", int(n) * (dimensions + 2), f"{n} base samples over {dimensions} range"
+                 f"{'s' if dimensions != 1 else ''}, N(D + 2) evaluations,", "take fewer samples (--samples)")
     check_size(int(n) * (dimensions + 2), dimensions + 1, what="the Sobol samples are kept in memory")
 
 
@@ -77,8 +81,8 @@ def sobol_indices(func, ranges: dict[str, tuple[float, float]], n: int = 1024, s
     """Sobol indices of ``func`` (vectorised: {name: array} → {output: array}) over uniform ``ranges``.
 
     Returns a tidy frame: ``output``, ``parameter``, ``S1``, ``S1_conf``, ``ST``, ``ST_conf``,
-    ``defined``, ``note``.  ``n``: base samples, a power of two >= 4 (:func:`check_samples`);
-    ``seed``: a whole number in [0, 2**32 - 1].
+    ``defined``, ``note``.  ``n``: base samples, a power of two >= 4 (:func:`check_samples`, within the
+    work budget); ``seed``: a whole number in [0, 2**32 - 1].
     """
     analyze = require("SALib.analyze.sobol", "sobol")
     sample = require("SALib.sample.sobol", "sobol")

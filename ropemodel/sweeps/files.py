@@ -24,6 +24,7 @@ from __future__ import annotations
 import csv
 import fcntl
 import os
+import re
 import shutil
 from pathlib import Path
 
@@ -34,6 +35,8 @@ import pyarrow.parquet as pq
 from ropemodel.errors import InputError, RopeModelError
 
 SUFFIXES = (".parquet", ".pq", ".csv")
+#: the sidecar beside a finished CSV sweep (:mod:`ropemodel.sweeps.store`)
+SIDECAR = ".sweep.json"
 
 
 class OutputError(RopeModelError):
@@ -41,34 +44,79 @@ class OutputError(RopeModelError):
 
 
 def cause(exc: OSError) -> str:
-    """The reason of an OSError in words, without the errno number."""
-    return getattr(exc, "strerror", None) or str(exc)
+    """The reason of an OSError in words, without the errno number (pyarrow's too: "Error writing
+    bytes to file. Detail: [errno 28] No space left on device" is "No space left on device")."""
+    text = getattr(exc, "strerror", None) or str(exc)
+    return re.sub(r"^.*Detail: \[errno \d+\] ", "", text, flags=re.S)
 
 
 def check_format(path: Path, suffixes=SUFFIXES) -> None:
     if path.suffix.lower() not in suffixes:
-        raise InputError(f"output {path}: the file name must end in {', '.join(suffixes)}")
+        raise InputError(f"output {shown(path)}: the file name must end in {', '.join(suffixes)}")
+
+
+#: bytes that files written beside an output add to its name: the longest is a CSV sweep's sidecar
+#: while it is written, ``.FILE.sweep.json.tmp`` (:mod:`ropemodel.sweeps.store`)
+BESIDE = len("." + SIDECAR + ".tmp")
+#: the least free space [bytes] an output needs: one file-system block (a full disk has none)
+LEAST_FREE = 4096
+
+
+def shown(path) -> str:
+    """``path`` as a message shows it: in full up to 120 characters, else its ends and its length."""
+    text = str(path)
+    return text if len(text) <= 120 else f"{text[:50]}...{text[-50:]} ({len(text)} characters)"
 
 
 def check_output(path, suffixes=SUFFIXES) -> Path:
     """``path`` as a Path, or :class:`InputError` if an output cannot be written there.
 
-    suffixes: the file name endings accepted (default: a sweep's tables, :data:`SUFFIXES`)."""
-    p = Path(path)
-    if not str(path).strip():
+    The one check of every output of every command, before any work: an empty name, a NUL byte,
+    a suffix nothing writes (``suffixes``: the endings accepted, default a sweep's tables,
+    :data:`SUFFIXES`), a directory, a path under a regular file or in a missing directory, a name
+    or path longer than the file system takes (with the names written beside it, :data:`BESIDE`),
+    a directory without write permission or on a read-only file system, a read-only file in the
+    way, a full disk; then a file is created beside the output and removed, so whatever else
+    refuses a write (a quota, a network share) is found now.  Failures while writing are
+    :class:`OutputError` (exit 1), the output left as it was (:func:`write_atomic`)."""
+    text = str(path)
+    if not text.strip():
         raise InputError(f"output file name is empty; name a file ending in {', '.join(suffixes)}")
+    if "\x00" in text:
+        raise InputError(f"output {shown(path)}: a file name cannot hold a NUL character")
+    p = Path(path)
+    try:
+        _check_place(p, suffixes)
+    except OSError as exc:   # what the probes themselves meet: a name too long, a loop of links ...
+        raise InputError(f"cannot write {shown(p)}: {cause(exc)}") from None
+    return p
+
+
+def _check_place(p: Path, suffixes) -> None:
     if p.is_dir():
-        raise InputError(f"output {p} is a directory; name a file in it ending in {', '.join(suffixes)}")
+        raise InputError(f"output {shown(p)} is a directory; name a file in it ending in {', '.join(suffixes)}")
     check_format(p, suffixes)
     parent = p.parent
     if not parent.is_dir():
         above = next((a for a in parent.parents if a.exists()), None) if not parent.exists() else parent
         if above is not None and not above.is_dir():
-            raise InputError(f"cannot write {p}: {above} is a file, not a directory")
-        raise InputError(f"cannot write {p}: directory {parent} does not exist")
+            raise InputError(f"cannot write {shown(p)}: {shown(above)} is a file, not a directory")
+        raise InputError(f"cannot write {shown(p)}: directory {shown(parent)} does not exist")
+    longest = os.pathconf(parent, "PC_NAME_MAX") - BESIDE
+    if len(os.fsencode(p.name)) > longest:
+        raise InputError(f"cannot write {shown(p)}: the file name is {len(os.fsencode(p.name))} bytes long, and this "
+                         f"file system takes names of at most {longest} bytes for an output (with the files "
+                         f"written beside it)")
     if not os.access(parent, os.W_OK | os.X_OK):
-        raise InputError(f"cannot write {p}: no permission to create files in {parent}")
-    return p
+        raise InputError(f"cannot write {shown(p)}: no permission to create files in {shown(parent)}")
+    if p.exists() and (not os.access(p, os.W_OK) or not p.stat().st_mode & 0o222):   # the bits: root too
+        raise InputError(f"cannot write {shown(p)}: the file is read-only; make it writable or name another file")
+    probe = parent / f".{p.name}.{os.getpid()}"   # shorter than BESIDE adds; a stale one is taken over
+    os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_CLOEXEC, 0o644))
+    os.unlink(probe)
+    free = shutil.disk_usage(parent).free
+    if free < LEAST_FREE:
+        raise InputError(f"cannot write {shown(p)}: the disk is full ({free} bytes free in {shown(parent)})")
 
 
 class OutputLock:

@@ -57,7 +57,11 @@ def parse_axis(name: str, spec, quantity, bare: str = "si") -> np.ndarray:
             if len(parts) != 3:
                 raise InputError(f"--vary {name}={spec}: expected START:STOP:N, e.g. {name}={_example_axis(quantity)}")
             return _linspace(name, parts[0], parts[1], parts[2], quantity, spec, "refuse")
-        return _values(name, [p for p in text.split(",") if p.strip()], quantity, spec, "refuse")
+        items = text.split(",")
+        if len(items) > 1 and not all(p.strip() for p in items):
+            raise InputError(f"--vary {name}={spec}: an empty value between its commas; list values as "
+                             f"{name}=V1,V2,..., e.g. {name}={_example_list(quantity)}")
+        return _values(name, [p for p in items if p.strip()], quantity, spec, "refuse")
     if isinstance(spec, tuple) and len(spec) == 3 and not isinstance(spec[2], (str, float)):
         return _linspace(name, spec[0], spec[1], spec[2], quantity, spec, bare)
     if np.isscalar(spec):
@@ -68,6 +72,11 @@ def parse_axis(name: str, spec, quantity, bare: str = "si") -> np.ndarray:
 def _example_axis(q) -> str:
     unit = "" if q.dimensionless else q.display_unit
     return f"1{unit}:2{unit}:11"
+
+
+def _example_list(q) -> str:
+    unit = "" if q.dimensionless else q.display_unit
+    return f"1{unit},2{unit},5{unit}"
 
 
 def _linspace(name, start, stop, n, quantity, spec, bare) -> np.ndarray:
@@ -246,10 +255,17 @@ def finite_column(col, series: pd.Series, what: str = "points column") -> np.nda
         raw = np.array([_float(v) for v in series], dtype=float)
     bad = np.flatnonzero(~np.isfinite(raw))
     if bad.size:
-        shown = repr(series.iloc[int(bad[0])])
         raise InputError(f"{what} {col!r}: row {int(bad[0]) + 1} is not a finite number "
-                         f"({shown[:40] + '...' if len(shown) > 40 else shown})")
+                         f"({_shown(series.iloc[int(bad[0])])})")
     return raw
+
+
+def _shown(value) -> str:
+    """A cell as a message shows it: an empty cell (read as NaN) as empty, the rest as written (40 characters)."""
+    if isinstance(value, (float, np.floating)) and math.isnan(value):
+        return "empty, or not a number"
+    text = str(value) if isinstance(value, (float, np.floating, int, np.integer)) else repr(value)
+    return text[:40] + "..." if len(text) > 40 else text
 
 
 def _float(value) -> float:
@@ -280,7 +296,7 @@ def read_points(path, what: str = "points file") -> pd.DataFrame:
     if suffix not in (".parquet", ".pq", ".csv", ".txt"):
         raise InputError(f"{what} {p}: expected .csv or .parquet")
     try:
-        frame = pd.read_parquet(p) if suffix in (".parquet", ".pq") else pd.read_csv(p, encoding="utf-8",
+        frame = pd.read_parquet(p) if suffix in (".parquet", ".pq") else pd.read_csv(p, encoding="utf-8-sig",
                                                                                       on_bad_lines="error")
         frame.attrs["source"] = str(p)   # text a person wrote: dimensional columns need their units
         return frame

@@ -37,11 +37,10 @@ import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 
 from ropemodel.errors import InputError
-from ropemodel.sweeps.files import OutputError, cause, remove, tmp_of, verified, write_atomic
+from ropemodel.sweeps.files import SIDECAR, OutputError, cause, remove, tmp_of, verified, write_atomic
 
 KILL_HOOK = "ROPEMODEL_SWEEP_KILL_AFTER"
 META_KEY = b"ropemodel.sweeps"
-SIDECAR = ".sweep.json"
 
 
 def _write_parquet(tables, schema, path):

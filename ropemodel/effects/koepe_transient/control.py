@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 from typing import cast
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.koepe import MODEL, Q, tail_terms
 from ropemodel.effects.koepe_brake import QUANTITIES as BRAKE_WINDOW
@@ -39,7 +40,8 @@ define_effect(MODEL, "brake_control", "torque", "the brake's law in a braking tr
 M_MACHINE = next(q for q in BRAKE_WINDOW if q.name == "m_machine")
 T_APPLY = Q("t_apply", "s", "time the brake takes to apply (torque: the drive's force gives way linearly to the "
             "brake's; deceleration: the deceleration rises linearly to a_brake)", "s", low=0.0, low_open=True,
-            high=100.0, guess=0.3, warn_high=2.0, usual_source="mine-hoist brakes apply in 0.1 to 1 s (judgement)")
+            high=100.0, range_source="100 s: far beyond any brake's application time (about a second)", guess=0.3,
+            warn_high=2.0, usual_source="mine-hoist brakes apply in 0.1 to 1 s (judgement)")
 
 
 class WheelLaw:
@@ -110,7 +112,7 @@ class TorqueBrake(BrakeControl, WheelLaw):
 
     description = "constant brake torque M_brake applied in t_apply"
     quantities = (Q("M_brake", "N*m", "the brake's torque on the wheel's axle", "kN*m", low=0.0, low_open=True,
-                    high=1e9, guess=2e6), T_APPLY, M_MACHINE)
+                    high=1e9, range_source=dom.TORQUE["range_source"], guess=2e6), T_APPLY, M_MACHINE)
 
     def modes(self):
         return ("moving", "held") if self.active else ("on",)

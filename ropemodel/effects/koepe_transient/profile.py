@@ -27,7 +27,7 @@ from typing import Any, ClassVar
 from collections.abc import Callable
 
 from ropemodel.effects.base import REGISTRY, Submodel, define_effect, register
-from ropemodel.effects.koepe import MODEL, Q
+from ropemodel.effects.koepe import MODEL, SHAFT, Q
 from ropemodel.effects.koepe_transient import mesh as mh
 from ropemodel.effects.transient.base import TransientSubmodel
 from ropemodel.quantity import Quantity
@@ -36,10 +36,11 @@ define_effect(MODEL, "dynamics", "none", "time-domain transient with elastic hea
 define_effect(MODEL, "travel", "hoist", "direction of the transient: hoist (loaded conveyance up) or lower")
 
 T_END = Q("t_end", "s", "end of the simulated transient", "s", low=0.0, low_open=True, high=1e4, unlimited=True,
-          default=math.inf, guess=10.0,
+          range_source="10^4 s: longer than any wind of a Koepe hoist (4 km at 1 m/s is 4000 s)", default=math.inf,
+          guess=10.0,
           default_note="not given: the manoeuvre's nominal duration (rigid hoist) and 5 s of the ropes' vibration")
 Y_START = Q("y_start", "m", "depth of the loaded conveyance below its upper position at the start of the transient",
-            "m", low=0.0, high=4e4, unlimited=True, default=math.inf, guess=400.0,
+            "m", low=0.0, high=4e4, range_source=SHAFT, unlimited=True, default=math.inf, guess=400.0,
             default_note="not given: a braking ends at the end of the wind it moves towards, a start begins at "
                          "the end it leaves")
 #: seconds of the ropes' vibration simulated after the nominal manoeuvre when t_end is not given
@@ -196,10 +197,12 @@ class Start(KoepeProfile):
     description = "start from rest to v_max with elastic head ropes (drive ramp a_drive, t_jerk)"
     quantities = (*KoepeProfile.quantities,
                   Q("a_drive", "m/s^2", "the drive's acceleration of the start", "m/s^2", low=0.0, low_open=True,
-                    high=100.0, guess=0.8, warn_high=2.0, usual_source="mine hoists accelerate at 0.5 to 1.5 m/s² "
+                    high=100.0, range_source="100 m/s² (ten g): far beyond any hoist's drive", guess=0.8,
+                    warn_high=2.0, usual_source="mine hoists accelerate at 0.5 to 1.5 m/s² "
                                                                        "(judgement)"),
                   Q("t_jerk", "s", "time the drive's acceleration takes to rise to a_drive (and to fall back)", "s",
-                    low=0.0, low_open=True, high=100.0, guess=1.0))
+                    low=0.0, low_open=True, high=100.0, guess=1.0,
+                    range_source="100 s: far beyond any drive's rise of acceleration (about a second)"))
 
     def law(self, setup):
         from ropemodel.effects.koepe_transient.control import DriveRamp

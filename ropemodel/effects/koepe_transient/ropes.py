@@ -41,6 +41,7 @@ define_effect(MODEL, "head_elasticity", "segments", "head ropes in a transient: 
 
 EA_HEAD = Q("EA_head", "N", "axial stiffness E·A of one head rope (the rope's modulus times its metallic area)", "MN",
             low=0.0, low_open=True, high=1e11, guess=9.6e7, positive=True,
+            range_source="10^11 N: twice the stiffest rope (500 mm of steel, about 5e10 N)",
             warn_low=1e6, warn_high=1e9, usual_source="EN 12385 ropes of 10 to 90 mm, E·C·d² with E = 80 to 120 GPa")
 
 

@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import math
 
-from ropemodel.effects.base import register
+from ropemodel.effects.base import effects_of, register
 from ropemodel.effects.transient.base import MODEL
 from ropemodel.effects.transient.contact import DrumContact
 from ropemodel.effects.winch import D_DRUM
@@ -91,12 +91,31 @@ class CapstanDrumContact(DrumContact):
     gathered = False
     quantities = (D_DRUM,)
 
+    def rules(self, values):
+        """A friction drum and an elastic rope: what the contact's slip zone is made of (the other effects'
+        variants, through the registry: a lining with friction, a rope that stretches)."""
+        lining, rope = (self._able(effect)[0] for effect in ("lining", "rope_elasticity"))
+        return [] if lining and rope else [self.needs]
+
+    def _able(self, effect: str) -> tuple[bool, list[str]]:
+        """(the scene's variant of ``effect`` can carry a slip zone, the variants that can)."""
+        spec, attribute = effects_of(MODEL)[effect], {"lining": "friction", "rope_elasticity": "elastic"}[effect]
+        able = [v for v, cls in spec.variants.items() if getattr(cls, attribute, True)]
+        return self.effects.get(effect, spec.default) in able, able
+
+    @property
+    def needs(self) -> str:
+        linings, ropes = (" or ".join(f"\"{v}\"" for v in self._able(e)[1]) for e in ("lining", "rope_elasticity"))
+        return (f"drum_contact = {self.variant!r} needs a friction drum (lining = {linings}, with its mu_d and "
+                f"alpha_d) and an elastic rope (rope_elasticity = {ropes}); this scene has lining = "
+                f"{self.effects.get('lining')!r}, rope_elasticity = {self.effects.get('rope_elasticity')!r}: choose "
+                f"them, or drum_contact = \"rigid\"")
+
     def bind(self, setup):
         super().bind(setup)
         chain, nums = setup.chain, setup.numbers
         if self.ratio is None or chain.rigid:
-            raise InputError(f"drum_contact = {self.variant!r} needs a friction drum (a lining: its mu_d, alpha_d) and "
-                             f"an elastic rope (rope_elasticity = \"spring\" or \"segments\")")
+            raise InputError(self.needs)
         d = setup.travel
         F_C, F_S = nums[f"F_C_{d}"], nums[f"F_S_{d}"]
         if min(F_C, F_S) <= 0.0:

@@ -5,8 +5,9 @@ transmits at the onset of slip (:meth:`ropemodel.effects.winch_lining.RigidLinin
 Euler–Eytelwein e^{μα}, or Hajduk's eq. (19) for a Voigt lining):
 
 * ``stick``: the rope on the drum moves with it, u̇_0 = v_d(t), v̇_0 = a_d(t); the friction force the
-  drum exerts follows.  Leaves by ``slip_fwd`` (ρ(F_S)·F_S − F_C < 0) or ``slip_back``
-  (ρ(F_C)·F_C − F_S < 0).
+  drum exerts follows.  Leaves by ``slip_fwd`` (F_S − F_C/ρ(F_S) < 0) or ``slip_back``
+  (F_C − F_S/ρ(F_C) < 0): Euler–Eytelwein's F_tight > ρ F_slack, divided by ρ > 0 so that a drum of
+  much friction (ρ = e^{μα} of 10^20 and more) keeps the switching function on the scale of the forces.
 * ``slip_fwd`` (the drum runs ahead of the rope) and ``slip_back`` (the rope overruns the drum): the
   forces at the tangent points obey Euler–Eytelwein at the onset of slip, F_tight = ρ F_slack, which
   gives the rope's acceleration on the drum explicitly (the wrapped rope is massless; the half-elements
@@ -99,8 +100,8 @@ class DrumContact(TransientSubmodel):
             return []
         f, vs, v_d, v0 = self.setup.f_scale, self.setup.v_scale, v["v_d"], v["v"][0]
         if mode == "stick":
-            return [Switch("slip_fwd", self.ratio(v["F_S"], v_d) * v["F_S"] - v["F_C"], f, self.effect, "slip_fwd"),
-                    Switch("slip_back", self.ratio(v["F_C"], v_d) * v["F_C"] - v["F_S"], f, self.effect, "slip_back")]
+            return [Switch("slip_fwd", v["F_S"] - v["F_C"] / self.ratio(v["F_S"], v_d), f, self.effect, "slip_fwd"),
+                    Switch("slip_back", v["F_C"] - v["F_S"] / self.ratio(v["F_C"], v_d), f, self.effect, "slip_back")]
         gap = v_d - v0 if mode == "slip_fwd" else v0 - v_d
         return [Switch("stick", gap, vs, self.effect, "stick", {("v", 0): v_d})]   # the rope takes the drum's speed
 

@@ -17,9 +17,10 @@ driving and braking; no speed-dependent motor curve is modelled.  Not in Krauze 
 
 from __future__ import annotations
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.transient.base import MODEL, State, Switch, TransientSubmodel, event_table
-from ropemodel.quantity import positive
+from ropemodel.quantity import Quantity
 
 define_effect(MODEL, "drive", "speed", "drive of the transient: prescribed speed ramp, or a torque-limited motor")
 
@@ -81,10 +82,11 @@ class TorqueLimitedDrive(Drive):
     description = "motor force at the rim limited to F_drive_max; drum inertia m_drive"
     gathered = False
     quantities = (
-        positive("F_drive_max", "N", "largest force the motor gives at the drum rim (torque limit / radius)",
-                 "kN", guess=3e5),
-        positive("m_drive", "kg", "inertia of drum, gearing and motor reduced to the drum rim (J/R^2)", "kg",
-                 guess=1e4),
+        Quantity("F_drive_max", "N", "largest force the motor gives at the drum rim (torque limit / radius)",
+                 "kN", guess=3e5, positive=True, **dom.FORCE_POSITIVE),
+        Quantity("m_drive", "kg", "inertia of drum, gearing and motor reduced to the drum rim (J/R^2)", "kg",
+                 guess=1e4, positive=True, **dom.domain(1.0, 1e8, "1 kg to 10^8 kg: a thousand times the largest "
+                                                                  "hoist drives (about 10^5 kg at the rim)")),
     )
     SIGN = {"limited_pos": +1, "limited_neg": -1}
 

@@ -18,18 +18,19 @@ from dataclasses import dataclass
 from typing import ClassVar
 from collections.abc import Callable
 
+from ropemodel.effects import domains as dom
 from ropemodel._math import if_else
 from ropemodel.effects.base import Submodel, define_effect, register
 from ropemodel.effects.transient.base import MODEL, TransientSubmodel, gathered_parameters
 from ropemodel.errors import InputError
 from ropemodel.papers import route as rt
-from ropemodel.quantity import Quantity, positive
+from ropemodel.quantity import Quantity
 
 define_effect(MODEL, "dynamics", "none",
               "time-domain transient: none, start (drive ramps up), stop (ramps down) or a whole trip")
 
-T_RAMP = positive("t_ramp", "s", "duration of the drive's speed ramp", "s", guess=5.0)
-T_END = positive("t_end", "s", "end of the simulated transient", "s", guess=60.0)
+T_RAMP = Quantity("t_ramp", "s", "duration of the drive's speed ramp", "s", guess=5.0, positive=True, **dom.DURATION)
+T_END = Quantity("t_end", "s", "end of the simulated transient", "s", guess=60.0, positive=True, **dom.DURATION)
 
 
 @dataclass(frozen=True)

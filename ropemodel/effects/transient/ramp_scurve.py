@@ -10,13 +10,14 @@ jerk-limited drive (e.g. lifts and hoists).
 from __future__ import annotations
 
 from ropemodel._math import sqrt
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import register
 from ropemodel.effects.transient.base import MODEL
 from ropemodel.effects.transient.ramp import Piece, RampShape
 from ropemodel.quantity import Quantity
 
-JERK = Quantity("jerk_max", "m/s^3", "largest jerk of the S-curve speed ramp", "m/s^3",
-                low=0.0, low_open=True, positive=True, guess=1.0)
+JERK = Quantity("jerk_max", "m/s^3", "largest jerk of the S-curve speed ramp", "m/s^3", positive=True, guess=1.0,
+                **dom.domain(1e-3, 1e4, "1e-3 to 10^4 m/s^3: lifts ride at about 1 m/s^3"))
 
 
 @register(MODEL, "ramp", "scurve")

@@ -29,6 +29,7 @@ from typing import ClassVar
 
 import casadi as ca
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.transient.base import MODEL, State, Switch, TransientSubmodel, event_table
 from ropemodel.effects.transient.chain import build_elastic, build_rigid
@@ -39,9 +40,13 @@ from ropemodel.quantity import Quantity
 define_effect(MODEL, "rope_elasticity", "segments", "rope model of the transient: rigid, spring or segments")
 
 V_EPS = Quantity("v_eps", "m/s", "speed scale of the smoothed Coulomb resistance tanh(v/v_eps)", "m/s",
-                 default=0.01, warn_high=0.1, guess=0.01, low=0.0, low_open=True, positive=True)
+                 default=0.01, warn_high=0.1, guess=0.01, positive=True,
+                 **dom.domain(1e-9, 100.0, "1 nm/s (Coulomb's law to the integrator's tolerance) to the fastest "
+                                           "haulage"))
 ROPE_DAMPING = Quantity("rope_damping", "s", "Kelvin-Voigt retardation time c/k of the rope (zeta = tau omega / 2)",
-                        "s", low=0.0, default=0.05, warn_high=1.0, guess=0.05)
+                        "s", default=0.05, warn_high=1.0, guess=0.05,
+                        **dom.domain(0.0, 100.0, "0 to 100 s: a damping ratio tau omega/2 of 100 even for a rope's "
+                                                 "slowest modes (omega about 2 rad/s), an overdamped creep"))
 
 
 class Rope(TransientSubmodel):
@@ -50,6 +55,8 @@ class Rope(TransientSubmodel):
     citations = ("krauze2025",)
     quantities: ClassVar[tuple[Quantity, ...]] = (V_EPS,)
     order = 10
+    #: the rope stretches (what a contact compliance in series needs)
+    elastic: ClassVar[bool] = True
     structural = ("L_u", "L_ul", "x_m")
 
     def bind(self, setup):
@@ -127,10 +134,14 @@ class Rope(TransientSubmodel):
 
     def check_start(self, out: dict) -> None:
         """A rope slack at the start is bad input (not a transient to simulate)."""
-        T0 = out["T_min [N]"]
-        if T0 < 0:
+        # at rest the tensioner holds F_nwl/2 on each side of the return sheave (Krauze et al. 2025, eq. (12)-(13));
+        # the rigid rope's T_min holds only the drum's tangent points
+        T0 = min(out["T_min [N]"], 0.5 * float(self.setup.numbers["F_nwl"]))
+        zero = 1e-9 * self.setup.f_scale     # a tension within round-off of 0 is none: the rope is slack
+        if T0 <= zero:
             hints = "".join(p.slack_hint for p in self.setup.parts.values())
-            raise InputError(f"the rope is slack at the start (least tension {T0 / 1e3:.3g} kN){hints}: raise F_nwl "
+            shown = T0 / 1e3 if abs(T0) > zero else 0.0
+            raise InputError(f"the rope is slack at the start (least tension {shown:.3g} kN){hints}: increase F_nwl "
                              f"(now {self.setup.numbers['F_nwl'] / 1e3:g} kN) or check the stroke")
 
     def summary(self, run):
@@ -184,6 +195,7 @@ class RopeRigid(Rope):
     F_nwl sets the loop tension, F_nwl/2 at each tangent point of the return sheave."""
 
     description = "inextensible rope, one degree of freedom"
+    elastic = False
 
     def bind(self, setup):
         tensioner = setup.part("tensioner")

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.transient.base import MODEL, State, Switch, TransientSubmodel, event_table
 from ropemodel.effects.winch import STROKE
@@ -26,8 +27,8 @@ from ropemodel.quantity import Quantity
 
 define_effect(MODEL, "tensioner", "constant_force", "return-sheave tensioner of the transient")
 
-M_T = Quantity("m_t", "kg", "mass of the return sheave and its carriage", "kg", low=0.0, low_open=True,
-               default=1000.0, guess=1000.0)
+M_T = Quantity("m_t", "kg", "mass of the return sheave and its carriage", "kg", default=1000.0, guess=1000.0,
+               **dom.domain(1.0, 1e6, "1 kg to 1000 t: a thousand times a usual carriage (about 1 t)"))
 STROKE_EVENTS = ("stroke_end", "stroke_start", "release")
 
 

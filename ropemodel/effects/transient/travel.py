@@ -12,13 +12,14 @@ from __future__ import annotations
 
 import math
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.transient.base import MODEL, TransientSubmodel
 from ropemodel.quantity import Quantity
 
 define_effect(MODEL, "travel", "up", "direction of travel of the simulated transient (up: load hauled up)")
 
-X_M = Quantity("x_m", "m", "distance of the load from the drive along the winding rope", "m", low=0.0,
+X_M = Quantity("x_m", "m", "distance of the load from the drive along the winding rope", "m", **dom.ROUTE_POSITION,
                unlimited=True, unlimited_text="anywhere", default=math.inf, guess=1000.0,
                default_note="not given: anywhere on the route, each result at its worst place (run, solve, size, "
                             "sweep, sensitivity, report); a transient (simulate) starts at the start of a trip in "

@@ -18,7 +18,14 @@ def design_text(design) -> str:
     return ", ".join(f"{k} = {q[k].show(design.design[k])}" for k in ("d", "F_nwl", "stroke"))
 
 
-@section("sizing", "Sizing", when=lambda ctx: ctx.sizing)
+def reads(ctx) -> set[str]:
+    """What the sizing is computed from (:func:`optimisation.problem.reads`)."""
+    from optimisation.problem import reads as sizing_reads
+
+    return sizing_reads(ctx.scene)[0]
+
+
+@section("sizing", "Sizing", when=lambda ctx: ctx.sizing, reads=reads)
 def sizing(ctx):
     design = ctx.design
     q = design.scene.built.quantities

@@ -1,0 +1,75 @@
+"""Work budgets: the size of a long job estimated before it starts, refused above its budget unless lifted.
+
+Three jobs can grow without bound from a few characters of input: the steps of a transient (its history
+rows, t_end/sim_dt), the evaluations of a Sobol study (N(D+2) for N base samples and D ranges) and the
+size of a sizing NLP on a route of segments (every check at the load on every segment, each through the
+whole route).  Each is counted before any work; above its budget the command refuses with the count,
+the budget, why the budget is what it is and the fix, and runs anyway with ``ropemodel --no-limit``
+(:func:`lift`; in Python ``with ropemodel.budget.lifted(): ...``).  A job that cannot fit in memory is
+refused either way (:func:`ropemodel.sweeps.files.check_size`).  The README ("Work budgets") states the
+budgets and why; progress shows on a terminal (:mod:`ropemodel.progress`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+from dataclasses import dataclass
+
+from ropemodel.errors import InputError
+
+
+@dataclass(frozen=True)
+class Budget:
+    """The most ``unit`` a job may take without ``--no-limit``, and why that many."""
+
+    limit: int
+    unit: str
+    why: str
+
+
+#: every budget by name (README, "Work budgets"; the ratios quoted are measured by tests/test_budget.py)
+BUDGETS = {
+    "history": Budget(10**6, "history rows", "a row holds the transient's state and forces, some 20 values: 10^6 "
+                                             "rows fill about 160 MB, and each costs integration"),
+    "sobol": Budget(2**18, "evaluations", "the samples, their outputs and SALib's bootstrap resamples of them are "
+                                          "held in memory: memory and time grow with the evaluations"),
+    "route sizing": Budget(2500, "segment evaluations",
+                           "sizing checks every check with the load on every segment, each through the whole "
+                           "route, so the NLP grows as the square of the segments and its solve faster still: "
+                           "2500 is a route of 50 segments"),
+}
+
+_LIFTED = False
+
+
+def lift(on: bool = True) -> None:
+    """Let every job run whatever its size (``ropemodel --no-limit``)."""
+    global _LIFTED
+    _LIFTED = on
+
+
+@contextlib.contextmanager
+def lifted():
+    """``with lifted(): ...``: budgets off inside, as they were after."""
+    before = _LIFTED
+    lift(True)
+    try:
+        yield
+    finally:
+        lift(before)
+
+
+def check(name: str, count: float, what: str, fix: str) -> None:
+    """:class:`InputError` if ``count`` exceeds budget ``name`` (and budgets are not lifted).
+
+    what: the job and how it was counted (``"t_end = 1e+06 s at sim_dt = 0.02 s"``); fix: how to make it
+    smaller (``"take a larger sim_dt, or shorten t_end"``)."""
+    b = BUDGETS[name]
+    if _LIFTED or count <= b.limit:
+        return
+    raise InputError(f"{what} is {_count(count)} {b.unit}, above the budget of {b.limit:,} ({b.why}): {fix}, "
+                     f"or add --no-limit to run it anyway")
+
+
+def _count(n: float) -> str:
+    return f"{n:,.0f}" if n < 1e15 else f"{n:.3g}"

@@ -1,0 +1,81 @@
+"""Work budgets: a job's size counted before it starts, refused above its budget, run with --no-limit.
+
+Truths: the counts written out here from their definitions (history rows t_end/sim_dt + 1, Sobol
+evaluations N(D + 2), route sizing load positions x segments), and the README's table of budgets.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from _fuzz_classes import route_scene
+from ropemodel import budget
+from ropemodel.cli import main
+
+
+def _error(capsys) -> str:
+    err = capsys.readouterr().err
+    lines = [line for line in err.splitlines() if not line.startswith("warning: ")]
+    assert len(lines) == 1 and lines[0].startswith("error: "), err
+    return lines[0]
+
+
+def test_a_long_transient_is_refused_with_its_rows(capsys):
+    assert main(["simulate", "winch_start", "--set", "t_end=1e6s"]) == 2
+    err = _error(capsys)
+    rows = 1e6 / 0.02 + 1                              # winch_start's [numerics] sim_dt = 0.02 s
+    assert f"{rows:,.0f} history rows" in err and "budget of 1,000,000" in err and "--no-limit" in err
+
+
+def test_no_limit_runs_it_and_does_not_outlive_its_command(monkeypatch, capsys):
+    """With a budget of 100 rows the 60 s start-up (3001 rows at 0.02 s) is refused, runs with --no-limit, and
+    is refused again by the next command without it (the flag is the command's, not the process's)."""
+    monkeypatch.setitem(budget.BUDGETS, "history", budget.Budget(100, "history rows", "test"))
+    assert main(["simulate", "winch_start"]) == 2
+    assert "3,001 history rows" in _error(capsys)
+    assert main(["simulate", "winch_start", "--no-limit"]) == 0
+    assert main(["--no-limit", "simulate", "winch_start"]) == 0
+    capsys.readouterr()
+    assert main(["simulate", "winch_start"]) == 2
+
+
+def test_a_large_sobol_study_is_refused_with_its_evaluations(capsys):
+    n, d = 2**20, 2
+    assert main(["sensitivity", "example", "--sobol", "G_m=400kN:467kN", "--sobol", "alpha_u=10deg:20deg",
+                 "--samples", str(n)]) == 2
+    assert f"{n * (d + 2):,} evaluations" in _error(capsys)
+
+
+@pytest.mark.parametrize("n, refused", [(50, False), (51, True)])
+def test_sizing_on_a_route_is_counted_by_its_segments(n, refused, tmp_path, capsys):
+    """n segments: the load on each (n positions), each through the n segments: n^2 segment evaluations; 50
+    segments are the budget's 2500 exactly."""
+    scene = tmp_path / "route.toml"
+    scene.write_text(route_scene(n, "1 m"))
+    if not refused:   # the NLP is built (not solved): at the budget it is not refused
+        from optimisation.problem import SizingProblem, load_sizing
+
+        assert len(SizingProblem(load_sizing(scene, emit=False)).states) == n
+        return
+    assert main(["size", str(scene)]) == 2
+    assert f"{n * n:,} segment evaluations" in _error(capsys)
+
+
+def test_lifted_restores():
+    assert not budget._LIFTED
+    with budget.lifted():
+        assert budget._LIFTED
+    assert not budget._LIFTED
+
+
+def test_readme_states_every_budget():
+    """The README's table gives each budget (and only those)."""
+    text = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    block = text[text.index("**Work budgets.**"):]
+    block = block[:block.index("\n\n", block.index("| job |"))]
+    shown = re.findall(r"\| (10\^\d+|2\^\d+|\d+) \|", block)
+    values = [eval(v.replace("^", "**")) for v in shown]   # noqa: S307 - the README's own numbers
+    assert sorted(values) == sorted(b.limit for b in budget.BUDGETS.values())
