@@ -32,3 +32,5 @@ def test_route_scale_study(tmp_path):
         assert row["F_C_up"] == pytest.approx(row["F_C_up_numpy"], rel=1e-12), n
     assert set(table["command"]) == {"run", "trip", "size"}
     assert (table["peak_MB"] < 1024.0).all()
+    # what studies/README.md says of the cost: each command more than a thousand times the numpy peer
+    assert (table["vs_numpy"] > 1e3).all()
