@@ -29,6 +29,8 @@ TABLES = ("scene", "effects", "parameters", "numerics", "route", "route_profile"
 #: keys of a ``[[route]]`` segment → the parameter each becomes (``{i}``: the segment's number from the drive)
 ROUTE_KEYS = {"length": "L_{i}", "inclination": "alpha_{i}", "mu_winding": "mu_w{i}"}
 SCENE_KEYS = ("name", "model", "description")
+#: a route whose segments could not be read (the problem is said): one segment, not "missing" again
+UNREAD_ROUTE: tuple = ((False,), {"L_1": (None, None), "alpha_1": (None, None)})
 
 @dataclass(frozen=True)
 class Check:
@@ -74,7 +76,7 @@ def read_route(data: dict, effects: dict, given: dict, found: Problems, base: Pa
     if profile is not None:
         if segments is not None:
             found.add("[[route]] segments and a [route_profile] are both given: keep one of them")
-            return (), {}
+            return UNREAD_ROUTE
         return _profile_route(profile, given, found, base)
     if not isinstance(segments, list) or not segments or not all(isinstance(s, dict) for s in segments):
         found.add("[[route]] must be a list of tables, one per segment (write [[route]] before each segment); "
@@ -118,12 +120,12 @@ def _profile_route(table, given: dict, found: Problems, base: Path | None):
     if not isinstance(table, dict) or set(table) != {"file"} or not isinstance(table["file"], str):
         found.add('[route_profile] takes one key, file = "profile.csv" (a CSV of \'distance [m],height [m]\' or '
                   '\'length [m],inclination [deg]\', relative to the scene file)')
-        return (), {}
+        return UNREAD_ROUTE
     _no_L_u(given, found)
     path = Path(table["file"]).expanduser()
     lengths, angles = read_profile(path if path.is_absolute() or base is None else base / path, found)
-    if not lengths:     # said: the segments are not "missing" again
-        return (False,), {"L_1": (None, None), "alpha_1": (None, None)}
+    if not lengths:
+        return UNREAD_ROUTE
     values: dict[str, tuple[str | None, object]] = {}
     for i, (length, angle) in enumerate(zip(lengths, angles), start=1):
         label = f"[route_profile] segment {i}"
