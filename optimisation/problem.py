@@ -202,7 +202,7 @@ class SizingProblem:
         #: where the NLP makes the checks: the places that can govern (:func:`ropemodel.envelope.prune.prune`,
         #: for every rope and pretension; ``prune_places=False`` for a sweep varying the route or the load)
         self.cases = prune(self.all_cases, scene.parameters) if prune_places else self.all_cases
-        _check_work(scene, self.cases)
+        _check_work(scene, self.all_cases)    # the model, its compilation and sensitivities grow with every place
         self.params = [k for k in self.problem.knowns
                        if k not in VARIABLES and k not in self.problem.given and k not in self.free]
         self.p0 = np.array([scene.parameters[k] for k in self.params], dtype=float)

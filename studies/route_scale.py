@@ -64,7 +64,8 @@ F_S_min = "5 kN"
 #: the largest profile ``size`` runs on (fast, full): its cost grows fastest (the sensitivities of the design to
 #: every segment's parameters; see the README)
 SIZE_UP_TO = {True: 100, False: 100}
-COMMANDS = {"run": (RUN, ["run", "--json"]), "trip": (RUN, ["trip", "--json"]), "size": (SIZE, ["size", "--json"])}
+COMMANDS = {"run": (RUN, ["run", "--json"]), "trip": (RUN, ["trip", "--json"]),
+            "size": (SIZE, ["size", "--json", "--no-limit"])}    # above 50 segments: above the route-sizing budget
 #: in a fresh process: the command, then its wall time and peak memory on the last line of stdout
 PROBE = """import io, resource, sys, time
 from contextlib import redirect_stdout
