@@ -55,6 +55,7 @@ import numpy as np
 from ropemodel.effects.winch_checks import margin_names
 from ropemodel.envelope import RAMPS, Envelope, LoadCase, envelope, free, load_cases
 from ropemodel.envelope.cases import depends_on, distinct
+from ropemodel.envelope.prune import prune
 from ropemodel.envelope.cases import reads as case_reads
 from ropemodel.errors import InputError, Problems
 from ropemodel.problem import Problem
@@ -197,17 +198,20 @@ class SizingProblem:
     outputs: a Function (x_SI[3], p) → every scene output (for reports: N_p, margins).
     """
 
-    def __init__(self, scene: Scene):
+    def __init__(self, scene: Scene, prune_places: bool = True):
         scene = prepare(scene)
         self.scene = scene
         #: no drum diameter given: the drum check becomes a result, D = D_ratio_min * d (the least drum)
         self.least_drum = "D" in scene.absent
         self.problem = Problem(scene, {"drum_margin": 0.0}, ["D"]) if self.least_drum else Problem(scene)
         fun = self.problem.function
-        #: where the checks are made: every place of the load and every manoeuvre the scene leaves open
-        #: (:func:`ropemodel.envelope.load_cases`), their inputs (x_m, a_h) set by each case
-        self.cases, self.free = load_cases(scene), free(scene)
-        _check_work(scene, self.cases)
+        #: every place of the load and every manoeuvre the scene leaves open (:func:`ropemodel.envelope.load_cases`),
+        #: their inputs (x_m, a_h) set by each case: where :meth:`envelope` evaluates a design
+        self.all_cases, self.free = load_cases(scene), free(scene)
+        #: where the NLP makes the checks: the places that can govern (:func:`ropemodel.envelope.prune.prune`,
+        #: for every rope and pretension; ``prune_places=False`` for a sweep varying the route or the load)
+        self.cases = prune(self.all_cases, scene.parameters) if prune_places else self.all_cases
+        _check_work(scene, self.all_cases)    # the model, its compilation and sensitivities grow with every place
         self.params = [k for k in self.problem.knowns
                        if k not in VARIABLES and k not in self.problem.given and k not in self.free]
         self.p0 = np.array([scene.parameters[k] for k in self.params], dtype=float)
@@ -260,7 +264,7 @@ class SizingProblem:
         """Every output of the scene at scaled ``xs`` in every case, each at its worst
         (:func:`ropemodel.envelope.envelope`): the margins, forces and power at a design."""
         params = dict(zip(self.params, self.p0 if p is None else np.asarray(p, dtype=float)))
-        return envelope(self.problem, self.cases, {**params, **self.to_si(xs)})
+        return envelope(self.problem, self.all_cases, {**params, **self.to_si(xs)})
 
     # ------------------------------------------------------------------ helpers
     def nlp(self, f=None, g=None, x=None) -> dict:

@@ -61,7 +61,7 @@ def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, method: st
     """
     if method not in METHODS:
         raise InputError(f"method {method!r}: valid methods: {', '.join(METHODS)}")
-    problem = SizingProblem(scene)
+    problem = SizingProblem(scene, prune_places=False)   # the swept parameters may move the governing place
     scene = problem.scene                 # as sizing reads it (design checks on; a trip's ramps)
     q = scene.built.quantities
     pts = sizing_points(scene, problem, vary, points)

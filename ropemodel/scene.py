@@ -340,7 +340,7 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
             if key not in universe:
                 found.add(f"unknown parameter {key!r}{suggest(key, universe)}")
         found.raise_if_any()
-    route, route_values = tables.read_route(data, effects, given, found)
+    route, route_values = tables.read_route(data, effects, given, found, tables.scene_folder(source))
     model = Model(model_name, effects, tables.options(numerics, route, "L_ul" in given))
     params, checks, unused, origin, kept = tables.read_parameters(model, given, bare, found, notes)
     tables.route_parameters(model, route_values, bare, params, origin, found)

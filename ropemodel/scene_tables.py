@@ -4,7 +4,8 @@ against the model are :mod:`ropemodel.scene`'s).
 
 * :func:`read_head` — ``[scene]``: name and model; unknown tables;
 * :func:`read_numerics` — ``[numerics]``: options of the model's numerical methods;
-* :func:`read_route` and :func:`route_parameters` — ``[[route]]`` segments (issue "routes");
+* :func:`read_route` and :func:`route_parameters` — ``[[route]]`` segments (issue "routes"), or a
+  ``[route_profile]`` file of them (:mod:`ropemodel.scene_profile`);
 * :func:`read_parameters` — ``[parameters]``: SI values, unit checks, values usual for the field,
   computed quantities given as checks (:class:`Check`), valid parameters that are not used;
 * :func:`set_values` — values set on top of the file (``--set``, ``values=``);
@@ -15,16 +16,21 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
 
 from ropemodel.core.model import Model
 from ropemodel.effects import effects_of, misplaced, models, numerics_of
 from ropemodel.errors import InputError, Problems, suggest
+from ropemodel.scene_profile import read_profile
 from ropemodel.units import last_digit, split_value, to_si
 
-TABLES = ("scene", "effects", "parameters", "numerics", "route", "rules", "report")
+TABLES = ("scene", "effects", "parameters", "numerics", "route", "route_profile", "rules", "report")
 #: keys of a ``[[route]]`` segment → the parameter each becomes (``{i}``: the segment's number from the drive)
 ROUTE_KEYS = {"length": "L_{i}", "inclination": "alpha_{i}", "mu_winding": "mu_w{i}"}
 SCENE_KEYS = ("name", "model", "description")
+#: a route whose segments could not be read (the problem is said): one segment, not "missing" again
+UNREAD_ROUTE: tuple = ((False,), {"L_1": (None, None), "alpha_1": (None, None)})
 
 @dataclass(frozen=True)
 class Check:
@@ -52,25 +58,31 @@ def options(numerics: dict, route: tuple, point_A: bool = False) -> dict:
     return {**numerics, "route": route, "point_A": point_A} if route else dict(numerics)
 
 
-def read_route(data: dict, effects: dict, given: dict, found: Problems):
-    """The ``[[route]]`` segments: (structure, {parameter name: value as typed, with the segment's label})."""
-    segments = data.get("route")
+def read_route(data: dict, effects: dict, given: dict, found: Problems, base: Path | None = None):
+    """The ``[[route]]`` segments, or those of the ``[route_profile]`` file (relative to ``base``, the scene
+    file's folder): (structure, {parameter name: value as typed, with the segment's label})."""
+    segments, profile = data.get("route"), data.get("route_profile")
     wanted = effects.get("route") == "segments"
-    if segments is None:
+    if segments is None and profile is None:
         if wanted:
             found.add('route = "segments" needs the segments: one [[route]] table each, listed from the drive, '
-                      'with length and inclination (e.g. length = "400 m", inclination = "22 deg")')
+                      'with length and inclination (e.g. length = "400 m", inclination = "22 deg"), or a '
+                      '[route_profile] file = "profile.csv"')
         return (), {}
     if not wanted:
-        found.add('[[route]] segments are given but the route effect is "straight": set [effects] route = "segments"')
+        given_as = "[[route]] segments are" if profile is None else "[route_profile] is"
+        found.add(f'{given_as} given but the route effect is "straight": set [effects] route = "segments"')
         return (), {}
+    if profile is not None:
+        if segments is not None:
+            found.add("[[route]] segments and a [route_profile] are both given: keep one of them")
+            return UNREAD_ROUTE
+        return _profile_route(profile, given, found, base)
     if not isinstance(segments, list) or not segments or not all(isinstance(s, dict) for s in segments):
         found.add("[[route]] must be a list of tables, one per segment (write [[route]] before each segment); "
                   "an empty route has no segment")
         return (), {}
-    if "L_u" in given:
-        found.add("L_u is the sum of the [[route]] segments' lengths: remove it from [parameters]")
-        given.pop("L_u")
+    _no_L_u(given, found)
     values: dict[str, tuple[str | None, object]] = {}     # name -> (label, value)
     for i, seg in enumerate(segments, start=1):
         for key, value in seg.items():
@@ -85,6 +97,41 @@ def read_route(data: dict, effects: dict, given: dict, found: Problems):
                           f"{chr(34)}{'400 m' if key == 'length' else '10 deg'}{chr(34)})")
                 values[ROUTE_KEYS[key].format(i=i)] = (None, None)   # said: not "missing" again
     return tuple("mu_winding" in seg for seg in segments), values
+
+
+def scene_folder(source: str | None) -> Path | None:
+    """The folder of a scene file (where its ``[route_profile]`` file is found); None for a scene not read
+    from a file (a relative profile path is then relative to the working folder); the package's data for a
+    built-in scene."""
+    if source and source.startswith("built-in scene "):
+        return Path(str(resources.files("ropemodel.data")))
+    return Path(source).parent if source and Path(source).is_file() else None
+
+
+def _no_L_u(given: dict, found: Problems) -> None:
+    if "L_u" in given:
+        found.add("L_u is the sum of the [[route]] segments' lengths: remove it from [parameters]")
+        given.pop("L_u")
+
+
+def _profile_route(table, given: dict, found: Problems, base: Path | None):
+    """``[route_profile] file = "..."``: the segments of the file (:mod:`ropemodel.scene_profile`), as
+    ``[[route]]`` segments without ``mu_winding``."""
+    if not isinstance(table, dict) or set(table) != {"file"} or not isinstance(table["file"], str):
+        found.add('[route_profile] takes one key, file = "profile.csv" (a CSV of \'distance [m],height [m]\' or '
+                  '\'length [m],inclination [deg]\', relative to the scene file)')
+        return UNREAD_ROUTE
+    _no_L_u(given, found)
+    path = Path(table["file"]).expanduser()
+    lengths, angles = read_profile(path if path.is_absolute() or base is None else base / path, found)
+    if not lengths:
+        return UNREAD_ROUTE
+    values: dict[str, tuple[str | None, object]] = {}
+    for i, (length, angle) in enumerate(zip(lengths, angles), start=1):
+        label = f"[route_profile] segment {i}"
+        values[f"L_{i}"] = (f"{label}: length", f"{length!r} m")
+        values[f"alpha_{i}"] = (f"{label}: inclination", f"{angle!r} rad")
+    return (False,) * len(lengths), values
 
 
 def route_parameters(model: Model, values: dict, bare: str, params: dict, origin: dict, found: Problems) -> None:

@@ -42,6 +42,7 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
+from ropemodel.effects.winch_route import segment_lengths
 from ropemodel.errors import InputError
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
@@ -228,7 +229,7 @@ def trip(scene: SceneLike, direction: str | None = None) -> Trip:
         raise InputError(f"direction {direction!r}: a trip goes up or down")
     v = scene.parameters
     problem = Problem(scene)
-    L_u = v["L_u"] if "L_u" in v else sum(_segment_lengths(v))
+    L_u = v["L_u"] if "L_u" in v else sum(segment_lengths(v))
     eta = v.get("eta", 1.0)
     if L_u <= 0 or v["v_pj"] <= 0 or v["t_ramp"] <= 0:
         raise InputError("a trip needs a route, a speed and a ramp time > 0")
@@ -264,19 +265,10 @@ def _taut(trip: Trip, F_nwl: float) -> None:
                      f"F_nwl > {(F_nwl - 2 * least) / 1e3:.6g} kN")
 
 
-def _segment_lengths(values: dict) -> list[float]:
-    """L_1, L_2, … of a route of segments (none on a straight route)."""
-    out, i = [], 1
-    while f"L_{i}" in values:
-        out.append(values[f"L_{i}"])
-        i += 1
-    return out
-
-
 def _cuts(scene, trip: Trip, L_u: float) -> list[float]:
     """Times of the phase boundaries and of the load crossing a joint of the route, in order."""
     times = {t for t0, t1, _, _ in trip.phases for t in (t0, t1)}
-    ends = list(np.cumsum(_segment_lengths(scene.parameters)))
+    ends = list(np.cumsum(segment_lengths(scene.parameters)))
     for end in ends[:-1]:
         times.add(rt.time_at_distance(trip.phases, trip.sign * (trip.start - end)))
     return sorted(times)

@@ -30,6 +30,9 @@ import casadi as ca
 
 from ropemodel.core.structure import Structure
 
+#: one scalar input per known: a route of thousands of segments has thousands, and CasADi would warn of them on
+#: stderr (a solver log) for the Function and every map of it
+MANY_INPUTS = {"max_io": 0}
 #: Newton's options; a failure is reported by the caller in the user's terms, never as a solver log
 NEWTON_OPTIONS = {"abstol": 1e-12, "abstolStep": 1e-14, "max_iter": 100, "error_on_fail": False,
                   "show_eval_warnings": False}
@@ -69,8 +72,8 @@ def compile_solver(model, structure: Structure, guesses: dict[str, float] | None
         # identical calls (two call equations slicing one integrator, inlined) are evaluated once
         outputs = ca.cse(outputs)
     fun = ca.Function(name, [value[k] for k in structure.knowns], outputs,
-                      list(structure.knowns), list(structure.unknowns))
-    return fun.expand() if expandable else fun
+                      list(structure.knowns), list(structure.unknowns), MANY_INPUTS)
+    return fun.expand(name, MANY_INPUTS) if expandable else fun
 
 
 def linear_solution(res: ca.SX, x: ca.SX) -> ca.SX | None:

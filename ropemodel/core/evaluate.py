@@ -42,6 +42,7 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
+from ropemodel.core.compile import MANY_INPUTS
 from ropemodel.errors import InputError, SolveError
 
 BACKENDS = ("auto", "casadi", "compiled")
@@ -160,7 +161,7 @@ class _Mapped:
             if self.threads > 1:
                 fm = self.fun.map(n, "thread", self.threads)
             else:
-                fm = self.fun.map("eval_map", "serial", n, list(range(self.n_var, self.fun.n_in())), [])
+                fm = self.fun.map("eval_map", "serial", n, list(range(self.n_var, self.fun.n_in())), [], MANY_INPUTS)
             self.maps[n] = fm
         args = [ca.DM(v.reshape(1, n)) for v in inputs]
         if self.threads > 1:
@@ -178,7 +179,7 @@ class _Compiled:
         self.n_var, self.threads, self.block = n_var, max(1, threads), int(block)
         self.names = fun.name_out()
         reduce_in = list(range(n_var, fun.n_in()))
-        fm = fun.map("eval_block", "serial", self.block, reduce_in, [])
+        fm = fun.map("eval_block", "serial", self.block, reduce_in, [], MANY_INPUTS)
         cg = ca.CodeGenerator("eval_block.c", {"with_header": False})
         cg.add(fm)
         code = cg.dump()

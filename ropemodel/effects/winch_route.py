@@ -119,6 +119,15 @@ class StraightRoute(Submodel):
 
 
 
+def segment_lengths(values) -> list:
+    """L_1, L_2, … of a route of segments, from a mapping of its values (none on a straight route)."""
+    out, i = [], 1
+    while f"L_{i}" in values:
+        out.append(values[f"L_{i}"])
+        i += 1
+    return out
+
+
 def segment_quantities(i: int, has_mu: bool) -> tuple:
     """The parameters of segment ``i`` (1 = at the drive): ``L_i``, ``alpha_i``, ``mu_wi``."""
     return (

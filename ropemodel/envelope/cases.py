@@ -21,12 +21,10 @@ scene's ramp shape (k = 1 for the linear ramp, π/2 for the cosine one); with ``
 ``*_down`` the downward's, at the same place and acceleration in their own direction of travel.
 
 Survey scale (n in the thousands): each case evaluates the whole model, whose cost grows with n, so the
-cases cost O(n²).  They can be pruned without evaluating the model, because a place enters the forces only
-through the load's term G_m (sin α_j ± (μ_pm cos α_j + a/g)) and the least tension through where the
-profile's slope changes sign (which joint does not depend on q_l or F_nwl, docs/physics.md §4): the places
-worth keeping per direction and manoeuvre are the segments of the extreme load terms and the ends of the
-segments next to such joints.  :func:`load_cases` lists every place; a pruned list is a list of
-:class:`LoadCase` like it, and every consumer takes any list.
+cases cost O(n²).  :func:`load_cases` lists every place (the envelope of a result evaluates them all in one
+vectorised call); an NLP keeps only the places that can govern, found without the model
+(:mod:`ropemodel.envelope.prune`); a pruned list is a list of :class:`LoadCase` like it, and every consumer
+takes any list.
 """
 
 from __future__ import annotations
@@ -37,6 +35,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+from ropemodel.effects.winch_route import segment_lengths
 
 if TYPE_CHECKING:
     from ropemodel.scene import Scene
@@ -68,11 +68,12 @@ class LoadCase:
     manoeuvre: str | None
     ramp: float = 1.0
 
-    def values(self, params: Mapping) -> dict:
-        """The inputs this case sets, from ``params`` (SI floats, or CasADi symbols): ``x_m`` and ``a_h``."""
+    def values(self, params: Mapping, ends: list | None = None) -> dict:
+        """The inputs this case sets, from ``params`` (SI floats, or CasADi symbols): ``x_m`` and ``a_h``.
+        ``ends``: :func:`joint_ends` of ``params``, when many cases are evaluated (else computed here)."""
         out = {}
         if self.joint is not None:
-            out["x_m"] = _joint(params, self.joint)
+            out["x_m"] = (ends or joint_ends(params))[self.joint]
         if self.manoeuvre is not None:
             out["a_h"] = _acceleration(params, self.manoeuvre, self.ramp)
         return out
@@ -85,7 +86,7 @@ class LoadCase:
         """``segment 2, x_m = 1300 m`` (numbers from ``params``)."""
         if self.joint is None:
             return ""
-        x = f"x_m = {float(_joint(params, self.joint)):g} m"
+        x = f"x_m = {float(joint_ends(params)[self.joint]):g} m"
         return x if self.segment is None else f"segment {self.segment}, {x}"
 
     def name(self) -> str:
@@ -104,20 +105,13 @@ class LoadCase:
         return ", ".join(p for p in parts if p)
 
 
-def _lengths(params: Mapping) -> list:
-    """L_1, L_2, … of a route of segments; [L_u] on the straight route."""
-    out, i = [], 1
-    while f"L_{i}" in params:
-        out.append(params[f"L_{i}"])
-        i += 1
-    return out or [params["L_u"]]
-
-
-def _joint(params: Mapping, joint: int):
-    x = 0.0
-    for length in _lengths(params)[:joint]:
-        x = x + length
-    return x
+def joint_ends(params: Mapping) -> list:
+    """[0, L_1, L_1 + L_2, …, L_u]: where each place of the load is, x_m of joint k at index k (summed in order,
+    so that each equals the sum a case of one place computes); [0, L_u] on the straight route."""
+    out = [0.0]
+    for length in segment_lengths(params) or [params["L_u"]]:
+        out.append(out[-1] + length)
+    return out
 
 
 def _acceleration(params: Mapping, manoeuvre: str, ramp: float):
@@ -175,7 +169,7 @@ def load_cases(scene, pinned=()) -> list[LoadCase]:
     params, open_ = scene.parameters, [n for n in free(scene) if n not in pinned]
     places: list[tuple[int | None, int | None]] = [(None, None)]
     if "x_m" in open_:
-        n = sum(1 for i in range(1, len(params) + 2) if f"L_{i}" in params)
+        n = len(segment_lengths(params))
         segments: list[int | None] = [*range(1, n + 1), 1] if n else [None, None]
         places = list(zip([*range(1, n + 1), 0] if n else [1, 0], segments))
     manoeuvres: list[str | None] = [None]

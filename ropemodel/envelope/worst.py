@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
-from ropemodel.envelope.cases import LoadCase
+from ropemodel.envelope.cases import LoadCase, joint_ends
 from ropemodel.errors import SolveError
 
 #: relative difference below which an output counts as the same in two cases (rounding of equal sums)
@@ -139,7 +139,8 @@ def pick(index, exprs: list):
 
 def case_columns(cases: list[LoadCase], params: Mapping) -> dict[str, np.ndarray]:
     """The inputs the cases set, as arrays over the cases (SI)."""
-    rows = [c.values(params) for c in cases]
+    ends = joint_ends(params)
+    rows = [c.values(params, ends) for c in cases]
     names = list(dict.fromkeys(k for r in rows for k in r))
     return {k: np.array([float(r[k]) for r in rows]) for k in names}
 

@@ -288,9 +288,14 @@ def read_points(path, what: str = "points file") -> pd.DataFrame:
     from pathlib import Path
 
     p = Path(path)
-    if p.is_dir():
+    try:
+        kind = "directory" if p.is_dir() else "file" if p.exists() else None
+    except OSError as exc:          # a name too long for the file system, a NUL, a folder that refuses access
+        shown = str(p) if len(str(p)) <= 80 else str(p)[:60] + f"... ({len(str(p))} characters)"
+        raise InputError(f"{what} {shown} cannot be read: {exc.strerror or exc}") from None
+    if kind == "directory":
         raise InputError(f"{what} {p} is a directory")
-    if not p.exists():
+    if kind is None:
         raise InputError(f"{what} not found: {p}")
     suffix = p.suffix.lower()
     if suffix not in (".parquet", ".pq", ".csv", ".txt"):

@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from ropemodel.effects.winch_route import segment_lengths
 from ropemodel.errors import InputError
 from ropemodel.views import html
 from ropemodel.views.plotting import axes, finish
@@ -129,7 +130,7 @@ def along(result: ResultViews, columns: dict[str, np.ndarray]) -> dict[str, np.n
 def _route(result: ResultViews, ax):
     """F_C and F_S of both directions against the load's place x_m on the route."""
     v, q = result.values, result.model.quantities
-    ends = np.cumsum([v[f"L_{i}"] for i in range(1, 10_000) if f"L_{i}" in v])
+    ends = np.cumsum(segment_lengths(v))
     x = np.linspace(0.0, v["L_u"], POINTS)
     if "x_m" in result.model.parameters:
         eps = 1e-9 * v["L_u"]

@@ -1,0 +1,84 @@
+"""The places of the load that can govern, found without the model: a route of n segments in O(n log n).
+
+:func:`ropemodel.envelope.cases.load_cases` lists n + 1 places per manoeuvre, and an NLP that checks every
+output at every one of them grows as O(n²) (each case is a copy of a model whose size grows with n).  The
+place enters the winch's equations in two ways only (docs/physics.md §4, "Where the load governs"):
+
+* the forces at the drum, the powers and every margin made of them depend on the place only through the
+  load's pull J_p = G_m (sin α_j + s (μ_pm cos α_j + a/g)) on its segment j, and each grows with J_p: their
+  worst is at the place of the largest or the least J_p, per direction s and acceleration a;
+* the least tension of the winding rope along the route (:func:`ropemodel.papers.route.least_rope_tension`)
+  with the load at the end x_p of its segment is F_nwl/2 + min(J_p + q_l A_p, q_l B_p), with G_k = Σ_{i>k}
+  L_i g_i the rise of the unloaded side from the return sheave to joint k (g_i :func:`rope_gradient`),
+  A_p = min_{1<=k<=p} G_k and B_p = min_{p<=k<n} G_k.  B_p is least at the drive (p = 0) whatever q_l; the
+  least of J_p + q_l A_p over p, for any q_l > 0, is at a vertex of the lower convex hull of the points
+  (A_p, J_p) between the least A and the least J (a supporting line of slope −q_l).
+
+The places kept (for every direction and manoeuvre of the cases) are these, and the route's two ends.  None
+of them depends on q_l or F_nwl, so the pruned list holds for every rope and pretension a sizing tries; it
+does depend on G_m, μ_pm, the route and the resistances, so a sweep that varies those must not prune.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ropemodel.effects.winch_route import segment_lengths
+from ropemodel.envelope.cases import LoadCase
+from ropemodel.papers.route import G_N
+
+#: below this many places, every place is kept (nothing to gain)
+MIN_PLACES = 8
+
+
+def governing_places(params, accelerations) -> set[int]:
+    """Joints (0 = the drive, k = the end of segment k) where the load can govern, for each acceleration a
+    [m/s²] in ``accelerations`` and both directions (see the module docstring).  ``params``: SI floats."""
+    L = np.asarray(segment_lengths(params), dtype=float)
+    n = len(L)
+    alpha = np.array([params[f"alpha_{i}"] for i in range(1, n + 1)], dtype=float)
+    mu = np.array([params.get(f"mu_w{i}", params["mu_pl"]) for i in range(1, n + 1)], dtype=float)
+    seg = np.concatenate([[0], np.arange(n)])          # the load's segment at each place (0-based)
+    keep = {0, n}
+    for a in accelerations:
+        for s in (1.0, -1.0):
+            J = params["G_m"] * (np.sin(alpha) + s * (params["mu_pm"] * np.cos(alpha) + a / G_N))[seg]
+            keep |= {int(np.argmax(J)), int(np.argmin(J))}
+            g = np.sin(alpha) + s * (mu * np.cos(alpha) + a / G_N)
+            G = np.concatenate([np.cumsum((L * g)[::-1])[::-1], [0.0]])     # G_0 … G_n
+            A = np.concatenate([[np.inf], np.minimum.accumulate(G[1:])])     # A_0 = ∞: no loaded term at the drive
+            keep |= _hull_toward_least(A, J)
+    return keep
+
+
+def _hull_toward_least(A: np.ndarray, J: np.ndarray) -> set[int]:
+    """Indices p minimising J_p + q A_p for some q > 0: the lower convex hull of the points (A_p, J_p) from the
+    least A to the least J (Andrew's monotone chain)."""
+    idx = [int(i) for i in np.lexsort((J, A)) if np.isfinite(A[i])]
+    hull: list[int] = []
+    for i in idx:
+        while len(hull) >= 2 and _cross(A, J, hull[-2], hull[-1], i) <= 0.0:
+            hull.pop()
+        hull.append(i)
+    out = set()
+    for k, i in enumerate(hull):
+        out.add(i)
+        if k + 1 < len(hull) and J[hull[k + 1]] >= J[i]:    # the slope turns non-negative: no q > 0 beyond
+            break
+    return out
+
+
+def _cross(x, y, o, a, b) -> float:
+    return float((x[a] - x[o]) * (y[b] - y[o]) - (y[a] - y[o]) * (x[b] - x[o]))
+
+
+def prune(cases: list[LoadCase], params) -> list[LoadCase]:
+    """``cases`` at the places that can govern only (:func:`governing_places`); ``cases`` as they are when the
+    place is pinned or there are few places."""
+    places = {c.joint for c in cases}
+    if None in places or len(places) < MIN_PLACES:
+        return cases
+    one_per_manoeuvre = {c.manoeuvre: c for c in cases}.values()
+    accelerations = {float(c.values(params).get("a_h", params.get("a_h", 0.0))) for c in one_per_manoeuvre}
+    keep = governing_places(params, sorted(accelerations))
+    return [c for c in cases if c.joint in keep]

@@ -1,0 +1,83 @@
+"""The places of the load that can govern (ropemodel.envelope.prune) against a brute-force search.
+
+Truth: docs/physics.md §4 written out in numpy (tests/_route_truth.py), the least tension of the winding rope
+searched at 2001 points along the route for the load at every place of a fine grid (not only the joints), and
+the drum force F_C likewise, for ropes from very light to very heavy (the pruning must hold for every q_l a
+sizing tries) and every manoeuvre.  The worst over the grid must be at a joint the pruning keeps.  And sizing
+with the pruned places equals sizing with every place.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from _route_truth import Route, places
+
+import ropemodel as rm
+from optimisation import design as sizing
+from optimisation.problem import D_OPTIONAL, SIZED, SizingProblem, load_sizing
+from ropemodel.envelope.prune import governing_places
+
+ACCELERATIONS = (0.0, 0.5, -0.5, -1.2)
+
+
+def _route(seed: int, n: int = 25) -> Route:
+    rng = np.random.default_rng(seed)
+    return Route(tuple(rng.uniform(20.0, 200.0, n)), tuple(rng.uniform(-8.0, 25.0, n)),
+                 tuple(rng.uniform(0.02, 0.08, n)), G_m=467e3, q_l=80.0, F_nwl=30e3)
+
+
+def _params(route: Route) -> dict:
+    out = {"G_m": route.G_m, "mu_pm": route.mu_pm, "mu_pl": route.mu_pl}
+    for i, (L, a, mu) in enumerate(zip(route.lengths, route.alphas, route.mus), start=1):
+        out.update({f"L_{i}": L, f"alpha_{i}": a, f"mu_w{i}": mu})
+    return out
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_the_worst_place_is_a_kept_joint(seed):
+    route = _route(seed)
+    keep = governing_places(_params(route), ACCELERATIONS)
+    assert len(keep) < len(route.lengths) + 1          # it prunes
+    joints = np.concatenate([[0.0], route.ends])
+    kept = joints[sorted(keep)]
+    grid = places(route, 60)
+    for q_l in (2.0, 80.0, 2000.0):
+        r = route.with_(q_l=q_l)
+        for a in ACCELERATIONS:
+            for s in (1.0, -1.0):
+                least = [r.least("winding", float(x), a, s, 1001) for x in grid]
+                least_kept = min(r.least("winding", float(x), a, s, 1001) for x in kept)
+                assert least_kept == pytest.approx(min(least), rel=1e-12, abs=1e-6), (q_l, a, s)
+                F_C = [r.drum(float(x), a, s)[0] for x in grid]
+                F_C_kept = [r.drum(float(x), a, s)[0] for x in kept]
+                assert max(F_C_kept) == pytest.approx(max(F_C), rel=1e-12)
+                assert min(F_C_kept) == pytest.approx(min(F_C), rel=1e-12)
+
+
+def test_sizing_on_the_pruned_places_equals_sizing_on_every_place():
+    """12 segments with a dip: the design, every margin and where each governs are those of the NLP over every
+    place (a second method: the unpruned NLP)."""
+    route = _route(7, 12)
+    scene = load_sizing(rm.from_dict({
+        "effects": {"route": "segments", "rope": "6x36-IWRC", "lining": "rigid", "dynamics": "trip"},
+        "route": [{"length": f"{float(L)!r} m", "inclination": f"{float(a)!r} deg"}
+                  for L, a in zip(route.lengths, route.degrees)],
+        "parameters": {"mu_pm": 0.05, "mu_pl": 0.05, "G_m": "467 kN", "v_pj": "2.5 m/s", "t_ramp": "5 s",
+                       "rope_grade": "1770 N/mm^2", "rope_E": "100 kN/mm^2", "mu_d": 0.2, "alpha_d": "540 deg",
+                       "n_slip": 1.25, "n_rope": 4.5, "F_S_min": "5 kN"}}, optional=SIZED + D_OPTIONAL), emit=False)
+    pruned = SizingProblem(scene)
+    assert len(pruned.cases) < len(pruned.all_cases)
+    a = sizing.size(scene, with_sensitivities=False)
+    every = sizing.SizingProblem
+    try:
+        sizing.SizingProblem = lambda s: every(s, prune_places=False)
+        b = sizing.size(scene, with_sensitivities=False)
+    finally:
+        sizing.SizingProblem = every
+    assert a.design == b.design
+    for k, v in b.continuous.items():
+        assert a.continuous[k] == pytest.approx(v, rel=1e-9)
+    for k, v in b.margins.items():
+        assert a.margins[k] == pytest.approx(v, rel=1e-9, abs=1e-9)
+    assert a.governing == b.governing
