@@ -177,6 +177,15 @@ def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
     return scene.built.inputs_of() | case_reads(scene), chosen
 
 
+def rope_problem(scene) -> str | None:
+    """Why sizing cannot choose ``scene``'s rope (a rope given by its weight, no catalogue to choose from), or
+    None."""
+    if scene.effects.get("rope") == "given":
+        return ("sizing chooses the rope diameter: it needs [effects] rope = \"catalogue\" or a named construction "
+                "such as \"6x36-IWRC\" (the scene has rope = \"given\")")
+    return None
+
+
 class SizingProblem:
     """The NLP of winch sizing for one scene (model ``winch``).
 

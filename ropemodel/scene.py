@@ -149,13 +149,13 @@ class Scene(SceneViews):
         return out
 
     def with_effects(self, effects: dict[str, str], optional=(), emit: bool = False) -> Scene:
-        """The same scene file read again with some effects set (e.g. sizing's ``checks = "design"``), with
-        every value given on top of the file, used or not by the old effects, where it came from."""
+        """The scene file read again with ``effects`` set, every value given on top of it kept with its origin."""
         if not self.raw:
             raise InputError("this scene was not loaded from a file or dict; build it again with those effects")
         data = {k: dict(v) if isinstance(v, dict) else v for k, v in self.raw.items()}
         data["effects"] = {**data.get("effects", {}), **effects}
-        scene = from_dict(data, self.source, optional=optional, emit=emit, digest=self.digest)
+        given = [name for values in self.overrides().values() for name in values]   # not missing: set again below
+        scene = from_dict(data, self.source, optional=(*optional, *given), emit=emit, digest=self.digest)
         for where, values in self.overrides().items():
             scene = scene.with_values(values, origin=where)
         return scene

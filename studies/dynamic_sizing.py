@@ -8,12 +8,13 @@ stroke) are compared:
 * ``static x 1.1``: the same with a flat dynamic factor 1.1 (German mining rules): rope safety and
   traction checked against 1.1·F_C (n_rope and n_slip times 1.1);
 * ``static x k``: the same with the factor the transient actually shows at the static design, k = the
-  largest F_C,max/F_C,static of its four simulated manoeuvres (what ``ropemodel simulate`` reports as
-  the dynamic factor);
+  largest F_C,max/F_C,static of its four manoeuvres with the load at each end and in the middle of the
+  route (what ``ropemodel simulate`` reports as the dynamic factor);
 * ``dynamic``: ``ropemodel size --dynamic`` (:mod:`optimisation.dynamic`): every check through start and
-  stop in both directions.
+  stop in both directions, the load anywhere on the route.
 
-Every design is simulated through the four manoeuvres by the hybrid simulator (``ok``: every check holds).
+Every design is simulated through the four manoeuvres at every place of the load by the hybrid simulator
+(``ok``: every check holds).
 Columns ``d/F_nwl/stroke vs dynamic [%]``: positive wastes, negative misses.  ``seconds``: the solve time of
 each method in this run; ``time ratio``: dynamic over static (same run, same machine).
 
@@ -96,7 +97,8 @@ def case(sc) -> list[dict]:
             verdicts = verify(problem, xs)
             row.update({"d [mm]": si["d"] * 1e3, "F_nwl [kN]": si["F_nwl"] * 1e-3, "stroke [m]": si["stroke"],
                         "ok": all(v.ok for v in verdicts),
-                        "failures": " | ".join(f"{v.manoeuvre}: {v.failures[0]}" for v in verdicts if not v.ok)})
+                        "failures": " | ".join(f"{v.manoeuvre} at {v.where}: {v.failures[0]}"
+                                               for v in verdicts if not v.ok)})
             if dyn is not None:
                 row.update({f"{v} vs dynamic [%]": 100 * (si[v] / dyn[v] - 1) for v in VARIABLES})
         rows.append(row)

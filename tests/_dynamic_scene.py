@@ -52,15 +52,36 @@ def write_scene(tmp_path, extra: str = "", name: str = "dyn.toml"):
     return path
 
 
-#: the four manoeuvres: (dynamics, travel) → where the load is when the scene gives no x_m [fraction of L_u]
-NATURAL = {("start", "up"): 1.0, ("stop", "up"): 0.0, ("start", "down"): 0.0, ("stop", "down"): 1.0}
+#: the four manoeuvres
+MANOEUVRES = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
 
 
-def simulated_failures(scene, design: dict, values: dict | None = None) -> list[str]:
-    """Every check of the four manoeuvres judged from ``ropemodel.dynamics.simulate`` alone (the hybrid
-    simulator at rtol 1e-10), written here from the simulator's history and events, independently of the
-    sizing package: rope safety F_min = K d² R_r (EN 12385-4) against n_rope·max F_C and n_rope·max F_S, no
-    slip, no stroke stop reached, no slack element, take-up within the stroke, F_S and F_C ≥ F_S_min."""
+def route_lengths(scene) -> list[float]:
+    """The segment lengths [m] of a route of segments, or [L_u]."""
+    v = scene.parameters
+    lengths = [v[f"L_{i}"] for i in range(1, 100) if f"L_{i}" in v]
+    return lengths or [v["L_u"]]
+
+
+def places(scene) -> list[float]:
+    """Where a manoeuvre can happen, as dynamic sizing must check it: on each segment its two ends and its
+    middle (a joint from both sides: the load on the drive-side segment at the joint, on the far one 1 mm
+    beyond it)."""
+    out, start = [], 0.0
+    for j, length in enumerate(route_lengths(scene)):
+        out += [start + (1e-3 if j else 0.0), start + length / 2, start + length]
+        start += length
+    return out
+
+
+def simulated_failures(scene, design: dict, values: dict | None = None, where=None, manoeuvres=MANOEUVRES,
+                       t_end: float | None = None) -> list[str]:
+    """Every check of the manoeuvres with the load at each place of ``where`` (default :func:`places`) judged
+    from ``ropemodel.dynamics.simulate`` alone (the hybrid simulator at rtol 1e-10), written here from the
+    simulator's history and events, independently of the sizing package: rope safety F_min = K d² R_r
+    (EN 12385-4) against n_rope·max F_C and n_rope·max F_S, no slip, no stroke stop reached, no slack element,
+    take-up within the stroke, F_S and F_C ≥ F_S_min.  ``t_end`` [s]: how long each manoeuvre is followed
+    (default the scene's)."""
     import dataclasses
 
     from ropemodel.dynamics import simulate
@@ -69,18 +90,22 @@ def simulated_failures(scene, design: dict, values: dict | None = None) -> list[
     v = scene.parameters
     F_min = en12385.minimum_breaking_force(en12385.construction(scene.effects["rope"]).K, design["d"],
                                            v["rope_grade"])
+    extra = {**({"t_end": t_end} if t_end else {}), **(values or {})}
     failures = []
-    for (dynamics, travel), where in NATURAL.items():
-        sc = scene.with_effects({"dynamics": dynamics, "travel": travel}, optional=("d", "F_nwl", "stroke"))
-        sc = sc.with_values({"x_m": where * v["L_u"], **design, **(values or {})})
-        sc = dataclasses.replace(sc, numerics={**sc.numerics, "sim_rtol": 1e-10, "sim_dt": 1e-3})
-        sim = simulate(sc)
-        s, h, tag = sim.summary, sim.history, f"{travel} {dynamics}"
-        F_C, F_S = h["F_C [N]"].to_numpy(), h["F_S [N]"].to_numpy()
-        tests = {"slip": s["slip"], "stroke stop": bool(s["stroke_events"]) or s["stroke_exhausted"],
-                 "slack": s["slack"] or h["T_min [N]"].min() < 0, "torque limit": s["torque_limited"],
-                 "rope safety": v["n_rope"] * max(F_C.max(), F_S.max()) > F_min,
-                 "take-up": h["take_up [m]"].max() > design["stroke"],
-                 "taut": min(F_C.min(), F_S.min()) < v["F_S_min"]}
-        failures += [f"{name} in the {tag}" for name, bad in tests.items() if bad]
+    for dynamics, travel in manoeuvres:
+        for x in (places(scene) if where is None else where):
+            sc = scene.with_effects({"dynamics": dynamics, "travel": travel, "inertia": "none"},
+                                    optional=("d", "F_nwl", "stroke", "t_end", "D"))
+            drum = {"D": 40 * design["d"]} if "D" in sc.absent else {}     # a rigid lining's traction: any D
+            sc = sc.with_values({"x_m": x, **design, **drum, **extra})
+            sc = dataclasses.replace(sc, numerics={**sc.numerics, "sim_rtol": 1e-10, "sim_dt": 1e-3})
+            sim = simulate(sc, progress=False)
+            s, h, tag = sim.summary, sim.history, f"{travel} {dynamics} at x_m = {x:g} m"
+            F_C, F_S = h["F_C [N]"].to_numpy(), h["F_S [N]"].to_numpy()
+            tests = {"slip": s["slip"], "stroke stop": bool(s["stroke_events"]) or s["stroke_exhausted"],
+                     "slack": s["slack"] or h["T_min [N]"].min() < 0, "torque limit": s["torque_limited"],
+                     "rope safety": v["n_rope"] * max(F_C.max(), F_S.max()) > F_min,
+                     "take-up": h["take_up [m]"].max() > design["stroke"],
+                     "taut": min(F_C.min(), F_S.min()) < v["F_S_min"]}
+            failures += [f"{name} in the {tag}" for name, bad in tests.items() if bad]
     return failures

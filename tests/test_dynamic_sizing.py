@@ -4,16 +4,15 @@ from __future__ import annotations
 
 import pytest
 
-from _dynamic_scene import simulated_failures, write_scene
+import _route3 as route3
+from _dynamic_scene import MANOEUVRES, simulated_failures, write_scene
 
-from optimisation.dynamic.manoeuvres import manoeuvres
-from optimisation.dynamic.problem import DynamicSizingProblem
+from optimisation.dynamic.manoeuvres import cases
 from optimisation.dynamic.ramp import shortest_ramp
-from optimisation.dynamic.verify import verify
+from optimisation.dynamic.transient import reads, transient_scene
 from optimisation.ipopt import solve_continuous
 from optimisation.problem import SizingProblem, load_sizing
 from ropemodel.cli import main
-from ropemodel.errors import InputError
 
 
 @pytest.fixture(scope="module")
@@ -26,37 +25,69 @@ def scene(scene_file):
     return load_sizing(scene_file, emit=False)
 
 
-def test_natural_places_of_the_manoeuvres(scene):
-    """No x_m: an upward trip starts at the return sheave (x_m = L_u) and stops at the drive (x_m = 0), a
-    downward trip the other way round."""
-    got = {(m.dynamics, m.travel): m.x_m for m in manoeuvres(scene)}
-    assert got == {("start", "up"): 1150.0, ("stop", "up"): 0.0, ("start", "down"): 0.0, ("stop", "down"): 1150.0}
-    assert all("trip" in m.source for m in manoeuvres(scene))
+def test_every_manoeuvre_at_both_ends_and_the_middle(scene):
+    """No x_m: each of the four manoeuvres with the load at the drive, in the middle and at the return sheave
+    of the (straight) route."""
+    got = [(m.dynamics, m.travel, m.x_m) for m in cases(transient_scene(scene))]
+    assert got == [(dyn, travel, x) for dyn, travel in MANOEUVRES for x in (0.0, 575.0, 1150.0)]
 
 
 def test_given_place_is_used_for_all_four(scene):
-    ms = manoeuvres(scene.with_values({"x_m": 300.0}))
-    assert [m.x_m for m in ms] == [300.0] * 4 and all(m.source == "given" for m in ms)
+    ms = cases(transient_scene(scene.with_values({"x_m": 300.0})))
+    assert [m.x_m for m in ms] == [300.0] * 4 and all(m.where == "x_m = 300 m (given)" for m in ms)
 
 
-def test_a_scene_without_transient_is_refused(tmp_path):
-    text = write_scene(tmp_path).read_text().replace('dynamics = "start"\n', "")
-    (tmp_path / "static.toml").write_text(text)
-    with pytest.raises(InputError, match="transient"):
-        DynamicSizingProblem(load_sizing(tmp_path / "static.toml", emit=False))
+#: the route of issue 21 without its ramp time: a winch sizing scene with no transient in it
+ROUTE = route3.SCENE.replace('t_ramp = "4 s"\n', "")
+
+
+def test_a_static_route_scene_is_asked_only_for_its_ramp_then_accepted(tmp_path, capsys):
+    """A winch sizing scene on a route of segments, no transient in it: ``size --dynamic`` asks for the one
+    thing it cannot default, the ramp time (exit 2, one line, nothing on stdout).  Given it, the transient is
+    built: the manoeuvres with the load at the ends and the middle of every segment (a joint from both
+    sides), and each default stated — t_end from the rope loop's slowest period."""
+    path = tmp_path / "route.toml"
+    path.write_text(ROUTE)
+    assert main(["size", str(path), "--dynamic"]) == 2
+    out = capsys.readouterr()
+    assert out.out == "" and "Traceback" not in out.err
+    lines = [ln for ln in out.err.splitlines() if ln.strip()]
+    assert len(lines) == 1 and "t_ramp" in lines[0] and "dynamic sizing" in lines[0]
+    sc = transient_scene(load_sizing(path, emit=False).with_values({"t_ramp": "4 s"}))
+    places = [0.0, 300.0, 600.0, 600.001, 950.0, 1300.0, 1300.001, 1550.0, 1800.0]
+    assert [m.x_m for m in cases(sc)] == pytest.approx([x for _ in MANOEUVRES for x in places], abs=1e-9)
+    assert {"t_end", "m_t", "rope_damping", "v_eps", "x_m"} <= set(sc.defaults)
+    assert "T_1" in sc.defaults["t_end"] and sc.parameters["t_end"] > sc.parameters["t_ramp"]
+    assert sc.effects["rope_elasticity"] == "segments" and sc.effects["tensioner"] == "constant_force"
+    names, sets = reads(sc)        # what a --set reaches: the transient's own parameters too
+    assert {"t_ramp", "t_end", "rope_damping", "m_t", "G_m", "alpha_2"} <= names and "x_m" in sets
+
+
+@pytest.mark.parametrize("name, asked", [
+    ("winch_sizing_fig9", ["t_ramp"]),
+    ("winch_sizing_voigt", ["t_ramp"]),
+    ("winch_sizing_paper_rope", ['rope = "given"', "t_ramp"]),     # both at once, not one after the other
+])
+def test_shipped_sizing_scenes_are_asked_for_everything_at_once(name, asked, capsys):
+    """Each shipped winch sizing scene has no ramp: ``size --dynamic`` names every missing item in one error
+    (exit 2, one line each, nothing on stdout), before any computation."""
+    assert main(["size", name, "--dynamic"]) == 2
+    out = capsys.readouterr()
+    assert out.out == "" and "Traceback" not in out.err
+    problems = [ln for ln in out.err.splitlines() if ln.strip() and not ln.startswith("error: 2 problems")]
+    assert len(problems) == len(asked)
+    for line, word in zip(problems, asked):
+        assert word in line
 
 
 def test_static_optimum_slips_or_overloads_in_a_start(scene):
-    """The static optimum (every static check met) fails in the simulated upward start: the reason for
-    dynamic sizing.  The simulator names the failure."""
+    """The static optimum (every static check met) fails in the simulated upward start from the return sheave:
+    the reason for dynamic sizing."""
     static = SizingProblem(scene)
     sol = solve_continuous(static)
     assert sol.feasible
-    problem = DynamicSizingProblem(scene)
-    verdicts = verify(problem, sol.xs)
-    up_start = verdicts[0]
-    assert up_start.manoeuvre == "upward start" and not up_start.ok
-    assert any(f.startswith(("slip", "safety")) for f in up_start.failures)
+    failures = simulated_failures(scene, static.to_si(sol.xs), manoeuvres=[("start", "up")], where=[1150.0])
+    assert any(f.startswith(("slip", "rope safety")) for f in failures), failures
 
 
 # ---------------------------------------------------------------------------------------- the shortest ramp
@@ -100,3 +131,30 @@ def test_sweep_refuses_structural_parameters(tmp_path, capsys):
     assert main(["sweep", str(scene_file), "--dynamic", "--vary", "G_m=440kN:480kN:2", "-o", str(out)]) == 2
     err = capsys.readouterr().err
     assert "cannot vary t_end" in err and "acts only with --sizing" in err and "Traceback" not in err
+
+
+def test_an_inextensible_rope_states_only_the_defaults_it_reads(tmp_path):
+    """The route with an inextensible rope: no element to damp (rope_damping is no default used), no oscillation
+    (t_end is the ramp and half a ramp more: 6 s for the 4 s ramp)."""
+    path = tmp_path / "rigid.toml"
+    path.write_text(route3.SCENE.replace('power = "drive"\n', 'power = "drive"\nrope_elasticity = "rigid"\n'))
+    sc = transient_scene(load_sizing(path, emit=False))
+    assert "rope_damping" not in sc.defaults and {"x_m", "v_eps", "t_end"} <= set(sc.defaults)
+    assert sc.parameters["t_end"] == pytest.approx(6.0, rel=1e-12)
+
+
+def test_no_catalogue_size_says_the_drum_check_fails_at_the_next_size():
+    """winch_sizing_voigt with a 4 s ramp: its continuous dynamic optimum, 52.96 mm, is under the drum's limit
+    D / D_ratio_min = 1.6 m / 30 = 53.3 mm, so the next catalogue size, 54 mm, breaks D / d >= 30 whatever
+    the pretension and stroke: the answer says so, and what alone would help (D >= 30 * 54 mm = 1.62 m)."""
+    from types import SimpleNamespace
+
+    from optimisation.dynamic.design import DynamicDesign, why_no_size
+
+    scene = load_sizing("winch_sizing_voigt", emit=False)
+    D, ratio = scene.parameters["D"], scene.parameters["D_ratio_min"]
+    assert D / ratio == pytest.approx(0.05333, abs=1e-5) and D / 0.054 < ratio
+    design = DynamicDesign(scene, False, message="no catalogue diameter")
+    why_no_size(SimpleNamespace(scene=scene), 0.05296, design)
+    assert "the next size up, 54 mm, already fails the static checks" in design.message
+    assert "drum_margin" in design.message and f"D >= {ratio * 54:g} mm" in design.message

@@ -67,8 +67,9 @@ def test_json_has_the_static_keys_and_each_manoeuvre(scene, design, capsys, tmp_
     assert out["d"] == pytest.approx(design.design["d"])
     assert [m["manoeuvre"] for m in out["manoeuvres"]] == ["upward start", "upward stop", "downward start",
                                                           "downward stop"]
-    assert all("F_C_max" in m["peaks"] and "x_m" in m["where"] for m in out["manoeuvres"])
-    assert any("upward start, t = " in a for a in out["continuous"]["active"])
+    assert all("F_C_max" in m["peaks"] and "x_m = " in m["where"] and len(m["positions"]) == 3
+               for m in out["manoeuvres"])
+    assert any("upward start, x_m = " in a and ", t = " in a for a in out["continuous"]["active"])
     for name in ("G_m", "t_ramp"):     # as static sizing's JSON: the optimum's sensitivities, SI
         assert out["sensitivities"][name] == pytest.approx(design.sensitivities[name], rel=1e-6)
 
@@ -123,7 +124,7 @@ def test_report_section_shows_the_dynamic_design_and_the_manoeuvres(tmp_path, de
     assert d.show(design.continuous["d"]) in section and d.show(design.static["d"]) in section
     for m in design.manoeuvres:
         assert m["manoeuvre"] in section and f"{m['peaks']['F_C_max'] * 1e-3:.4g}" in section
-    assert "upward start, t = " in section
+    assert "upward start, x_m = " in section and "with the load at" in section
 
 
 def test_no_dynamic_design_is_named_in_the_users_terms(tmp_path, capsys):
@@ -139,15 +140,27 @@ def test_no_dynamic_design_is_named_in_the_users_terms(tmp_path, capsys):
 
 
 def test_human_output_states_each_margins_unit(design):
-    """The text of ``size --dynamic``: static margins as static sizing prints them (display units: a ratio
-    is "-", the stroke margin in mm), checks through a manoeuvre in their own unit (N, m or "-")."""
+    """The text of ``size --dynamic``: every check listed at the design, each row its value, unit, verdict and
+    rule; static margins as static sizing prints them (display units: a ratio is "-", the stroke margin in mm),
+    checks through a manoeuvre in their own unit (N, m or "-") and where the load is at their least margin."""
+    import re
+
     from ropemodel.cli._size_dynamic import design_text
 
-    lines = {ln.split()[0] if " @ " not in ln else ln[:52].strip(): ln.split()
-             for ln in design_text(design).splitlines() if "margin" in ln and ln.rstrip().endswith(("ok", "FAILS"))}
+    row = re.compile(r"^(?P<name>\S+(?: @ [a-z]+(?: [a-z0-9]+)*)?)\s+(?P<value>[-+0-9.e]+)\s+(?P<unit>\S+)\s+"
+                     r"(?P<verdict>ok|FAILS)(?:\s+(?P<rest>.*))?$")
+    lines = {m["name"]: m for m in map(row.match, design_text(design).splitlines()) if m}
+    assert set(lines) == set(design.margins)
     q = design.scene.built.quantities
     stroke = lines["stroke_margin_up"]
-    assert stroke[-2] == "mm" and float(stroke[1]) == pytest.approx(design.margins["stroke_margin_up"] * 1e3, rel=1e-5)
-    assert lines["safety_margin_up"][-2] == "-" and q["safety_margin_up"].display_unit == "1"
-    assert lines["slip_margin_fwd @ upward start"][-2] == "N"
-    assert lines["safety_margin @ upward start"][-2] == "-"
+    assert stroke["unit"] == "mm"
+    assert float(stroke["value"]) == pytest.approx(design.margins["stroke_margin_up"] * 1e3, rel=1e-5)
+    assert lines["safety_margin_up"]["unit"] == "-" and q["safety_margin_up"].display_unit == "1"
+    assert lines["slip_margin_fwd @ upward start"]["unit"] == "N"
+    safety = lines["safety_margin @ upward start"]
+    assert safety["unit"] == "-" and safety["rest"].startswith("n_rope: ")
+    manoeuvres = {m["manoeuvre"] for m in design.manoeuvres}
+    for name, m in lines.items():
+        assert m["verdict"] == "ok"
+        if name.split(" @ ")[-1] in manoeuvres:     # where the load is at its least margin
+            assert "; load at x_m = " in m["rest"], name

@@ -113,3 +113,20 @@ def test_voigt_lining_smooth_mode_is_the_numeric_mode():
             out = sm.out(x=x, t=t, p=sm.p0)
             assert float(out["slip_fwd"]) == pytest.approx(g["slip_fwd"], rel=1e-12, abs=1e-6)
             assert float(out["slip_back"]) == pytest.approx(g["slip_back"], rel=1e-12, abs=1e-6)
+
+
+def test_inextensible_rope_smooth_mode_is_the_numeric_mode():
+    """An inextensible rope: one node, the tensioner's carriage fixed (its only mode); with d, F_nwl, stroke and
+    t_ramp as symbols the start and the right-hand side are the numeric mode's (before: the symbolic start failed
+    on the one-node state, and the smooth mode let the carriage run free)."""
+    sc = catalogue_scene(rope_elasticity="rigid")
+    sm, num = smooth_mode(sc, PARAMS), build(sc)
+    x0, mode = num.initial()
+    assert mode == num.smooth_mode() and dict(mode.items)["tensioner"] == "fixed"
+    np.testing.assert_allclose(np.array(sm.x0(sm.p0)).ravel(), x0, rtol=1e-12, atol=1e-12)
+    for t, k in ((0.7, 0), (9.0, 1)):
+        fns = num.functions(k, mode)
+        for x in _states(num, x0):
+            xdot = np.array(fns.rhs(x, t)).ravel()
+            np.testing.assert_allclose(np.array(sm.f(x, t, sm.p0)).ravel(), xdot, rtol=1e-12,
+                                       atol=1e-12 * np.max(np.abs(xdot)))

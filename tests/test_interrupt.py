@@ -109,6 +109,20 @@ def test_ctrl_c_exits_130_with_one_line(argv, moment, group, after, tmp_path):
     check(*interrupt(argv, moment, tmp_path, group, after))
 
 
+def _integrating_inside_ipopt(p, d):
+    return "nlpsol_ipopt" in _maps(p.pid) and "integrator_cvodes" in _maps(p.pid)
+
+
+@pytest.mark.parametrize("group", [True, False], ids=["group", "main"])
+def test_ctrl_c_during_dynamic_sizing_on_a_route(group, tmp_path):
+    """``size --dynamic`` on the three-segment route of issue 21: transients integrated by CVODES inside IPOPT
+    (the solver output held, :func:`ropemodel.numerics.held.held_solver_output`) when Ctrl-C comes."""
+    import _route3
+
+    _route3.write(tmp_path)
+    check(*interrupt(["size", "route3.toml", "--dynamic"], _integrating_inside_ipopt, tmp_path, group, after=1.0))
+
+
 @pytest.mark.parametrize("group", [True, False], ids=["group", "main"])
 def test_ctrl_c_during_a_sweep_keeps_its_parts(group, tmp_path):
     argv = ["sweep", "example", "--vary", "alpha_u=0deg:45deg:4000000", "--outputs", "F_C_up",

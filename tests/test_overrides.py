@@ -236,6 +236,16 @@ def size_reads(scene):
     return (prepared, *reads(prepared))
 
 
+def dynamic_size_reads(scene):
+    """Dynamic sizing reads what static sizing reads and its transient's parameters (the ramp, the rope model,
+    the tensioner, how long each manoeuvre is followed)."""
+    from optimisation.dynamic.transient import reads, transient_scene
+    from optimisation.problem import prepare
+
+    transient = transient_scene(prepare(scene))
+    return (transient, *reads(transient))
+
+
 def curve_reads(scene):
     from ropemodel.capstan.curves import reads
 
@@ -339,7 +349,7 @@ COMMANDS = {
     "trip": (has_ramp, lambda s: {d: rm.trip(s, d).summary for d in ("up", "down")}, trip_reads, 1e-12),
     "size": (sizes, sized, size_reads, 1e-9),
     "simulate": (transient, lambda s: rm.simulate(s, progress=False).summary, every_read, 1e-9),
-    "size --dynamic": (sizes, sized_dynamically, size_reads, 1e-9),
+    "size --dynamic": (sizes, sized_dynamically, dynamic_size_reads, 1e-9),
     "report": (lambda s: True, report_text, report_reads, 1e-12),
     "curve": (lambda s: s.model == "capstan", lambda s: rm.load_curve(s, "100 N", n=5).to_dict("list"),
               curve_reads, 1e-12),

@@ -3,14 +3,20 @@ braking in both directions, not only in steady motion.
 
 Layout:
 
-* :mod:`.manoeuvres` — the four manoeuvres (where the load is) and the checks through each;
+* :mod:`.transient` — the transient it sizes through, built from any winch sizing scene (what it cannot
+  default asked for, each default stated);
+* :mod:`.positions` — where the load can be when a manoeuvre happens (each segment's ends and middle);
+* :mod:`.manoeuvres` — the four manoeuvres, the cases (a manoeuvre with the load at one place) and the
+  checks through each;
+* :mod:`.screen` — which cases the NLP integrates (those that govern a check), screened cheaply;
 * :mod:`.shooting` — one manoeuvre's transient inside the NLP (single shooting, cvodes with
   sensitivities; why not collocation: measured in its docstring);
 * :mod:`.problem` — :class:`DynamicSizingProblem`, the static sizing NLP plus the checks on each
-  manoeuvre's time grid;
+  integrated case's time grid;
 * :mod:`.start` — dynamic factors of a design, the static design with a flat factor (the start);
-* :mod:`.refine` — every check between the grid points (exact local minima added to the grid);
-* :mod:`.verify` — every design simulated by the hybrid simulator (an independent path);
+* :mod:`.refine` — every check between the grid points (exact local minima added to the grid) and in
+  the cases left out;
+* :mod:`.verify` — every design simulated by the hybrid simulator in every case (an independent path);
 * :mod:`.design` — :func:`size_dynamic`, the whole answer (``ropemodel size --dynamic``);
 * :mod:`.ramp` — the shortest start and stop ramps that keep a given design safe;
 * :mod:`.diagnose` — no design: the conflicting checks and what would help;

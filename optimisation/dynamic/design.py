@@ -1,11 +1,15 @@
-"""The whole dynamic sizing answer: continuous optimum, catalogue design, each manoeuvre's peaks and
-active instant, every design verified by the hybrid simulator — or why no design exists.
+"""The whole dynamic sizing answer: continuous optimum, catalogue design, each manoeuvre's peaks, where
+the load governs it and its active instant, every design verified by the hybrid simulator — or why no
+design exists.
 
-Steps of :func:`size_dynamic`: the static optimum (:mod:`optimisation.design`); the static design with
-the dynamic factors its own transient shows (:func:`~optimisation.dynamic.start.factored_start`, the
-start); the dynamic NLP on a refined time grid (:func:`~optimisation.dynamic.refine.solve_refined`);
-the next catalogue size up with F_nwl and stroke re-optimised through the transients, rounded up as
-the static sizing rounds; each design simulated through its four manoeuvres
+Steps of :func:`size_dynamic`: the transient made from the scene
+(:func:`~optimisation.dynamic.transient.transient_scene`); the static optimum (:mod:`optimisation.design`);
+the static design with the dynamic factors its own transient shows
+(:func:`~optimisation.dynamic.start.factored_start`, the start); the cases that govern a check there
+(:mod:`optimisation.dynamic.screen`); the dynamic NLP on a refined time grid, with every case that comes
+within the back-off at its optimum (:func:`~optimisation.dynamic.refine.solve_refined`); the next catalogue
+size up with F_nwl and stroke re-optimised through the transients, rounded up as the static sizing rounds;
+each design simulated in every case, every manoeuvre with the load at every candidate position
 (:func:`~optimisation.dynamic.verify.verify`).  A design the simulator does not confirm is an error
 (:class:`~ropemodel.errors.SolveError`), never a result.
 """
@@ -23,7 +27,8 @@ from optimisation.dynamic.diagnose import diagnose_dynamic
 from optimisation.dynamic.problem import DynamicSizingProblem
 from optimisation.dynamic.refine import Refinement, solve_refined
 from optimisation.dynamic.start import factored_start, fallback_starts
-from optimisation.dynamic.verify import verify
+from optimisation.dynamic.transient import transient_effects_of
+from optimisation.dynamic.verify import by_manoeuvre, verify
 from optimisation.infeasibility import diagnose
 from optimisation.problem import VARIABLES, SizingProblem, load_sizing
 from ropemodel.errors import SolveError
@@ -35,20 +40,29 @@ from ropemodel.scene import Scene, SceneLike
 @dataclass
 class DynamicDesign(Design):
     """:class:`~optimisation.design.Design` with the manoeuvres: ``manoeuvres`` (per manoeuvre at the
-    catalogue design: where the load is, peaks and least margins from the simulator), ``static`` (the
-    static optimum, SI), ``refinement`` (what the grid refinement did), ``seconds`` (static and dynamic
-    solve times, s, this run)."""
+    catalogue design, over every place of the load: where it is governed, the worst peaks, each check's least
+    margin with its instant and place, every case; :func:`~optimisation.dynamic.verify.by_manoeuvre`),
+    ``nlp_cases`` (the manoeuvres and places the NLP integrated), ``static`` (the static optimum, SI),
+    ``refinement`` (what the grid refinement did), ``seconds`` (static and dynamic solve times, s, this
+    run); ``defaults`` (parameter → why its default) and ``transient`` (effect → (variant, chosen by the
+    scene)) of the transient it sized through."""
 
     manoeuvres: list = field(default_factory=list)
     manoeuvres_continuous: list = field(default_factory=list)
+    nlp_cases: list = field(default_factory=list)
     static: dict | None = None
     refinement: dict = field(default_factory=dict)
     seconds: dict = field(default_factory=dict)
+    defaults: dict = field(default_factory=dict)
+    transient: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         out = super().to_dict()
         out["sizing"] = "dynamic"
+        out["defaults"] = self.defaults
+        out["transient"] = {e: {"variant": v, "chosen": chosen} for e, (v, chosen) in self.transient.items()}
         out["manoeuvres"] = self.manoeuvres
+        out["nlp_cases"] = self.nlp_cases
         if out.get("continuous") is not None:
             out["continuous"]["manoeuvres"] = self.manoeuvres_continuous
         out["active_instants"] = [a for a in self.active if " @ " in a and ", t = " in a]
@@ -59,25 +73,21 @@ class DynamicDesign(Design):
 
 
 def _checked(problem, xs, what: str) -> list:
-    """The verdicts of the simulator at ``xs``; a failure is an error."""
+    """The verdicts of the simulator at ``xs`` in every case; a failure is an error."""
     verdicts = verify(problem, xs)
-    bad = [f"{v.manoeuvre}: " + "; ".join(v.failures) for v in verdicts if not v.ok]
+    bad = [f"{v.manoeuvre} at {v.where}: " + "; ".join(v.failures) for v in verdicts if not v.ok]
     if bad:
         raise SolveError(f"the {what} design fails in the hybrid simulator (" + " | ".join(bad) + "); the NLP's "
-                         "checks did not hold between its grid points; report it")
+                         "checks did not hold between its grid points or in a case it left out; report it")
     return verdicts
 
 
-def _summaries(verdicts) -> list[dict]:
-    return [v.to_dict() for v in verdicts]
-
-
-def _margins(problem, xs, verdicts) -> dict:
+def _margins(problem, xs, manoeuvres) -> dict:
     """The static checks' margins (the static model) and each check's least margin through each manoeuvre
-    (the simulator's history), in their own units."""
+    over every place of the load (the simulator's histories), in their own units."""
     out = {k: v for k, v in problem.margins(xs).items() if k in problem.static_constraints}
-    for v in verdicts:
-        out.update({f"{name} @ {v.manoeuvre}": m for name, (m, _) in v.least.items()})
+    for m in manoeuvres:
+        out.update({f"{name} @ {m['manoeuvre']}": least["margin"] for name, least in m["least_margins"].items()})
     return out
 
 
@@ -103,8 +113,10 @@ def continuous_optimum(problem, static_xs, record: Refinement | None = None, say
     least-violation problem (:func:`diagnose_dynamic`) decides: no design, or a design IPOPT missed, from
     which the NLP is solved again (measured: the 600 m route at 25 deg with a 3 s ramp, where both starts
     ended infeasible and the least-violation problem found a design)."""
-    problem, sol = solve_refined(problem, factored_start(problem, static_xs), record=record,
-                                 others=fallback_starts(problem, static_xs))
+    start = factored_start(problem, static_xs)
+    problem = problem.screened(start)
+    problem, sol = solve_refined(problem, start, record=record, others=fallback_starts(problem, static_xs),
+                                 screen=False)
     if sol.feasible:
         return problem, sol, None
     diagnosis, x_least = diagnose_dynamic(problem, sol.xs, say)
@@ -122,14 +134,16 @@ def size_dynamic(scene: SceneLike, with_sensitivities: bool = False,
     """Size the winch of ``scene`` through its start-up and braking in both directions
     (``ropemodel size --dynamic``): the lightest catalogue rope, then the least pretension, then the least
     stroke such that every design check of Krauze et al. (2025) holds at every instant of four simulated
-    manoeuvres (start and stop, up and down), each returned design verified by the hybrid simulator.
+    manoeuvres (start and stop, up and down) with the load anywhere on the route (the ends and the middle of
+    every segment), each returned design verified by the hybrid simulator.
 
     Parameters
     ----------
     scene : Scene or str or Path
-        A winch sizing scene (catalogue rope) with a transient: ``dynamics = "start"`` or ``"stop"`` with
-        its ramp ``t_ramp`` [s], duration ``t_end`` [s], rope model, tensioner and drum friction; the four
-        manoeuvres are made from it. A TOML file or built-in name is read by
+        A winch sizing scene (catalogue rope) on a straight route or a route of segments, with the drive's
+        ramp time ``t_ramp`` [s]; the transient (rope model, tensioner, drum friction from the lining, how
+        long each manoeuvre is followed) is made from it where it does not say
+        (:func:`~optimisation.dynamic.transient.transient_scene`).  A TOML file or built-in name is read by
         :func:`optimisation.problem.load_sizing`.
     with_sensitivities : bool
         Also compute ∂x*/∂p of the continuous optimum (:mod:`optimisation.dynamic.sensitivity`).
@@ -141,26 +155,29 @@ def size_dynamic(scene: SceneLike, with_sensitivities: bool = False,
     DynamicDesign
         As :func:`optimisation.design.size`'s :class:`~optimisation.design.Design` (``design``,
         ``continuous``: d [m], F_nwl [N], stroke [m]; ``active``; ``margins``), plus ``static`` (the static
-        optimum, SI), ``manoeuvres`` (per manoeuvre: where the load is, peaks F_C_max [N], F_S_min [N],
-        take_up_max [m], dynamic factor [-], each check's least margin and its instant [s]) and
-        ``seconds``. When no design exists: ``feasible`` is False, ``message`` and ``diagnosis`` name the
-        conflicting checks with their manoeuvre and instant, and what alone would make a design exist.
+        optimum, SI), ``manoeuvres`` (per manoeuvre over every place of the load: where it is governed, the
+        worst peaks F_C_max [N], F_S_min [N], take_up_max [m], dynamic factor [-], each check's least margin
+        with its instant [s] and place, every place's own verdict), ``nlp_cases``, ``defaults``,
+        ``transient`` and ``seconds``. When no design exists: ``feasible`` is False, ``message`` and
+        ``diagnosis`` name the conflicting checks with their manoeuvre, place and instant, and what alone
+        would make a design exist.
 
     Raises
     ------
     InputError
-        The scene cannot be sized dynamically (no transient, a rope without a catalogue, bad values).
+        The scene cannot be sized dynamically (no ramp time, a rope without a catalogue, bad values): every
+        missing item named at once.
     SolveError
         A design the hybrid simulator does not confirm (never returned as a result).
 
     Examples
     --------
-    A minute or more of work (four manoeuvres integrated inside IPOPT), so not run as a doctest; the
-    test scene of ``tests/_dynamic_scene.py``::
+    Minutes of work (the manoeuvres integrated inside IPOPT), so not run as a doctest; the test scene of
+    ``tests/_dynamic_scene.py``::
 
         design = size_dynamic("my_winch.toml")
         design.design["d"], design.continuous["d"], design.static["d"]    # m: catalogue, dynamic, static
-        [m["peaks"]["F_C_max"] for m in design.manoeuvres]                 # N, each manoeuvre simulated
+        [(m["peaks"]["F_C_max"], m["where"]) for m in design.manoeuvres]  # N, and where the load governs
     """
     scene = load_sizing(scene, emit=False)
     with held_solver_output():
@@ -169,7 +186,8 @@ def size_dynamic(scene: SceneLike, with_sensitivities: bool = False,
 
 def _size(scene: Scene, with_sensitivities: bool, say: Callable[[str], None]) -> DynamicDesign:
     problem = DynamicSizingProblem(scene)
-    design = DynamicDesign(problem.scene, False, units=dict(problem.units))
+    design = DynamicDesign(problem.scene, False, units=dict(problem.units), defaults=dict(problem.scene.defaults),
+                           transient=transient_effects_of(problem.scene))
     say("static optimum")
     static, ssol, t_static = _static(problem.scene)
     if not ssol.feasible:
@@ -188,11 +206,10 @@ def _size(scene: Scene, with_sensitivities: bool, say: Callable[[str], None]) ->
         return design
     design.seconds = {"static": t_static, "dynamic": time.perf_counter() - t0}
     say("verifying the continuous optimum by simulation")
-    verdicts = _checked(problem, sol.xs, "continuous")
+    design.manoeuvres_continuous = by_manoeuvre(_checked(problem, sol.xs, "continuous"))
     design.continuous = problem.to_si(sol.xs)
     design.active_continuous = _active(sol, problem, False)
-    design.margins_continuous = _margins(problem, sol.xs, verdicts)
-    design.manoeuvres_continuous = _summaries(verdicts)
+    design.margins_continuous = _margins(problem, sol.xs, design.manoeuvres_continuous)
     design.lexicographic_ok = sol.lexicographic_ok
     if with_sensitivities:
         from optimisation.dynamic.sensitivity import sensitivities
@@ -215,12 +232,12 @@ def _catalogue(problem, sol, design: DynamicDesign, say) -> DynamicDesign:
             continue
         xs = rounded_up(prob, dsol.xs)
         say(f"verifying d = {dk * 1e3:g} mm by simulation")
-        verdicts = _checked(prob, xs, "catalogue")
+        design.manoeuvres = by_manoeuvre(_checked(prob, xs, "catalogue"))
+        design.nlp_cases = [prob.cases[i].to_dict() | {"manoeuvre": prob.cases[i].label} for i in prob.selected]
         design.feasible = True
         design.design = prob.to_si(xs)
         design.active = _active(dsol, prob, True)
-        design.margins = _margins(prob, xs, verdicts)
-        design.manoeuvres = _summaries(verdicts)
+        design.margins = _margins(prob, xs, design.manoeuvres)
         values = prob.evaluate(xs)
         design.power = {k: values[k] for k in ("N_p_up", "N_p_down") if k in values}
         if prob.least_drum:
@@ -229,4 +246,20 @@ def _catalogue(problem, sol, design: DynamicDesign, say) -> DynamicDesign:
         return design
     design.message = (f"no catalogue diameter from {d_star * 1e3:.4g} mm up keeps every check through the "
                       f"manoeuvres (the largest is {ropes.diameters()[-1] * 1e3:g} mm)")
+    why_no_size(problem, d_star, design)
     return design
+
+
+def why_no_size(problem, d_star: float, design: DynamicDesign) -> None:
+    """Add to ``design.message`` what fails when the next catalogue size up fails the static checks alone
+    (measured: winch_sizing_voigt with a 4 s ramp, continuous d = 52.96 mm under the drum's limit
+    D / D_ratio_min = 53.33 mm, so 54 mm and up fail D / d >= 30 whatever the pretension and stroke)."""
+    above = [d for d in ropes.diameters() if d >= d_star - 1e-9]
+    if not above:
+        return
+    static = SizingProblem(problem.scene)
+    diag = diagnose(static, fix_d=above[0])
+    if not diag.feasible:
+        design.diagnosis = diag
+        design.message += (f"; the next size up, {above[0] * 1e3:g} mm, already fails the static checks: "
+                           + diag.text(static.units))

@@ -1,13 +1,12 @@
-"""The four manoeuvres of dynamic sizing and the checks made through each of them.
+"""The four manoeuvres of dynamic sizing, where the load is in each, and the checks made through them.
 
 A winch starts and stops in both directions: upward start, upward stop, downward start, downward
 stop.  Each manoeuvre is the scene's transient (its ramp, rope model, tensioner, drum friction) with
-``dynamics`` = ``"start"`` or ``"stop"`` and ``travel`` = ``"up"`` or ``"down"``, and the load where
-it happens: at the scene's ``x_m`` when the scene gives one, otherwise where the manoeuvre naturally
-happens on a trip — an upward trip starts with the load at the return sheave (x_m = L_u) and stops
-with it at the drive (x_m = 0), a downward trip the other way round (:data:`NATURAL`).
+``dynamics`` = ``"start"`` or ``"stop"`` and ``travel`` = ``"up"`` or ``"down"``, and it can happen
+with the load anywhere on the route: a *case* (:class:`Manoeuvre`) is one manoeuvre with the load at
+one candidate position (:mod:`.positions`: each segment's ends and middle, or the scene's ``x_m``).
 
-The checks through a manoeuvre (:data:`CHECKS`, each ≥ 0 at every instant; docs/physics.md §7):
+The checks through a manoeuvre (:data:`CHECKS`, each ≥ 0 at every instant; docs/physics.md §2, §6):
 
 * rope safety: the rope force at the drum's tangent points against the static check's rope safety,
   F_min − n_rope·F_C(t) ≥ 0 and the same for F_S(t) (the margin shown as F_min/(n_rope F) − 1);
@@ -22,33 +21,28 @@ The checks through a manoeuvre (:data:`CHECKS`, each ≥ 0 at every instant; doc
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import NamedTuple
 from collections.abc import Callable
 
-from ropemodel.errors import InputError
+from optimisation.dynamic.positions import Position, candidates
 
-#: (dynamics, travel) → (where the load is when the scene gives no x_m, as a fraction of L_u; why)
-NATURAL = {
-    ("start", "up"): (1.0, "the start of an upward trip: the load at the return sheave, x_m = L_u"),
-    ("stop", "up"): (0.0, "the end of an upward trip: the load at the drive, x_m = 0"),
-    ("start", "down"): (0.0, "the start of a downward trip: the load at the drive, x_m = 0"),
-    ("stop", "down"): (1.0, "the end of a downward trip: the load at the return sheave, x_m = L_u"),
-}
 ORDER = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
 WORDS = {"up": "upward", "down": "downward"}
 
 
 @dataclass(frozen=True)
 class Manoeuvre:
-    """One manoeuvre: ``dynamics`` ("start"/"stop"), ``travel`` ("up"/"down"), the load's place x_m [m]
-    and why it is there (``source``: "given" or the natural place's reason)."""
+    """One case: ``dynamics`` ("start"/"stop"), ``travel`` ("up"/"down") and where the load is
+    (``position``)."""
 
     dynamics: str
     travel: str
-    x_m: float
-    source: str
+    position: Position
+
+    @property
+    def x_m(self) -> float:
+        return self.position.x_m
 
     @property
     def label(self) -> str:
@@ -57,32 +51,31 @@ class Manoeuvre:
 
     @property
     def where(self) -> str:
-        """Where the load is, and why (for the output)."""
-        return f"x_m = {self.x_m:.6g} m ({self.source})"
+        """Where the load is, and which place that is (for the output)."""
+        return self.position.where
+
+    @property
+    def tag(self) -> str:
+        """The manoeuvre and the load's place, as the NLP's constraints name it: ``"upward start, x_m = 950 m"``."""
+        return f"{self.label}, x_m = {self.position.shown} m"
 
     def to_dict(self) -> dict:
-        return {"dynamics": self.dynamics, "travel": self.travel, "x_m": self.x_m, "x_m_source": self.source}
+        return {"dynamics": self.dynamics, "travel": self.travel, "x_m": self.x_m, "where": self.position.text}
 
 
-def manoeuvres(scene) -> list[Manoeuvre]:
-    """The four manoeuvres of ``scene``, in :data:`ORDER`."""
-    v = scene.parameters
-    if "L_u" not in v:
-        raise InputError("dynamic sizing needs the route length L_u (a straight route)")
-    x_m = v.get("x_m", math.inf)
-    given = math.isfinite(x_m)
-    out = []
-    for dynamics, travel in ORDER:
-        fraction, why = NATURAL[(dynamics, travel)]
-        out.append(Manoeuvre(dynamics, travel, float(x_m) if given else fraction * float(v["L_u"]),
-                             "given" if given else why))
-    return out
+def cases(scene) -> list[Manoeuvre]:
+    """Every case of ``scene``: the four manoeuvres in :data:`ORDER`, each with the load at every candidate
+    position (:func:`~optimisation.dynamic.positions.candidates`)."""
+    places = candidates(scene)
+    return [Manoeuvre(dynamics, travel, at) for dynamics, travel in ORDER for at in places]
 
 
 def manoeuvre_scene(scene, manoeuvre: Manoeuvre, design: dict, optional=()):
-    """The scene of one manoeuvre at the SI ``design`` (d, F_nwl, stroke: numbers for the transient's
+    """The scene of one case at the SI ``design`` (d, F_nwl, stroke: numbers for the transient's
     structure and scales; the NLP makes them symbols)."""
-    sc = scene.with_effects({"dynamics": manoeuvre.dynamics, "travel": manoeuvre.travel}, optional=optional)
+    # t_end: when dynamic sizing chose it, it is an override of the file, set again by with_effects
+    sc = scene.with_effects({"dynamics": manoeuvre.dynamics, "travel": manoeuvre.travel},
+                            optional=(*optional, "t_end"))
     values = {"x_m": manoeuvre.x_m, **design}
     if "D" in sc.absent:        # a rigid drum without a diameter: the traction does not depend on it
         values["D"] = 40.0 * design["d"]

@@ -3,10 +3,12 @@
 Same decision variables (d, F_nwl, stroke, scaled as in :class:`optimisation.problem.SizingProblem`),
 same lexicographic objective (least rope mass, then pretension, then stroke), same parameters p and
 every static check; added: the checks of :data:`~optimisation.dynamic.manoeuvres.CHECKS` at every
-point of each manoeuvre's time grid, each manoeuvre's transient integrated inside the NLP
-(:mod:`optimisation.dynamic.shooting`).  A constraint is named
-``"<check> @ <manoeuvre>, t = <time> s"``.  The class is a :class:`SizingProblem` (the same
-attributes: ``g``, ``constraints``, ``units``, ``g_scale``, ``margins()``), so the static package's
+point of each case's time grid, each case's transient integrated inside the NLP
+(:mod:`optimisation.dynamic.shooting`).  The cases integrated are those that govern a check
+(:mod:`optimisation.dynamic.screen`), out of every manoeuvre with the load at every candidate
+position.  A constraint is named ``"<check> @ <manoeuvre>, x_m = <place> m, t = <time> s"``.  The
+class is a :class:`SizingProblem` (the same attributes: ``g``, ``constraints``, ``units``,
+``g_scale``, ``margins()``), so the static package's
 IPOPT solve with its active-set polish, catalogue rounding, infeasibility diagnosis and
 sensitivities apply to it unchanged.
 """
@@ -18,11 +20,12 @@ from functools import cached_property
 import casadi as ca
 import numpy as np
 
-from optimisation.dynamic.manoeuvres import manoeuvre_scene, manoeuvres
+from optimisation.dynamic.manoeuvres import cases, manoeuvre_scene
+from optimisation.dynamic.screen import governing
 from optimisation.dynamic.shooting import Path
+from optimisation.dynamic.transient import transient_scene
 from optimisation.problem import D_OPTIONAL, SIZED, VARIABLES, SizingProblem
-from ropemodel.dynamics.assemble import chosen, transient_parts
-from ropemodel.errors import InputError
+from ropemodel.dynamics.assemble import chosen, structural
 
 #: largest step [s] of the first time grid (refinement adds the exact local minima of the checks)
 DT_GRID = 0.1
@@ -35,7 +38,7 @@ BACKOFF = 1e-4
 #: optimum; IPOPT's default 0.1 first pushes the stroke (objective weight 1e-3) ~1e4 m up and takes ~20
 #: iterations to come back (measured on the Fig. 9 scene: 39 iterations against 15)
 MU_INIT = 1e-5
-#: IPOPT's iteration limit on the dynamic NLP (each iteration integrates four manoeuvres with sensitivities,
+#: IPOPT's iteration limit on the dynamic NLP (each iteration integrates its cases with sensitivities,
 #: ~0.4 s on the test scene): measured 13-18 iterations to an optimum, 183 to "Infeasible_Problem_Detected"
 #: (the test scene with a 2 s ramp); a start that reaches the limit hands over to the next start and then to
 #: the least-violation problem (:mod:`optimisation.dynamic.diagnose`)
@@ -44,39 +47,36 @@ MAX_ITER = 250
 FIXED = ("t_end",)
 
 
-def _transient(scene):
-    if scene.effects.get("dynamics") not in ("start", "stop"):
-        raise InputError("dynamic sizing needs a scene with a transient: set [effects] dynamics = \"start\" (or "
-                         "\"stop\"; sizing makes all four manoeuvres, start and stop in both directions) with its "
-                         "t_ramp, t_end and the rope model, tensioner and drum friction")
-
-
 class DynamicSizingProblem(SizingProblem):
-    """The dynamic sizing NLP of ``scene`` (a winch sizing scene with a transient).
+    """The dynamic sizing NLP of ``scene`` (a winch sizing scene; its transient is made by
+    :func:`~optimisation.dynamic.transient.transient_scene`).
 
-    grids: one time grid per manoeuvre (see :class:`~optimisation.dynamic.shooting.Path`); default a
-    uniform grid of step :data:`DT_GRID`.  paths: the manoeuvres' :class:`Path` objects of a previous
-    problem of the same scene (a refined grid re-uses them).
+    ``cases``: every manoeuvre with the load at every candidate position; ``all_paths``: their smooth
+    modes (:class:`~optimisation.dynamic.shooting.Path`); ``selected``: the indices of the cases the NLP
+    integrates (default: those governing a check at the start design, :func:`~optimisation.dynamic.screen.governing`),
+    ``paths`` theirs and ``grids`` their time grids (default a uniform grid of step :data:`DT_GRID`).
+    ``paths`` given: the smooth modes of a previous problem of the same scene, re-used.
     """
 
-    def __init__(self, scene, grids=None, paths=None):
-        _transient(scene)
-        super().__init__(scene)
+    def __init__(self, scene, grids=None, paths=None, selected=None):
+        super().__init__(transient_scene(scene))
         self.static_constraints = list(self.constraints)
         self.g_static = self.g
-        self.manoeuvres = manoeuvres(self.scene)
+        self.cases = cases(self.scene)
         if paths is None:
             start = self.to_si(self.x0())
-            paths = [self._path(m, start) for m in self.manoeuvres]
-        self.paths = paths
-        self.grids = grids or [path.uniform_grid(self.pp0(path), DT_GRID) for path in paths]
+            paths = [self._path(m, start) for m in self.cases]
+        self.all_paths = paths
+        self.selected = tuple(governing(self, self.x0()) if selected is None else selected)
+        self.paths = [paths[i] for i in self.selected]
+        self.grids = grids or [path.uniform_grid(self.pp0(path), DT_GRID) for path in self.paths]
         self._add_paths()
 
     def _path(self, manoeuvre, design, scene=None) -> Path:
         optional = SIZED + D_OPTIONAL
         sc = manoeuvre_scene(scene or self.scene, manoeuvre, design, optional)
-        structural = {n for q in transient_parts(sc, chosen(sc)) for n in q.structural}
-        shared = [k for k in self.params if k in sc.parameters and k not in structural and k not in FIXED]
+        fixed = structural(chosen(sc))
+        shared = [k for k in self.params if k in sc.parameters and k not in fixed and k not in FIXED]
         return Path(manoeuvre, sc, VARIABLES + tuple(shared))
 
     def pp_of(self, path, x_si, p):
@@ -89,6 +89,20 @@ class DynamicSizingProblem(SizingProblem):
         xs = self.x0() if xs is None else np.asarray(xs, float)
         p = self.p0 if p is None else np.asarray(p, float)
         return np.asarray(ca.evalf(self.pp_of(path, ca.DM(xs * self.x_scale), ca.DM(p)))).ravel()
+
+    @cached_property
+    def _static_at(self) -> ca.Function:
+        x_m = ca.MX.sym("x_m")
+        args = {k: self.p[i] for i, k in enumerate(self.params)}
+        args.update({k: self.xs[i] * self.x_scale[i] for i, k in enumerate(VARIABLES)})
+        args.update({k: 0.0 for k in self.problem.given})
+        out = self.problem.function.call({**args, "x_m": x_m})
+        names = [f"{f}_{w}" for f in ("F_C", "F_S") for w in ("up", "down")]
+        return ca.Function("static_at", [self.xs, self.p, x_m], [out[n] for n in names], ["x", "p", "x_m"], names)
+
+    def static_at(self, xs, p, x_m: float) -> dict[str, float]:
+        """The static forces F_C and F_S of both directions [N] at scaled ``xs`` with the load at ``x_m`` [m]."""
+        return {k: float(v) for k, v in self._static_at(x=xs, p=p, x_m=x_m).items()}
 
     def values(self, x_si, p) -> dict:
         """What the checks read besides the transient: F_min (the catalogue rope's), n_rope, F_S_min, stroke."""
@@ -111,7 +125,7 @@ class DynamicSizingProblem(SizingProblem):
                 for t in times:
                     for e in range(rows):
                         tag = f"[{e}]" if check.needs == "T" else ""
-                        names.append(f"{check.name}{tag} @ {path.manoeuvre.label}, t = {t:.6g} s")
+                        names.append(f"{check.name}{tag} @ {path.manoeuvre.tag}, t = {t:.6g} s")
                 scale += [unit_scale[check.unit]] * (rows * len(times))
                 self.units.update({n: check.unit for n in names[len(names) - rows * len(times):]})
         self.dynamic_constraints = names
@@ -149,15 +163,30 @@ class DynamicSizingProblem(SizingProblem):
         p = self.p0 if p is None else np.asarray(p, float)
         changed = {k: float(p[i]) for i, k in enumerate(self.params) if p[i] != self.p0[i]}
         scene = self.scene.with_values(changed) if changed else self.scene
-        paths = [self._path(m, self.to_si(xs), scene) for m in self.manoeuvres]
-        for old, new in zip(self.paths, paths):
+        paths = list(self.all_paths)        # the cases it integrates built again; the others screened as they are
+        for i in self.selected:
+            paths[i] = self._path(self.cases[i], self.to_si(xs), scene)
+        for i in self.selected:
+            old, new = self.all_paths[i], paths[i]
             if not _same_transient(self.pp0(old, xs, p), old, self.pp0(new, xs, p), new, self.F_ref):
-                return DynamicSizingProblem(self.scene, None, paths)
+                return DynamicSizingProblem(self.scene, None, paths, self.selected)
         return None
 
     def refined(self, grids) -> DynamicSizingProblem:
-        """The same problem on other grids (the manoeuvres' smooth modes re-used)."""
-        return DynamicSizingProblem(self.scene, grids, self.paths)
+        """The same problem on other grids (the cases' smooth modes re-used)."""
+        return DynamicSizingProblem(self.scene, grids, self.all_paths, self.selected)
+
+    def with_cases(self, selected) -> DynamicSizingProblem:
+        """The same problem integrating the cases ``selected`` (indices); a case it already integrates keeps its
+        grid."""
+        selected = sorted(set(selected))
+        kept = dict(zip(self.selected, self.grids))
+        grids = [kept.get(i) or self.all_paths[i].uniform_grid(self.pp0(self.all_paths[i]), DT_GRID) for i in selected]
+        return DynamicSizingProblem(self.scene, grids, self.all_paths, selected)
+
+    def screened(self, xs, p=None) -> DynamicSizingProblem:
+        """The same problem integrating the cases that govern a check at scaled design ``xs``."""
+        return self.with_cases(governing(self, xs, p))
 
 
 #: step [s] on which two builds of a manoeuvre's smooth mode are compared (:meth:`DynamicSizingProblem.relinearised`)

@@ -6,9 +6,11 @@ and stop, the scene's ramp parameter) is the decision variable of an optimal-con
     min t_ramp   s.t.  every check of :data:`~optimisation.dynamic.manoeuvres.CHECKS` ≥ 0 at every instant of
                        the four manoeuvres, t_ramp ≤ t_end,
 
-the same constraints as dynamic sizing (:class:`~optimisation.dynamic.problem.DynamicSizingProblem`; the
-phases of each manoeuvre in scaled time, so the ramp's end moves with t_ramp and the constraints' derivatives
-with respect to it are exact, through the integrator).  A shorter ramp is harsher almost everywhere, but not
+the same constraints as dynamic sizing (:class:`~optimisation.dynamic.problem.DynamicSizingProblem`: every
+manoeuvre with the load at every candidate position; the cases that govern a check at the scan's last
+failing ramp are integrated, the others screened at the answer; the phases of each manoeuvre in scaled
+time, so the ramp's end moves with t_ramp and the constraints' derivatives with respect to it are exact,
+through the integrator).  A shorter ramp is harsher almost everywhere, but not
 monotonically (the rope's own oscillation can meet a ramp's end in or out of phase), so the NLP is started
 from a scan: t_ramp on a geometric grid of :data:`SCAN` values from :data:`T_LOW` to t_end, each judged by
 its least margin on a dense grid; the NLP looks in the bracket between the last failing and the first safe
@@ -25,8 +27,8 @@ import numpy as np
 
 from optimisation.dynamic.problem import BACKOFF, DynamicSizingProblem
 from optimisation.dynamic.refine import add_points, minima
-from optimisation.dynamic.start import DT_DENSE
-from optimisation.dynamic.verify import verify
+from optimisation.dynamic.screen import all_margins, uncovered
+from optimisation.dynamic.verify import by_manoeuvre, verify
 from optimisation.problem import VARIABLES, load_sizing
 from ropemodel.errors import InputError, SolveError
 from ropemodel.numerics.held import held_solver_output
@@ -45,8 +47,8 @@ MAX_ROUNDS = 6
 
 @dataclass
 class RampAnswer:
-    """The shortest ramp [s] and what limits it (the active check, its manoeuvre and instant), the scan
-    (t_ramp [s] → least scaled margin) and the simulator's verdicts at the answer."""
+    """The shortest ramp [s] and what limits it (the active check, its manoeuvre, place and instant), the scan
+    (t_ramp [s] → least scaled margin) and the simulator's verdicts at the answer (every case)."""
 
     t_ramp: float
     active: list = field(default_factory=list)
@@ -57,7 +59,7 @@ class RampAnswer:
     def to_dict(self) -> dict:
         return {"find": RAMP, RAMP: self.t_ramp, "design": self.design, "active": self.active,
                 "scan": [{RAMP: t, "least_margin_scaled": m} for t, m in self.scan],
-                "manoeuvres": [v.to_dict() for v in self.verdicts]}
+                "manoeuvres": by_manoeuvre(self.verdicts)}
 
 
 def _design(scene) -> np.ndarray:
@@ -68,20 +70,16 @@ def _design(scene) -> np.ndarray:
 
 
 def least_margin(problem, xs, p) -> tuple[float, str]:
-    """The least scaled margin of every check (static, and through the manoeuvres on a grid of step
-    :data:`~optimisation.dynamic.start.DT_DENSE`) at scaled ``xs``, and the check's name."""
+    """The least scaled margin of every check (static, and through every case — each manoeuvre, the load at
+    each candidate position — on a grid of step :data:`~optimisation.dynamic.start.DT_DENSE`) at scaled ``xs``,
+    and the check's name."""
     n = problem.g_static.numel()
     g = np.asarray(problem.g_function(xs, p)).ravel()[:n] + 0.0
     i = int(np.argmin(g))
     least = (float(g[i]), problem.constraints[i])
-    a = {k: float(v) for k, v in problem.values(np.asarray(xs) * problem.x_scale, p).items()}
-    for path in problem.paths:
-        pp = problem.pp0(path, xs, p)
-        _, o, _ = path.samples(pp, path.uniform_grid(pp, DT_DENSE))
-        for check in path.checks:
-            scale = problem.F_ref if check.unit == "N" else 1.0
-            value = float(np.min(np.asarray(check.nlp(o, a), float))) / scale
-            least = min(least, (value, f"{check.name} @ {path.manoeuvre.label}"))
+    for k, margins in all_margins(problem, xs, p).items():
+        for name, value in margins.items():
+            least = min(least, (value, f"{name} @ {problem.cases[k].tag}"))
     return least
 
 
@@ -153,19 +151,24 @@ def _shortest(scene: Scene) -> RampAnswer:
 
 def _solve(problem, xs, lo: float, hi: float):
     """min t_ramp in [lo, hi] with the design fixed, on grids refined until every exact local minimum of every
-    check keeps half the back-off.  Returns (t_ramp [s], the active constraints, the final problem)."""
+    check keeps half the back-off, with every case that comes within the back-off at the answer.  Returns
+    (t_ramp [s], the active constraints, the final problem)."""
     t = hi
+    problem = problem.screened(xs, problem.p_of({RAMP: lo}))
     for _ in range(MAX_ROUNDS):
         t = _nlp(problem, xs, lo, hi, t)
         p = problem.p_of({RAMP: t})
         found = minima(problem, xs, p)
         low = [m for m in found if m.value < 0.5 * BACKOFF]
-        if not low:
-            active = [f"{m.check} @ {problem.paths[m.path].manoeuvre.label}, t = {m.t:.6g} s"
+        more = [] if low else uncovered(problem, xs, p, BACKOFF)
+        if not low and not more:
+            active = [f"{m.check} @ {problem.paths[m.path].manoeuvre.tag}, t = {m.t:.6g} s"
                       for m in sorted(found, key=lambda m: m.value) if m.value < 2 * BACKOFF]
             return t, active, problem
-        problem = problem.refined(add_points(problem, problem.grids, low, p))
-    raise SolveError(f"the time grid of the shortest-ramp problem did not converge in {MAX_ROUNDS} refinements")
+        problem = problem.refined(add_points(problem, problem.grids, low, p)) if low else \
+            problem.with_cases([*problem.selected, *more])
+    raise SolveError(f"the time grid and the cases of the shortest-ramp problem did not converge in {MAX_ROUNDS} "
+                     f"refinements")
 
 
 def _nlp(problem, xs, lo: float, hi: float, start: float):

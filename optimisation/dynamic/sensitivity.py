@@ -29,7 +29,7 @@ from optimisation.problem import VARIABLES
 
 def symbolic_params(problem) -> list[str]:
     """The parameters every manoeuvre's transient has as symbols (those with a sensitivity)."""
-    shared = set.intersection(*[set(path.names) for path in problem.paths])
+    shared = set.intersection(*[set(path.names) for path in problem.all_paths])
     return [k for k in problem.params if k in shared]
 
 
@@ -42,8 +42,8 @@ def sensitivities(problem, sol: Solution, p=None) -> dict[str, dict[str, float]]
     if len(idx) + len(fixed) != len(VARIABLES):
         from optimisation.sensitivity import sensitivities as kkt
 
-        full = kkt(problem, sol, p)
-        return {k: full[k] for k in names}
+        full = kkt(problem, sol, p)      # {} where the optimum is not regular: no number made up
+        return {k: full[k] for k in names if k in full}
     cols = [problem.params.index(k) for k in names]
     g = problem.g_function(problem.xs, problem.p)
     active = ca.vertcat(*[g[i] for i in idx])

@@ -62,7 +62,9 @@ class Path:
         self.sm = smooth_mode(scene, self.names)
         outs = self.sm.out.name_out()
         self.n_elements = self.sm.out.size1_out("T")
-        self.checks = [c for c in CHECKS if c.needs in outs and (c.needs != "T" or self.n_elements)]
+        # an inextensible rope has no element and no take-up (its carriage does not move): no tension or take-up
+        # check to make through a manoeuvre (the static stroke check, eq. (23), stays)
+        self.checks = [c for c in CHECKS if c.needs in outs and (c.needs not in ("T", "take_up") or self.n_elements)]
         self._dae = []
         tau, pp, x = ca.SX.sym("tau"), ca.SX.sym("pp", len(self.names)), ca.SX.sym("x", self.sm.layout.nx)
         ends = ca.SX.sym("ends", 2)

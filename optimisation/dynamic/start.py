@@ -23,20 +23,24 @@ ROUNDS = 3
 
 
 def transient_factors(problem, xs, p=None, dt: float = DT_DENSE) -> list[dict]:
-    """Per manoeuvre at scaled design ``xs``: the peaks of its transient in the smooth mode (SI) and its
-    factors against the static forces of its direction of travel (the NLP's integrator on a ``dt`` grid)."""
+    """Per case (every manoeuvre, every place of the load) at scaled design ``xs``: the peaks of its transient
+    in the smooth mode (SI) and its factors against the static forces its direction of travel is sized for,
+    the largest over the route (the NLP's integrator on a ``dt`` grid): k_C = max_t F_C(t) / max_x F_C and
+    k_R = max_t (F_C/F_S)(t) / max_x (F_C/F_S), x the load's places (on a straight route the static forces do
+    not depend on it)."""
     p = problem.p0 if p is None else np.asarray(p, float)
-    static = problem.evaluate(xs, p)
+    statics = [problem.static_at(xs, p, path.manoeuvre.x_m) for path in problem.all_paths]
+    C = {w: max(s[f"F_C_{w}"] for s in statics) for w in ("up", "down")}
+    R = {w: max(s[f"F_C_{w}"] / s[f"F_S_{w}"] for s in statics) for w in ("up", "down")}
     out = []
-    for path in problem.paths:
+    for path in problem.all_paths:
         pp = problem.pp0(path, xs, p)
         _, o, _ = path.samples(pp, path.uniform_grid(pp, dt))
         F_C, F_S = o["F_C"].ravel(), o["F_S"].ravel()
         w = path.manoeuvre.travel
-        C, S = static[f"F_C_{w}"], static[f"F_S_{w}"]
-        out.append({"manoeuvre": path.manoeuvre.label, "F_C_max": float(F_C.max()), "F_S_min": float(F_S.min()),
-                    "take_up_max": float(o["take_up"].max()), "k_C": float(F_C.max() / C),
-                    "k_R": float(np.max(F_C / F_S) / (C / S))})
+        out.append({"manoeuvre": path.manoeuvre.tag, "F_C_max": float(F_C.max()), "F_S_min": float(F_S.min()),
+                    "take_up_max": float(o["take_up"].max()), "k_C": float(F_C.max() / C[w]),
+                    "k_R": float(np.max(F_C / F_S) / R[w])})
     return out
 
 

@@ -5,10 +5,11 @@ does for the static optimum.
 The dynamic NLP is built once (:class:`~optimisation.dynamic.problem.DynamicSizingProblem`: the points'
 values are its parameters) and its first optimum found as :func:`~optimisation.dynamic.design.size_dynamic`
 finds it; every further point starts from its predecessor's optimum (points are taken in order, so each
-point's predecessor is its neighbour) on the predecessor's refined grid, refined again where the point needs
-it.  Every point's design is simulated through its four manoeuvres by the hybrid simulator; one the
-simulator does not confirm is an error (:class:`~ropemodel.errors.SolveError`), never a row.  Parameters
-that fix the transient's structure (the route's geometry, where the load is, t_end) cannot be varied.
+point's predecessor is its neighbour) on the predecessor's refined grid and cases, refined again and with
+more cases where the point needs them.  Every point's design is simulated in every case by the hybrid
+simulator; one the simulator does not confirm is an error (:class:`~ropemodel.errors.SolveError`), never a
+row.  Parameters that fix the transient's structure (the route's geometry, where the load is, t_end) cannot
+be varied.
 """
 
 from __future__ import annotations
@@ -50,9 +51,12 @@ def dynamic_sizing_sweep(scene, vary=None, *, points=None, progress: bool | None
         for i in range(pts.n):
             values = {k: float(chunk[k][i]) for k in pts.names}
             p = problem.p_of(values)
-            start = prev if prev is not None else _first_start(problem, p)
+            start, screen = prev, True
+            if start is None:
+                start = _first_start(problem, p)
+                problem, screen = (problem.screened(start, p), False) if start is not None else (problem, True)
             if start is not None:
-                problem, sol = solve_refined(problem, start, p=p)
+                problem, sol = solve_refined(problem, start, p=p, screen=screen)
                 iterations[i], seconds[i] = sol.iterations, sol.seconds
                 if sol.feasible:
                     _confirm(problem, sol.xs, values)

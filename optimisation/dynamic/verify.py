@@ -1,4 +1,5 @@
-"""Every design checked through its four manoeuvres by the hybrid simulator (an independent path).
+"""Every design checked by the hybrid simulator in every case: each of the four manoeuvres with the load at
+every candidate position (an independent path).
 
 The NLP integrates the smooth mode only, on its own grid; the hybrid simulator
 (:func:`ropemodel.dynamics.simulate`, what ``ropemodel simulate`` runs) integrates the transient from
@@ -32,18 +33,25 @@ EVENTS = ("slip_fwd", "slip_back", "stroke_end", "stroke_start", "slack", "torqu
 
 @dataclass
 class Verdict:
-    """One manoeuvre simulated at a design: ``ok``; ``failures`` (readable); ``least`` check → (least margin
-    in the check's own unit, time [s]); ``peaks`` (SI): F_C_max, F_S_min, take_up_max, dynamic_factor."""
+    """One case simulated at a design: the ``manoeuvre`` ("upward start"), the load's place ``x_m`` [m] and
+    ``where`` (readable), whether the NLP integrated it (``in_nlp``); ``ok``; ``failures`` (readable); ``least``
+    check → (least margin in the check's own unit, time [s]) and ``scaled`` check → its least margin in the NLP's
+    form and scale (comparable between checks); ``peaks`` (SI): F_C_max, F_S_min, take_up_max, dynamic_factor,
+    t_F_C_max."""
 
     manoeuvre: str
+    x_m: float
     where: str
+    in_nlp: bool
     ok: bool
     failures: list = field(default_factory=list)
     least: dict = field(default_factory=dict)
+    scaled: dict = field(default_factory=dict)
     peaks: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
-        return {"manoeuvre": self.manoeuvre, "where": self.where, "ok": self.ok, "failures": self.failures,
+        return {"manoeuvre": self.manoeuvre, "x_m": self.x_m, "where": self.where, "in_nlp": self.in_nlp,
+                "ok": self.ok, "failures": self.failures,
                 "least_margins": {k: {"margin": v, "t": t} for k, (v, t) in self.least.items()},
                 "peaks": self.peaks}
 
@@ -57,28 +65,35 @@ def simulation_scene(scene, manoeuvre, design: dict, values: dict | None = None)
 
 
 def verify(problem, xs, values: dict | None = None) -> list[Verdict]:
-    """Simulate the four manoeuvres of ``problem`` at scaled design ``xs`` (``values``: SI parameters that
-    replace the scene's) and judge every check (:data:`~optimisation.dynamic.manoeuvres.CHECKS`)."""
+    """Simulate every case of ``problem`` (each manoeuvre, the load at each candidate position) at scaled
+    design ``xs`` (``values``: SI parameters that replace the scene's) and judge every check
+    (:data:`~optimisation.dynamic.manoeuvres.CHECKS`)."""
     design = problem.to_si(xs)
     p = problem.p_of(values or {})
     a = {k: float(v) for k, v in problem.values(np.asarray(xs, float) * problem.x_scale, p).items()}
-    return [verdict(simulate(simulation_scene(problem.scene, m, design, values)), m, a) for m in problem.manoeuvres]
+    return [verdict(simulate(simulation_scene(problem.scene, m, design, values)), m, a, problem.F_ref,
+                    i in problem.selected) for i, m in enumerate(problem.cases)]
 
 
-def verdict(sim, manoeuvre, a: dict) -> Verdict:
-    """The checks of one simulated manoeuvre (``a``: F_min, n_rope, F_S_min, stroke)."""
+def verdict(sim, manoeuvre, a: dict, F_ref: float, in_nlp: bool = True) -> Verdict:
+    """The checks of one simulated case (``a``: F_min, n_rope, F_S_min, stroke; ``F_ref`` [N]: the NLP's
+    scale of a force)."""
     h = sim.history
-    out = Verdict(manoeuvre.label, manoeuvre.where, True)
+    out = Verdict(manoeuvre.label, manoeuvre.x_m, manoeuvre.where, in_nlp, True)
     for ev in sim.events:
         if ev.name in EVENTS:
             out.failures.append(f"{ev.name} at t = {ev.t:.4f} s")
+    smooth = sim.system.smooth_mode()
     for part in sim.system.parts:
-        if part.column and (h[part.column] != part.smooth).any():
-            out.failures.append(f"{part.column} leaves the {part.smooth} mode")
+        if part.column and (h[part.column] != smooth[part.effect]).any():
+            out.failures.append(f"{part.column} leaves the {smooth[part.effect]} mode")
     t = h["t [s]"].to_numpy()
-    for name, series in _margins(sim, a).items():
+    o = _series(sim)
+    for c in (c for c in CHECK.values() if c.needs in o):
+        name, series = c.name, np.asarray(c.margin(o, a), float).ravel()
         i = int(np.argmin(series))
         out.least[name] = (float(series[i]), float(t[i]))
+        out.scaled[name] = float(np.min(np.asarray(c.nlp(o, a), float))) / (F_ref if c.unit == "N" else 1.0)
         if series[i] < 0:
             out.failures.append(f"{name} {series[i]:.6g} at t = {t[i]:.4f} s")
     s = sim.summary
@@ -88,17 +103,18 @@ def verdict(sim, manoeuvre, a: dict) -> Verdict:
     return out
 
 
-def _margins(sim, a: dict) -> dict:
-    """Every check's margin over the history (own units)."""
+def _series(sim) -> dict:
+    """What the checks read, over the history (SI)."""
     h = sim.history
-    o = {"F_C": h["F_C [N]"].to_numpy(), "F_S": h["F_S [N]"].to_numpy(), "take_up": h["take_up [m]"].to_numpy(),
-         "T": h["T_min [N]"].to_numpy()}
+    o = {"F_C": h["F_C [N]"].to_numpy(), "F_S": h["F_S [N]"].to_numpy()}
+    if not sim.setup.chain.rigid:      # an inextensible rope: no element, no take-up (as the NLP's checks)
+        o.update({"take_up": h["take_up [m]"].to_numpy(), "T": h["T_min [N]"].to_numpy()})
     ratio = traction_of(sim.setup)
     if ratio is not None:
         v = h["v_drum [m/s]"].to_numpy()
         o["slip_fwd"] = o["F_S"] - o["F_C"] / _rho(ratio, o["F_S"], v)
         o["slip_back"] = o["F_C"] - o["F_S"] / _rho(ratio, o["F_C"], v)
-    return {c.name: np.asarray(c.margin(o, a), float).ravel() for c in CHECK.values() if c.needs in o}
+    return o
 
 
 def _rho(ratio, force, speed) -> np.ndarray:
@@ -109,3 +125,27 @@ def _rho(ratio, force, speed) -> np.ndarray:
 
 def all_ok(verdicts) -> bool:
     return all(v.ok for v in verdicts)
+
+
+def by_manoeuvre(verdicts) -> list[dict]:
+    """Each manoeuvre over every place of the load: ``ok``, where it is governed (``x_m`` [m], ``where``: the
+    place of the least scaled margin of any check), each check's least margin with its instant and place
+    (``least_margins``), the worst peaks (F_C_max, take_up_max and dynamic_factor the largest, F_S_min the
+    least, each with its ``x_m``), the ``failures`` (with their place) and every case (``positions``)."""
+    out = []
+    for label in dict.fromkeys(v.manoeuvre for v in verdicts):
+        mine = [v for v in verdicts if v.manoeuvre == label]
+        worst = min(mine, key=lambda v: min(v.scaled.values(), default=np.inf))
+        least = {}
+        for name in dict.fromkeys(k for v in mine for k in v.least):
+            v = min((v for v in mine if name in v.least), key=lambda v: v.least[name][0])
+            least[name] = {"margin": v.least[name][0], "t": v.least[name][1], "x_m": v.x_m, "where": v.where}
+        peaks = {}
+        for key, pick in (("F_C_max", max), ("F_S_min", min), ("take_up_max", max), ("dynamic_factor", max)):
+            v = pick(mine, key=lambda v: v.peaks[key])
+            peaks[key], peaks[f"x_m_{key}"] = v.peaks[key], v.x_m
+        out.append({"manoeuvre": label, "ok": all(v.ok for v in mine), "x_m": worst.x_m, "where": worst.where,
+                    "least_margins": least, "peaks": peaks,
+                    "failures": [f"{f} ({v.where})" for v in mine for f in v.failures],
+                    "positions": [v.to_dict() for v in mine]})
+    return out

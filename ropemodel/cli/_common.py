@@ -142,15 +142,25 @@ def worst_case_scene(args):
     return pinned(scene, getattr(args, "at", []))
 
 
-def sizing_scene_from_args(args):
+def sizing_scene_from_args(args, dynamic: bool | None = False):
     """The scene of a sizing command (``size``, ``sweep --sizing``, ``sensitivity --sizing``) as sizing reads it:
     no starting design needed (d, F_nwl, stroke, and D on a rigid drum), design checks on; its warnings on
-    stderr."""
+    stderr.  ``dynamic``: sized through its transients, with the transient dynamic sizing builds (None: when
+    ``--dynamic`` is given or the scene says ``[numerics] sizing = "dynamic"``, as ``size`` decides)."""
     from optimisation.problem import D_OPTIONAL, SIZED, prepare, reads
 
     scene = prepare(scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False))
     warn(scene.warnings)
-    warn_unread(scene, "the sizing", *reads(scene))
+    if dynamic is None:
+        dynamic = bool(getattr(args, "dynamic", False)) or scene.numerics.get("sizing") == "dynamic"
+    if dynamic:
+        from optimisation.dynamic.transient import reads as dynamic_reads
+        from optimisation.dynamic.transient import transient_scene
+
+        scene = transient_scene(scene)
+        warn_unread(scene, "the dynamic sizing", *dynamic_reads(scene))
+    else:
+        warn_unread(scene, "the sizing", *reads(scene))
     return scene
 
 

@@ -23,12 +23,32 @@ def _row(name, values, q) -> str:
 
 def _manoeuvre_lines(manoeuvres, q) -> list[str]:
     kN = 1e-3
-    lines = ["", f"{'manoeuvre':<16}{'F_C max':>10}{'F_S min':>10}{'take-up max':>13}{'factor':>8}  where the load is",
+    places = len(manoeuvres[0]["positions"]) if manoeuvres else 0
+    lines = ["", f"each manoeuvre with the load at {places} place{'s' if places != 1 else ''} "
+                 f"(the worst peaks of them; governed where its least margin is)",
+             f"{'manoeuvre':<16}{'F_C max':>10}{'F_S min':>10}{'take-up max':>13}{'factor':>8}"
+             "  governed with the load at",
              f"{'':<16}{'[kN]':>10}{'[kN]':>10}{'[m]':>13}{'[-]':>8}"]
     for m in manoeuvres:
         pk = m["peaks"]
         lines.append(f"{m['manoeuvre']:<16}{pk['F_C_max'] * kN:>10.4g}{pk['F_S_min'] * kN:>10.4g}"
                      f"{pk['take_up_max']:>13.4g}{pk['dynamic_factor']:>8.3g}  {m['where']}")
+    return lines
+
+
+def _places(manoeuvres) -> dict:
+    """``"check @ manoeuvre"`` → where the load is at its least margin."""
+    return {f"{name} @ {m['manoeuvre']}": least["where"] for m in manoeuvres
+            for name, least in m["least_margins"].items()}
+
+
+def _transient_lines(design) -> list[str]:
+    effects = ", ".join(f"{e} = {v}" + ("" if chosen else " (default)") for e, (v, chosen) in design.transient.items())
+    if design.transient.get("rope_elasticity", ("",))[0] == "segments":
+        effects += f" with [numerics] segments = {design.scene.numerics['segments']} per span"
+    lines = ["", f"transient: {effects}"]
+    if design.defaults:
+        lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in design.defaults.items()]
     return lines
 
 
@@ -46,7 +66,9 @@ def design_text(design) -> str:
     if design.feasible:
         lines += ["", "active constraints: " + ", ".join(design.active)]
         lines += _manoeuvre_lines(design.manoeuvres, q)
-        lines += ["", f"{'check margin (least over the manoeuvre)':<52}{'value':>14}  {'unit':<6}{'':<6}rule"]
+        places = _places(design.manoeuvres)
+        lines += ["", f"{'check margin (least over the manoeuvre)':<52}{'value':>14}  {'unit':<6}{'':<6}rule"
+                      "; where the load is"]
         for k, v in design.margins.items():
             base = k.split(" @ ")[0]
             if base in CHECK:   # a check through a manoeuvre, in the check's own unit
@@ -55,19 +77,23 @@ def design_text(design) -> str:
                 unit, shown = q[base].display_unit, q[base].to_display(v)
             unit = "-" if unit == "1" else unit
             shown = shown if abs(v) > 1e-9 else 0.0     # an active check prints as 0, not -8.9e-13
+            where = f"; load at {places[k]}" if k in places else ""
             lines.append(f"{k:<52}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS':<6}"
-                         f"{design.scene.check_basis(base)}")
+                         f"{design.scene.check_basis(base)}{where}")
+    lines += _transient_lines(design)
     lines += ["", design.message]
     return "\n".join(lines)
 
 
 def ramp_text(scene, answer) -> str:
+    from optimisation.dynamic.verify import by_manoeuvre
+
     lines = [f"{scene.name}: the shortest start and stop ramp that keeps the design safe",
              "design: " + ", ".join(f"{k} = {scene.built.quantities[k].to_display(v):.6g} "
                                     f"{scene.built.quantities[k].display_unit}" for k, v in answer.design.items()),
              "", f"t_ramp = {answer.t_ramp:.6g} s  (verified by simulation: it holds; a shorter ramp fails "
              f"{', '.join(answer.active) or 'a check'})"]
-    lines += _manoeuvre_lines([v.to_dict() for v in answer.verdicts], scene.built.quantities)
+    lines += _manoeuvre_lines(by_manoeuvre(answer.verdicts), scene.built.quantities)
     return "\n".join(lines)
 
 

@@ -97,7 +97,7 @@ def _text(design) -> str:
 def main(args) -> int:
     from optimisation.design import DEFAULT_DISCRETE, size
 
-    scene = sizing_scene_from_args(args)
+    scene = sizing_scene_from_args(args, dynamic=None)
     if args.dynamic or scene.numerics.get("sizing") == "dynamic":
         from ropemodel.cli import _size_dynamic
 

@@ -154,7 +154,7 @@ def _sizing(vary, points, args) -> int:
                          "design, the first from the static one): leave --cold out")
     out = check_output(args.output)
     with OutputLock(out):
-        scene = sizing_scene_from_args(args)
+        scene = sizing_scene_from_args(args, dynamic=args.dynamic)
         try:
             if args.dynamic:
                 from optimisation.dynamic.sweep import dynamic_sizing_sweep

@@ -33,6 +33,16 @@ def transient_parts(scene, submodels: dict) -> list[TransientSubmodel]:
     return parts
 
 
+def structural(submodels: dict) -> set[str]:
+    """Parameters that fix the structure of the transient and must stay numbers: every transient variant's
+    ``structural`` and the geometry another chosen submodel hands the transient as numbers (its
+    ``transient_structural``: a route's segment lengths)."""
+    out: set[str] = set()
+    for sm in submodels.values():
+        out.update(sm.structural if isinstance(sm, TransientSubmodel) else getattr(sm, "transient_structural", ()))
+    return out
+
+
 def _how_to_choose() -> str:
     from ropemodel.effects import REGISTRY
 

@@ -26,18 +26,20 @@ hybrid simulator does the same, and an integrator stepping over a step of the dr
 loses order there.  ``out`` also gives every element tension ``T`` of the rope loop (its least,
 ``T_min``, is a minimum: not smooth where two tensions cross; ``T >= 0`` element by element is).
 Parameters that fix the structure (route geometry, the load's position: each variant's ``structural``
-names) must stay numbers.
+names, a route's segment lengths) must stay numbers.  :func:`slowest_period` gives the period of the
+loop's slowest free oscillation from the same equations (how long dynamic sizing follows a manoeuvre).
 """
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import casadi as ca
 import numpy as np
 
 from ropemodel.core.compile import forward_of
-from ropemodel.dynamics.assemble import bind, chosen, transient_parts
+from ropemodel.dynamics.assemble import bind, chosen, structural, transient_parts
 from ropemodel.effects.transient.base import Layout, Setup
 from ropemodel.effects.transient.profile import Profile
 from ropemodel.errors import InputError
@@ -84,7 +86,7 @@ def smooth_mode(scene, params) -> SmoothMode:
     params = tuple(params)
     submodels = chosen(scene)
     parts = transient_parts(scene, submodels)
-    _check_params(scene, params, parts)
+    _check_params(scene, params, structural(submodels))
     p = ca.SX.sym("p", len(params))
     static = run(scene)
     setup = Setup(_symbolic_values(scene, params, p), dict(static.values), dict(scene.numerics),
@@ -116,11 +118,10 @@ def _functions(system, phase, p, suffix: str):
             ca.Function(f"out{suffix}", [x, t, p], exprs, ["x", "t", "p"], names))
 
 
-def _check_params(scene, params, parts) -> None:
-    structural = {n for q in parts for n in q.structural}
+def _check_params(scene, params, fixed: set) -> None:
     bad = [f"{n} is not a parameter of scene {scene.name!r}" for n in params if n not in scene.parameters]
     bad += [f"{n} fixes the structure of the transient (the route's geometry, where the load is): it must "
-            f"stay a number" for n in params if n in structural]
+            f"stay a number" for n in params if n in fixed]
     if len(set(params)) != len(params):
         bad.append("a parameter is named twice")
     if bad:
@@ -139,3 +140,19 @@ def _symbolic_values(scene, params, p) -> dict:
     values.update({n: p[i] for i, n in enumerate(params)})
     statics = forward(**{k: values[k] for k in forward.name_in()})
     return {**values, **statics}
+
+
+def slowest_period(scene) -> float | None:
+    """The period [s] of the slowest free oscillation of ``scene``'s transient about the state it starts from,
+    2π/min |Im λ| over the eigenvalues λ of the smooth mode's Jacobian ∂f/∂x there (None: no mode
+    oscillates, e.g. an inextensible rope).  For a stop, the steady motion at v_pj: the drive's speed
+    prescribed, the resistances saturated (tanh(v/v_eps) = 1), so only the rope's Kelvin–Voigt damping and
+    the tensioner act (at rest the smoothed resistances would act as heavy viscous dampers).  The
+    accounting states (work, dissipation) and the drive's own give zero eigenvalues."""
+    sm = smooth_mode(scene, ())
+    x, t, p = ca.SX.sym("x", sm.layout.nx), ca.SX.sym("t"), ca.SX.sym("p", 0)
+    jacobian = ca.Function("loop_jacobian", [x, t, p], [ca.jacobian(sm.pieces[0].f(x, t, p), x)])
+    lam = np.linalg.eigvals(np.asarray(jacobian(sm.x0(sm.p0), 0.0, sm.p0), float))
+    omega = np.abs(lam.imag)
+    omega = omega[omega > 1e-9 * max(1.0, float(np.abs(lam).max()))]
+    return 2 * math.pi / float(omega.min()) if omega.size else None

@@ -81,8 +81,9 @@ class TransientSystem:
         self._functions: dict = {}
 
     def smooth_mode(self) -> Mode:
-        """Each variant in its smooth mode (rope sticking, tensioner free, drive on its ramp)."""
-        return Mode.of({p.effect: p.smooth for p in self.parts})
+        """Each variant in its smooth mode (rope sticking, tensioner free, drive on its ramp); a variant that has
+        no such mode here is in the one it has (the tensioner of an inextensible rope, ``fixed``)."""
+        return Mode.of({p.effect: p.smooth if p.smooth in p.modes() else p.modes()[0] for p in self.parts})
 
     def variables(self, phase, mode: Mode) -> Variables:
         """The states, t, and what every variant publishes in ``mode`` during ``phase``."""
@@ -254,7 +255,9 @@ class Initial:
 
 
 def _assign(layout: Layout, comps: list, ref, value) -> None:
-    if isinstance(ref, str) and layout.size(ref) > 1:
+    """Set one state (``ref`` a name or (name, i)) or every component of a vector state (a list, also of one
+    component: the rigid rope's single node)."""
+    if isinstance(ref, str) and (layout.size(ref) > 1 or isinstance(value, (list, tuple))):
         for i, item in enumerate(value):
             comps[layout.index((ref, i))] = item
     else:

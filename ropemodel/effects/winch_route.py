@@ -170,6 +170,9 @@ class SegmentedRoute(Submodel):
         self.point_A = bool(self.options.get("point_A"))
         self.quantities = self.quantities + tuple(q for i, has in enumerate(self.segments, start=1)
                                                   for q in segment_quantities(i, has))
+        #: the transient takes the segments' lengths as numbers (:meth:`transient_route`: where the rope's
+        #: elements and the load are), so they fix its structure
+        self.transient_structural = tuple(f"L_{i}" for i in range(1, len(self.segments) + 1))
 
     def equations(self, v):
         n = len(self.segments)

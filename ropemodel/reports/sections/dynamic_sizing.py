@@ -1,7 +1,7 @@
 """Section "dynamic sizing": a scene that sizes through its start-up and braking (``[numerics] sizing =
 "dynamic"``): the dynamic design against the static one, each of the four manoeuvres simulated at the
-recommended design (where the load is, peaks, least margins) and which instant of which manoeuvre fixes
-the design (:mod:`optimisation.dynamic`)."""
+recommended design with the load at every candidate place (the worst peaks, where the load governs each
+manoeuvre and each check) and which instant of which manoeuvre fixes the design (:mod:`optimisation.dynamic`)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,8 @@ from ropemodel.reports.registry import section
 from ropemodel.reports.sections.transient import every_parameter
 
 INTRO = """<p>Every design check holds through the start and stop of both directions of travel (four manoeuvres),
-not only at the static forces (<code>ropemodel size --dynamic</code>); every design verified by the hybrid simulator.
+with the load anywhere on the route (the ends and the middle of every segment), not only at the static forces
+(<code>ropemodel size --dynamic</code>); every design verified by the hybrid simulator.
 The recommended design against the static optimum (continuous optima; the static one is what the paper's
 sizing gives):</p>"""
 
@@ -39,8 +40,9 @@ def dynamic_sizing(ctx):
     rows = [[m["manoeuvre"], m["where"], _kN(m["peaks"]["F_C_max"]), _kN(m["peaks"]["F_S_min"]),
              f"{m['peaks']['take_up_max']:.4g}", f"{m['peaks']['dynamic_factor']:.3f}",
              "ok" if m["ok"] else "FAILS"] for m in design.manoeuvres]
-    html += page.fragment("<h3>The four manoeuvres at the recommended design (simulated)</h3>")
-    html += page.table(["manoeuvre", "where the load is", "F_C max [kN]", "F_S min [kN]", "take-up max [m]",
+    html += page.fragment("<h3>The four manoeuvres at the recommended design (simulated; the worst of every place "
+                          "of the load)</h3>")
+    html += page.table(["manoeuvre", "governed with the load at", "F_C max [kN]", "F_S min [kN]", "take-up max [m]",
                         "dynamic factor [-]", "checks"], rows,
                        kinds=["name", "", "num", "num", "num", "num", ""], cls="manoeuvres")
     html += page.fragment("<h3>What fixes the design</h3><p>Active at the continuous optimum (a check at an instant "
@@ -58,8 +60,8 @@ def _least_margins(manoeuvres, scene) -> str:
     for m in manoeuvres:
         for name, least in m["least_margins"].items():
             unit = CHECK[name].shown
-            rows.append([name, m["manoeuvre"], f"{least['margin']:.6g}", "-" if unit == "1" else unit,
+            rows.append([name, m["manoeuvre"], least["where"], f"{least['margin']:.6g}", "-" if unit == "1" else unit,
                          f"{least['t']:.3f}", "pass" if least["margin"] >= 0 else "FAIL", scene.check_basis(name)])
     return page.fragment("<h3>Least margins through the manoeuvres</h3>") + page.table(
-        ["check", "manoeuvre", "least margin", "unit", "at t [s]", "verdict", "rule"], rows,
-        kinds=["name", "", "num", "", "num", "", ""], cls="manoeuvre-checks")
+        ["check", "manoeuvre", "with the load at", "least margin", "unit", "at t [s]", "verdict", "rule"], rows,
+        kinds=["name", "", "", "num", "", "num", "", ""], cls="manoeuvre-checks")

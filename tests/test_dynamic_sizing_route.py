@@ -1,0 +1,101 @@
+"""Dynamic sizing on the three-segment route of issue 21 (600 m at 12°, 700 m at 20°, 500 m at 6° from the
+drive; 300 kN; 3 m/s; a 4 s ramp; 6x36-IWRC), from a scene with no transient in it (slow: one sizing ~4 CPU-min).
+
+Truth: the hybrid simulator's histories judged by this test's own checks (``_dynamic_scene.simulated_failures``:
+rope safety, slip, slack, stroke, taut rope), followed twice as long as the sizing follows them, with the load
+on the steepest segment (its ends, its quarter points, which are no candidate of the sizing, and its middle),
+and at every candidate place the sizing left out of its NLP.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+
+import pytest
+import _route3 as route3
+from _dynamic_scene import MANOEUVRES, places, simulated_failures
+
+from optimisation.dynamic import size_dynamic
+from optimisation.problem import load_sizing
+from ropemodel.cli._size_dynamic import design_text
+from ropemodel.papers import en12385
+
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture(scope="module")
+def scene(tmp_path_factory):
+    return load_sizing(route3.write(tmp_path_factory.mktemp("route")), emit=False)
+
+
+@pytest.fixture(scope="module")
+def sized(scene, tmp_path_factory):
+    """The sizing, and what it wrote to the process's stdout and stderr (file descriptors 1 and 2: a solver
+    writes there, not to Python's streams)."""
+    log = tmp_path_factory.mktemp("fd") / "out.txt"
+    with open(log, "w") as f:
+        saved = [os.dup(1), os.dup(2)]
+        try:
+            os.dup2(f.fileno(), 1)
+            os.dup2(f.fileno(), 2)
+            design = size_dynamic(scene)
+        finally:
+            for fd, copy in zip((1, 2), saved):
+                os.dup2(copy, fd)
+                os.close(copy)
+    return design, log.read_text()
+
+
+@pytest.fixture(scope="module")
+def design(sized):
+    return sized[0]
+
+
+def _horizon(design) -> float:
+    """Twice as long after the ramp as the sizing followed each manoeuvre."""
+    v = design.scene.parameters
+    return v["t_ramp"] + 2 * (v["t_end"] - v["t_ramp"])
+
+
+def test_a_catalogue_design_is_found(design):
+    assert design.feasible
+    assert design.design["d"] in en12385.diameters() and design.design["d"] >= design.continuous["d"]
+    assert design.continuous["d"] >= design.static["d"]
+
+
+def test_the_design_holds_with_the_load_on_the_steepest_segment(scene, design):
+    """Starts and stops in both directions with the load anywhere on the 20° segment (600 m to 1300 m from the
+    drive): at its ends, quarter points and middle."""
+    steep = [600.001, 775.0, 950.0, 1125.0, 1300.0]
+    assert simulated_failures(scene, design.design, where=steep, t_end=_horizon(design)) == []
+
+
+def test_places_left_out_of_the_nlp_hold_in_simulation(scene, design):
+    """The screening put only the cases governing a check into the NLP; at the returned design every other
+    case (manoeuvre and place) keeps every check in simulation too."""
+    inside = {(c["dynamics"], c["travel"], round(c["x_m"], 6)) for c in design.nlp_cases}
+    assert 0 < len(inside) < len(MANOEUVRES) * len(places(scene))
+    failures = []
+    for dynamics, travel in MANOEUVRES:
+        left_out = [x for x in places(scene) if (dynamics, travel, round(x, 6)) not in inside]
+        failures += simulated_failures(scene, design.design, where=left_out, manoeuvres=[(dynamics, travel)],
+                                       t_end=_horizon(design))
+    assert failures == []
+
+
+def test_the_output_says_where_each_manoeuvre_is_governed(sized):
+    """The JSON of ``size --dynamic`` on the route: each manoeuvre's governing place and all nine places of
+    each, the defaults it took and the transient it built; the text names the places; no solver output."""
+    design, written = sized
+    assert written == ""
+    res = json.loads(json.dumps(design.to_dict(), allow_nan=False))
+    assert [m["manoeuvre"] for m in res["manoeuvres"]] == ["upward start", "upward stop", "downward start",
+                                                          "downward stop"]
+    for m in res["manoeuvres"]:
+        assert len(m["positions"]) == 9 and m["ok"]
+        assert m["x_m"] in [p["x_m"] for p in m["positions"]] and "x_m = " in m["where"]
+        assert all("where" in least and "x_m" in least for least in m["least_margins"].values())
+    assert "T_1" in res["defaults"]["t_end"] and res["transient"]["rope_elasticity"]["variant"] == "segments"
+    text = design_text(design)
+    assert "governed with the load at" in text and "segment 2" in text and "defaults used" in text
