@@ -42,6 +42,16 @@ X_M_NOTE = ("not given: each manoeuvre with the load at every candidate position
             "segment), the worst of them governs")
 
 
+def missing(scene) -> list[str]:
+    """What the transient dynamic sizing builds on ``scene`` needs and the scene does not give, one line each
+    (e.g. ``t_ramp``), to be named together with the scene's other problems."""
+    try:
+        scene.with_effects(EFFECTS, optional=SIZED + D_OPTIONAL + ("t_end",))
+    except InputError as e:
+        return [f"dynamic sizing: {p}" for p in e.problems]
+    return []
+
+
 def transient_scene(scene):
     """``scene`` (a winch sizing scene) with the transient dynamic sizing needs (see the module); a scene
     already made by it is returned as it is.  :class:`~ropemodel.errors.InputError` names every
@@ -49,12 +59,10 @@ def transient_scene(scene):
     if _made(scene):
         return scene
     problems = [why for why in [rope_problem(scene)] if why is not None]      # all at once with the transient's
-    try:
-        sc = scene.with_effects(EFFECTS, optional=SIZED + D_OPTIONAL + ("t_end",))
-    except InputError as e:
-        problems += [f"dynamic sizing: {p}" for p in e.problems]
+    problems += missing(scene)
     if problems:
         raise InputError(problems=problems) from None
+    sc = scene.with_effects(EFFECTS, optional=SIZED + D_OPTIONAL + ("t_end",))
     read = reads(sc)[0] | {"x_m"}      # a default nothing reads is no default used (an inextensible rope's damping)
     defaults = {k: why for k, why in sc.defaults.items() if k not in SIZED and k in read}
     if "x_m" in defaults:

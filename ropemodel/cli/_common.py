@@ -149,10 +149,18 @@ def sizing_scene_from_args(args, dynamic: bool | None = False):
     ``--dynamic`` is given or the scene says ``[numerics] sizing = "dynamic"``, as ``size`` decides)."""
     from optimisation.problem import D_OPTIONAL, SIZED, prepare, reads
 
-    scene = prepare(scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False))
-    warn(scene.warnings)
+    given = scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False)
     if dynamic is None:
-        dynamic = bool(getattr(args, "dynamic", False)) or scene.numerics.get("sizing") == "dynamic"
+        dynamic = bool(getattr(args, "dynamic", False)) or given.numerics.get("sizing") == "dynamic"
+    try:
+        scene = prepare(given)
+    except InputError as exc:             # a dynamic sizing names what its transient lacks in the same error
+        if not dynamic:
+            raise
+        from optimisation.dynamic.transient import missing
+
+        raise InputError(problems=[*exc.problems, *missing(given)]) from None
+    warn(scene.warnings)
     if dynamic:
         from optimisation.dynamic.transient import reads as dynamic_reads
         from optimisation.dynamic.transient import transient_scene
