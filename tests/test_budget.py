@@ -7,10 +7,10 @@ evaluations N(D + 2), route sizing load positions x segments), and the README's 
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
 import pytest
 
+from _docs_text import section
 from _fuzz_classes import route_scene
 from ropemodel import budget
 from ropemodel.cli import main
@@ -72,8 +72,8 @@ def test_lifted_restores():
 
 
 def test_readme_states_every_budget():
-    """The README's table gives each budget (and only those)."""
-    text = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    """The documentation's table (the scene reference, "Writing a scene") gives each budget (and only those)."""
+    text = section("Writing a scene")
     block = text[text.index("**Work budgets.**"):]
     block = block[:block.index("\n\n", block.index("| job |"))]
     shown = re.findall(r"\| (10\^\d+|2\^\d+|\d+) \|", block)
