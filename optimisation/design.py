@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -14,6 +15,7 @@ from optimisation.infeasibility import Diagnosis, diagnose
 from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import VARIABLES, SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
+from ropemodel.effects.winch_checks import margin_names
 from ropemodel.papers import en12385 as ropes
 from ropemodel.rules.apply import with_rule_terms
 from ropemodel.rules.describe import summary as rules_summary
@@ -39,9 +41,15 @@ class Design(DesignViews):
     continuous: dict[str, float] | None = None
     active: list[str] = field(default_factory=list)             # at the recommended design
     active_continuous: list[str] = field(default_factory=list)
-    margins: dict[str, float] = field(default_factory=dict)     # at the recommended design
+    margins: dict[str, float] = field(default_factory=dict)     # each check's worst at the recommended design
     margins_continuous: dict[str, float] = field(default_factory=dict)
-    power: dict[str, float] = field(default_factory=dict)       # N_p_up, N_p_down at the recommended design
+    #: check → where its worst margin is at the recommended design (segment, x_m, direction, manoeuvre; None:
+    #: the same in every case)
+    governing: dict[str, dict | None] = field(default_factory=dict)
+    #: N_p_up, N_p_down at the recommended design: each at its worst over the load cases (larger magnitude)
+    power: dict[str, float] = field(default_factory=dict)
+    #: the drive's largest motoring and largest braking power over every case and direction, and where
+    drive: dict[str, dict] = field(default_factory=dict)
     least_drum: float | None = None    # D_ratio_min * d [m] when the scene gives no drum diameter
     sensitivities: dict[str, dict[str, float]] = field(default_factory=dict)
     method: str = DEFAULT_DISCRETE
@@ -60,7 +68,10 @@ class Design(DesignViews):
                                  "margins": self.margins_continuous}
         out["active"] = self.active
         out["margins"] = self.margins
+        out["governing"] = self.governing
         out.update(self.power)
+        if self.drive:
+            out["drive_power"] = self.drive
         if self.least_drum is not None:
             out["D_min"] = self.least_drum
         out["sensitivities"] = self.sensitivities
@@ -74,6 +85,40 @@ class Design(DesignViews):
         if rules:
             out["rules"] = rules
         return out
+
+
+#: the drive power of each direction (signed: motoring > 0, braking < 0)
+POWER = ("N_p_up", "N_p_down")
+
+
+def at_design(problem: SizingProblem, xs):
+    """At scaled ``xs``, over every load case (:meth:`SizingProblem.envelope`): each check's worst margin, where
+    it is, the drive power of each direction at its worst, the drive's largest motoring and braking power with
+    where, and every output's value (worst or the same everywhere)."""
+    env = problem.envelope(xs)
+    values = env.values()
+    margins = {n: values[n] for n in margin_names(values)}
+    governing = {n: env.worst(n).where(env.params) if n in env.extremes else None for n in margins}
+    power = {n: values[n] for n in POWER if n in values}
+    drive = {}
+    for kind, sense, better in (("motoring", "largest", max), ("braking", "least", min)):
+        ends: list[Any] = [e for n in POWER for e in env.extremes.get(n, ()) if e.sense == sense]
+        ends += [_Flat(n, values[n]) for n in POWER if n in env.constant]
+        if ends:
+            top = better(ends, key=lambda e: e.value)
+            if (top.value > 0) == (kind == "motoring") and top.value != 0:
+                drive[kind] = {"value": top.value, "where": top.where(env.params)}
+    return margins, governing, power, drive, values
+
+
+class _Flat:
+    """A power that is the same in every case (no place or manoeuvre to name but its direction)."""
+
+    def __init__(self, name, value):
+        self.name, self.value = name, value
+
+    def where(self, params):
+        return {"segment": None, "x_m": None, "direction": self.name.rsplit("_", 1)[1], "manoeuvre": None}
 
 
 #: steps the recommended F_nwl [N] and stroke [m] are rounded up to, coarsest first
@@ -177,7 +222,7 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
         return design
     design.continuous = problem.to_si(sol.xs)
     design.active_continuous = list(sol.active) + [f"{VARIABLES[i]} {side} bound" for i, side in sol.active_bounds]
-    design.margins_continuous = problem.margins(sol.xs)
+    design.margins_continuous = at_design(problem, sol.xs)[0]
     design.lexicographic_ok = sol.lexicographic_ok
     if with_sensitivities:
         design.sensitivities = with_rule_terms(problem.scene, sensitivities(problem, sol))
@@ -205,9 +250,7 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     design.design = problem.to_si(xs)
     design.active = list(dsol.active) + [f"{VARIABLES[i]} {side} bound" for i, side in dsol.active_bounds
                                          if i != 0] + ["d (catalogue size)"]
-    design.margins = problem.margins(xs)
-    values = problem.evaluate(xs)
-    design.power = {k: values[k] for k in ("N_p_up", "N_p_down") if k in values}
+    design.margins, design.governing, design.power, design.drive, values = at_design(problem, xs)
     if problem.least_drum:
         design.least_drum = values["D"]
     design.message = "design found"

@@ -35,6 +35,8 @@ REMEDIES = {
     "safety_margin": (("n_rope", "max"), ("rope_grade", "min")),
     "slip_margin": (("n_slip", "max"), ("mu_d", "min"), ("alpha_d", "min")),
     "slack_margin": (("F_S_min", "max"),),
+    "taut_margin": (("F_S_min", "max"),),
+    "sheave_margin": (("F_S_min", "max"),),
     "drum_margin": (("D", "min"), ("D_ratio_min", "max")),
 }
 OPTS: dict[str, Any] = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False,

@@ -113,17 +113,17 @@ def solve_continuous(problem: SizingProblem, p=None, x0=None, d_range=None, fix_
                    np.asarray(res["lam_g"]).ravel(), np.asarray(res["lam_x"]).ravel(),
                    bool(stats["success"]), str(stats["return_status"]), int(stats.get("iter_count", -1)), seconds)
     if polish:
-        _active_set(problem, sol, lbx, ubx)
+        _active_set(problem, sol, lbx, ubx, p)
         if sol.success:
             _polish(problem, sol, p, lbx, ubx)
             sol.lexicographic_ok = _lexicographic_ok(problem, sol, p)
     return sol
 
 
-def _active_set(problem, sol, lbx, ubx):
-    """Active margins and bounds; x is put exactly on an active bound (IPOPT relaxes bounds by ~1e-8)."""
-    sol.active = [c for c, g, lam in zip(problem.constraints, sol.g, sol.lam_g)
-                  if g < ACTIVE_G and abs(lam) > ACTIVE_LAM]
+def _active_set(problem, sol, lbx, ubx, p):
+    """Active margins and bounds; x is put exactly on an active bound (IPOPT relaxes bounds by ~1e-8).  Where
+    more are active than fix x, or with dependent normals (a check met at its worst in two load cases at once,
+    e.g. the drum's force wherever the load is), an independent set is kept (the others are then inactive)."""
     sol.active_bounds = []
     for i in range(3):
         near = ACTIVE_G * max(1.0, abs(sol.xs[i]))
@@ -133,6 +133,13 @@ def _active_set(problem, sol, lbx, ubx):
         elif np.isfinite(ubx[i]) and abs(sol.xs[i] - ubx[i]) < near and sol.lam_x[i] > ACTIVE_LAM:
             sol.active_bounds.append((i, "upper"))
             sol.xs[i] = ubx[i]
+    active = [i for i, (g, lam) in enumerate(zip(sol.g, sol.lam_g)) if g < ACTIVE_G and abs(lam) > ACTIVE_LAM]
+    if len(active) > 1:
+        from optimisation.activeset import regular_subset
+
+        J = np.asarray(_jac_functions(problem)[0](sol.xs, p)[1])
+        active = list(regular_subset(active, sol.active_bounds, J, sol.lam_g, len(sol.xs))[0])
+    sol.active = [problem.constraints[i] for i in active]
 
 
 def _jac_functions(problem):

@@ -6,8 +6,11 @@ parameter of the scene.  Nothing here re-types physics: the compiled scene
 Function (``Problem(scene).function``, the same one ``ropemodel run`` evaluates)
 is called with the decision variables and the parameters as CasADi MX symbols,
 and every margin output (``*_margin*``: rope safety, slip on the drum — from the
-lining effect, with the Voigt lining's implicit traction inside —, slack rope,
-stroke, drum ratio) becomes a constraint ``margin >= 0`` in both directions.
+lining effect, with the Voigt lining's implicit traction inside —, taut ropes
+everywhere in the loop, stroke, drum ratio) becomes a constraint ``margin >= 0`` in
+both directions, in every load case the scene leaves open: every place of the load
+on a route, and with the ramps' inertia every manoeuvre (steady motion, a start
+and a stop anywhere, an emergency stop; :mod:`ropemodel.envelope`).
 
 Objective — the lexicographic order "least rope mass per metre, then least
 pretension, then least stroke" encoded as a weighted sum with scale separation::
@@ -43,13 +46,16 @@ in N are divided by F_ref, margins in m are taken in m, ratio margins as they ar
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections import ChainMap
 from functools import cached_property
 
 import casadi as ca
 import numpy as np
 
 from ropemodel.effects.winch_checks import margin_names
+from ropemodel.envelope import RAMPS, Envelope, LoadCase, envelope, free, load_cases
+from ropemodel.envelope.cases import depends_on, distinct
+from ropemodel.envelope.cases import reads as case_reads
 from ropemodel.errors import InputError, Problems
 from ropemodel.problem import Problem
 from ropemodel.scene import Scene, SceneLike, SceneWarning, as_scene
@@ -86,67 +92,16 @@ def _nlp_form(name: str, out: dict, args: dict):
     return out[name]
 
 
-@dataclass(frozen=True)
-class State:
-    """Where the checks are made: a label, the inputs it sets (``x_m``, ``a_h``), the directions of
-    travel whose checks apply there (a ramp belongs to one direction's trip)."""
-
-    label: str
-    values: dict
-    directions: tuple[str, ...] = ("up", "down")
-
-
-def states(scene) -> list[State]:
-    """The states every check must hold in.
-
-    One state for the paper's straight route in steady motion.  On a route of segments the load on
-    each segment (its middle: the forces are the same anywhere on it), in steady motion; with a trip's
-    ramps (``dynamics = "trip"``, ``t_ramp``) also the start and the stop of each direction's trip with
-    the ramp's acceleration, where they happen (an upward trip starts at the return sheave's end).
-    """
-    v = scene.parameters
-    lengths = [v[f"L_{i}"] for i in range(1, 10_000) if f"L_{i}" in v]
-    steady = {"a_h": 0.0} if "a_h" in v else {}
-    if not lengths:
-        out, far, near = [State("", dict(steady))], {}, {}
-    else:
-        ends = np.cumsum(lengths)
-        mids = [end - L / 2 for end, L in zip(ends, lengths)]
-        out = [State(f"segment {j}", {"x_m": x, **steady}) for j, x in enumerate(mids, start=1)]
-        far, near = {"x_m": mids[-1]}, {"x_m": mids[0]}
-    if _ramps(scene):
-        a = v["v_pj"] / v["t_ramp"]        # the same in a triangular profile (a route shorter than v_pj t_ramp)
-        out += [State("start of an upward trip", {**far, "a_h": a}, ("up",)),
-                State("stop of an upward trip", {**near, "a_h": -a}, ("up",)),
-                State("start of a downward trip", {**near, "a_h": a}, ("down",)),
-                State("stop of a downward trip", {**far, "a_h": -a}, ("down",))]
-    return out
-
-
-#: what the ramps' acceleration of the states is computed from (a = v_pj/t_ramp)
-RAMP_READS = ("v_pj", "t_ramp")
-
-
-def _ramps(scene) -> bool:
-    """True when the checks are also made in a trip's ramps (``dynamics = "trip"`` with the ramps' inertia)."""
-    return scene.effects.get("dynamics") == "trip" and "a_h" in scene.parameters
-
-
-def _label(check: str, state: State) -> str:
-    return f"{check} @ {state.label}" if state.label else check
+def _label(check: str, case: LoadCase, inputs, params) -> str:
+    """``slip_margin_up @ segment 2, x_m = 1300 m, start``: the check and the case it is made in (of the case
+    inputs it depends on; the check alone where it depends on none)."""
+    where = case.label(params, inputs)
+    return f"{check} @ {where}" if where else check
 
 
 def _base(constraint: str) -> str:
     """The check's output name of a constraint (``slip_margin_up @ segment 2`` → ``slip_margin_up``)."""
     return constraint.split(" @ ")[0]
-
-
-def _applies(check: str, state: State, all_states) -> bool:
-    """A direction's check applies in the states of that direction; one without a direction (the drum)
-    once."""
-    if check.endswith(("_up", "_down")):
-        return check.rsplit("_", 1)[1] in state.directions
-    return state is all_states[0]
 
 
 def load_sizing(scene: SceneLike, emit: bool = True) -> Scene:
@@ -176,7 +131,7 @@ def prepare(scene) -> Scene:
     if scene.effects.get("power") == "none" and ("v_pj" in scene.unused or "v_pj" in scene.parameters):
         effects["power"] = "drive"
     if "t_ramp" in scene.unused or scene.effects.get("dynamics") == "trip":   # size through a trip's ramps
-        effects.update(dynamics="trip", inertia="rigid", power="drive")
+        effects.update(RAMPS, power="drive")
     optional = SIZED + (D_OPTIONAL if scene.effects.get("lining", "none") in D_OPTIONAL_LININGS else ())
     if scene.effects.get("rope") == "given":
         _refuse_given_rope(scene, effects, optional)
@@ -215,14 +170,10 @@ def _check_work(scene, where: list) -> None:
 
 def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
     """What the sizing of the (prepared) ``scene`` is computed from (every check, the rope mass, the drive
-    power), and what it sets itself (name → how): the design variables, and the load position and
-    acceleration of each state the checks are made in (:func:`states`)."""
+    power, the load cases' places and accelerations: :func:`ropemodel.envelope.reads`), and what it sets itself
+    (name → how): the design variables."""
     chosen = {k: "the sizing chooses it (a value given only starts the search)" for k in VARIABLES}
-    for st in states(scene):
-        for k in st.values:
-            chosen.setdefault(k, "the sizing makes its checks at every load position and manoeuvre itself")
-    ramps = set(RAMP_READS) if _ramps(scene) else set()
-    return scene.built.inputs_of() | ramps, chosen
+    return scene.built.inputs_of() | case_reads(scene), chosen
 
 
 class SizingProblem:
@@ -240,24 +191,20 @@ class SizingProblem:
     def __init__(self, scene: Scene):
         scene = prepare(scene)
         self.scene = scene
-        #: where the checks are made: the load on every segment of a route, and a trip's ramps (:func:`states`)
-        self.states = states(scene)
-        _check_work(scene, self.states)
         #: no drum diameter given: the drum check becomes a result, D = D_ratio_min * d (the least drum)
         self.least_drum = "D" in scene.absent
         self.problem = Problem(scene, {"drum_margin": 0.0}, ["D"]) if self.least_drum else Problem(scene)
         fun = self.problem.function
-        self.params = [k for k in self.problem.knowns if k not in VARIABLES and k not in self.problem.given]
+        #: where the checks are made: every place of the load and every manoeuvre the scene leaves open
+        #: (:func:`ropemodel.envelope.load_cases`), their inputs (x_m, a_h) set by each case
+        self.cases, self.free = load_cases(scene), free(scene)
+        _check_work(scene, self.cases)
+        self.params = [k for k in self.problem.knowns
+                       if k not in VARIABLES and k not in self.problem.given and k not in self.free]
         self.p0 = np.array([scene.parameters[k] for k in self.params], dtype=float)
-        margins = margin_names(self.problem.unknowns)
-        self.constraints = [_label(c, st) for st in self.states for c in margins if _applies(c, st, self.states)]
-        q = scene.built.quantities
         g_m = scene.parameters.get("G_m", 1e5)
         self.F_ref = max(0.1 * abs(g_m), 1e3)
         self.x_scale = np.array([0.01, self.F_ref, 1.0])
-        unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
-        self.units = {c: ("N" if c.startswith(RATIO_FORMS) else q[_base(c)].unit) for c in self.constraints}
-        self.g_scale = np.array([unit_scale[self.units[c]] for c in self.constraints])
 
         xs = ca.MX.sym("x", 3)
         p = ca.MX.sym("p", len(self.params))
@@ -265,16 +212,9 @@ class SizingProblem:
         args = {k: p[i] for i, k in enumerate(self.params)}
         args.update({k: x_si[i] for i, k in enumerate(VARIABLES)})
         args.update({k: 0.0 for k in self.problem.given})   # drum_margin = 0 when D is a result
-        at = [fun.call({**args, **st.values}) for st in self.states]
-        out = at[0]
         self.xs, self.p = xs, p
-        g, self._margin_exprs = [], []
-        for st, o in zip(self.states, at):
-            for c in margins:
-                if _applies(c, st, self.states):
-                    g.append(_nlp_form(c, o, args))
-                    self._margin_exprs.append(o[c])
-        self.g = ca.vertcat(*g) / ca.DM(self.g_scale)
+        out = self._constraints(fun, args)
+        self.g = ca.vertcat(*self._g) / ca.DM(self.g_scale)
         # reference mass per metre: the scene's rope at d = 10 mm (fixed number: the weights are constants)
         m_at = ca.Function("m", [xs, p], [out["m_l"]])
         self.m_ref = float(m_at(ca.DM([1.0, 1.0, 1.0]), self.p0))
@@ -283,6 +223,35 @@ class SizingProblem:
         self.output_names = list(self.problem.unknowns)
         self.outputs = ca.Function("outputs", [xs, p], [out[n] for n in self.output_names],
                                    ["x", "p"], self.output_names)
+
+    def _constraints(self, fun, args) -> dict:
+        """Every check in every case it can differ in (a check that depends only on the manoeuvre once per
+        manoeuvre, one that depends on neither once): the constraints g, their labels, units and scales.
+        The cases' places and accelerations follow the NLP's parameters (a segment's length moves x_m).
+        Returns the outputs at the first case."""
+        q, scene = self.scene.built.quantities, self.scene
+        values = ChainMap(args, scene.parameters)
+        margins = margin_names(self.problem.unknowns)
+        depends = depends_on(fun, margins)
+        at: dict[int, dict] = {}
+        self.constraints, self._g, self._margin_exprs = [], [], []
+        for c in margins:
+            for i in distinct(self.cases, depends[c]):
+                if i not in at:
+                    at[i] = fun.call({**args, **self.cases[i].values(values)})
+                self.constraints.append(_label(c, self.cases[i], depends[c], scene.parameters))
+                self._g.append(_nlp_form(c, at[i], args))
+                self._margin_exprs.append(at[i][c])
+        unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
+        self.units = {c: ("N" if c.startswith(RATIO_FORMS) else q[_base(c)].unit) for c in self.constraints}
+        self.g_scale = np.array([unit_scale[self.units[c]] for c in self.constraints])
+        return at.get(0) or fun.call({**args, **self.cases[0].values(values)})
+
+    def envelope(self, xs, p=None) -> Envelope:
+        """Every output of the scene at scaled ``xs`` in every case, each at its worst
+        (:func:`ropemodel.envelope.envelope`): the margins, forces and power at a design."""
+        params = dict(zip(self.params, self.p0 if p is None else np.asarray(p, dtype=float)))
+        return envelope(self.problem, self.cases, {**params, **self.to_si(xs)})
 
     # ------------------------------------------------------------------ helpers
     def nlp(self, f=None, g=None, x=None) -> dict:

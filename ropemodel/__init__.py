@@ -36,7 +36,7 @@ from ropemodel.errors import IllPosedError, InfeasibleError, InputError, RopeMod
 
 #: public name → module it lives in (imported when first used); one function per command
 _LAZY = {
-    "Problem": "ropemodel.problem", "run": "ropemodel.problem", "solve": "ropemodel.problem",
+    "Problem": "ropemodel.problem", "run": "ropemodel.envelope", "solve": "ropemodel.envelope",
     "Result": "ropemodel.result",
     "Scene": "ropemodel.scene", "from_dict": "ropemodel.scene", "from_toml": "ropemodel.scene",
     "load_scene": "ropemodel.scene",

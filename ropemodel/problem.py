@@ -25,7 +25,7 @@ from ropemodel.core.compile import forward_of, solver_of, structure_of
 from ropemodel.core.evaluate import evaluate_columns
 from ropemodel.errors import InputError, Problems, SolveError
 from ropemodel.result import Result
-from ropemodel.scene import Scene, SceneLike, as_scene
+from ropemodel.scene import SceneLike, as_scene
 
 
 class Problem:
@@ -284,82 +284,31 @@ def _fmt_limit(x: float) -> str:
     return "inf" if x == math.inf else "-inf" if x == -math.inf else f"{x:g}"
 
 
-def worst_position(scene: Scene, output: str = "F_C_up") -> float:
-    """The load's place x_m [m] on a route of segments where ``output`` is largest.
-
-    The forces are constant along a segment (the load's weight and resistance act on its segment),
-    so the middle of each segment is evaluated; ties go to the segment nearer the drive.
-    """
-    lengths = [scene.parameters[f"L_{i}"] for i in range(1, 10_000) if f"L_{i}" in scene.parameters]
-    ends = np.cumsum(lengths)
-    mids = ends - np.asarray(lengths) / 2
-    values = Problem(scene).evaluate({"x_m": mids})[output]
-    return float(mids[int(np.argmax(values))])
-
-
 def run(scene: SceneLike, values: Mapping | None = None) -> Result:
-    """Forward solve: every output of the scene from its parameters.
-
-    Parameters
-    ----------
-    scene : Scene or str or Path
-        A loaded scene (:func:`ropemodel.load_scene`), a TOML scene file or the name of a built-in scene.
-    values : dict, optional
-        Parameters to override for this run: SI numbers, strings with units or pint Quantities.
-
-    Returns
-    -------
-    Result
-        Every output in SI (``result["F_C_up"]`` in N); ``result.table()`` in the paper's units.
-
-    Raises
-    ------
-    InputError
-        Bad input (exit status 2 from the command line).
-    SolveError
-        No valid result, e.g. a slack rope (exit status 1).
+    """Forward solve at one point: every output of the scene from its parameters, the load's place and the
+    acceleration as the scene gives them (``x_m`` not given: on the last segment; ``a_h``: steady motion).
+    ``values`` override parameters (SI numbers, strings with units, pint Quantities).  ``ropemodel run`` and
+    :func:`ropemodel.run` take each output at its worst instead (:func:`ropemodel.envelope.run`, with the
+    parameters, returns and errors documented there).
 
     Examples
     --------
-    >>> import ropemodel as rm
-    >>> r = rm.run(rm.load_scene())          # Krauze et al. (2025), Fig. 9
-    >>> round(r["F_C_up"] / 1e3, 2)          # kN, the paper prints 190.95
+    >>> from ropemodel.scene import load
+    >>> round(run(load())["F_C_up"] / 1e3, 2)          # kN, Krauze et al. (2025) Fig. 9 prints 190.95
     190.95
     """
     return Problem(scene).solve(values)
 
 
 def solve(scene: SceneLike, given: Mapping, find: Sequence[str] | str, bare: str = "si") -> Result:
-    """Inverse solve: ``given`` outputs (name → value) in place of the ``find`` parameters.
-
-    Parameters
-    ----------
-    scene : Scene or str or Path
-        A loaded scene (:func:`ropemodel.load_scene`), a TOML scene file or the name of a built-in scene.
-    given : dict
-        Output name → value: a string with a unit (``"1000 mm"``), a pint Quantity, or an SI number.
-    find : str or sequence of str
-        The parameters to solve for, one per given value.
-    bare : {"si", "refuse"}
-        Numbers without a unit are SI (Python) or refused for dimensional quantities (command line).
-
-    Returns
-    -------
-    Result
-        The found parameters and every output, in SI.
-
-    Raises
-    ------
-    InputError
-        Unknown names or an ill-posed question (the message names the variables involved).
-    SolveError
-        No valid answer; the message says why in the quantities' terms.
+    """Inverse solve at one point: ``given`` outputs (name → value) in place of the ``find`` parameters, the load's
+    place and the acceleration as the scene gives them.  ``ropemodel solve`` and :func:`ropemodel.solve` meet
+    the given outputs at their worst (:func:`ropemodel.envelope.solve`, where the arguments are documented).
 
     Examples
     --------
-    >>> import ropemodel as rm
-    >>> r = rm.solve(rm.load_scene(), given={"dF_up": "1000 mm"}, find=["G_m"])
-    >>> round(r["G_m"] / 1e3, 3)             # kN: the heaviest load a 1000 mm stroke allows
+    >>> from ropemodel.scene import load
+    >>> round(solve(load(), given={"dF_up": "1000 mm"}, find=["G_m"])["G_m"] / 1e3, 3)   # kN
     252.383
     """
     if isinstance(find, str):
@@ -367,4 +316,4 @@ def solve(scene: SceneLike, given: Mapping, find: Sequence[str] | str, bare: str
     return Problem(scene, given, find, bare=bare).solve()
 
 
-__all__ = ["Problem", "reach", "run", "solve", "worst_position"]
+__all__ = ["Problem", "reach", "run", "solve"]

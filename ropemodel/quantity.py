@@ -9,6 +9,9 @@ from typing import Any
 from ropemodel.errors import InputError
 from ropemodel.units import factor, to_si
 
+#: the extremes an output's worst case can be (:attr:`Quantity.worst`)
+SENSES = ("least", "largest")
+
 
 @dataclass(frozen=True)
 class Quantity:
@@ -37,6 +40,10 @@ class Quantity:
         of a drive power); tables print it next to the number (:meth:`sign_text`).
     symbol: the symbol formulas show, plain Unicode with ``_`` before a subscript (``"m_safety,up"``);
         ``""``: made from the name (:func:`symbol_of`: ``alpha_u`` → ``α_u``, ``F_C_up`` → ``F_C,up``).
+    worst: which extreme of an output is its worst case where the load's place or the manoeuvre varies
+        (:mod:`ropemodel.envelope`): ``("least",)`` (a margin, a least tension), ``("largest",)`` (a rope
+        force, a stroke), or both (a signed power: largest motoring and largest braking); ``()``: none
+        (an intermediate quantity, given only at one place).
     """
 
     name: str
@@ -60,6 +67,11 @@ class Quantity:
     default_note: str = ""
     signs: tuple[str, ...] = ()
     symbol: str = ""
+    worst: tuple[str, ...] = ()
+
+    def __post_init__(self):
+        if not set(self.worst) <= set(SENSES):
+            raise ValueError(f"{self.name}: worst must be among {SENSES}, got {self.worst}")
 
     @property
     def typeset(self) -> str:

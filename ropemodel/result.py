@@ -102,11 +102,11 @@ class Result(ResultViews):
         inputs = [n for n in self.model.parameters if n not in self.find] + self.given
         single = [o for o in self.outputs if not _DIR.match(o) and o not in self.find]
         w = max(len(n) for n in inputs + self.find + single + [" " * 13]) + 1    # names longer than 13: wider
-        lines += ["", "inputs"] + [_row(n, q[n], self.values[n], self._mark(n), w) for n in inputs]
+        lines += ["", "inputs"] + [row(n, q[n], self.values[n], self._mark(n), w) for n in inputs]
         if self.find:
-            lines += ["", "found (solved for)"] + [_row(n, q[n], self.values[n], "solved for", w) for n in self.find]
+            lines += ["", "found (solved for)"] + [row(n, q[n], self.values[n], "solved for", w) for n in self.find]
         if single:
-            lines += ["", "results"] + [_row(n, q[n], self.values[n], self._source(n), w) for n in single]
+            lines += ["", "results"] + [row(n, q[n], self.values[n], self._source(n), w) for n in single]
         lines += self._pairs()
         for title, frame in self.frames.items():
             lines += ["", title, frame.to_string(index=False)]
@@ -134,9 +134,9 @@ class Result(ResultViews):
             cells = []
             for d in ("down", "up"):
                 n = f"{base}_{d}"
-                cells.append(f"{_cell(q[n], self.values[n]):>14}" if n in self.values else f"{'':>14}")
+                cells.append(f"{value_cell(q[n], self.values[n]):>14}" if n in self.values else f"{'':>14}")
             src = self._source(f"{base}_up" if f"{base}_up" in self.values else f"{base}_down")
-            lines.append(f"{base:<14}{''.join(cells)}  {_unit(qq):<8}{src}".rstrip())
+            lines.append(f"{base:<14}{''.join(cells)}  {unit_cell(qq):<8}{src}".rstrip())
             if qq.signs:   # a signed quantity: what each sign means, under its number
                 signs = [q[f"{base}_{d}"].sign_text(self.values.get(f"{base}_{d}", 0.0)) for d in ("down", "up")]
                 lines.append(f"{'':<14}{''.join(f'{t:>14}' for t in signs)}".rstrip())
@@ -153,16 +153,19 @@ class Result(ResultViews):
         return self.model.equation_of(name).source if name in self.model.defined_by else ""
 
 
-def _unit(q) -> str:
+def unit_cell(q) -> str:
+    """The display unit of ``q`` as a table shows it (``-`` for a pure number)."""
     return "-" if q.display_unit == "1" else q.display_unit
 
 
-def _cell(q, value) -> str:
+def value_cell(q, value) -> str:
+    """``value`` (SI) in the display unit as a table shows it (``unlimited`` for an unlimited infinity)."""
     return q.unlimited_text if value == math.inf else f"{q.to_display(value):.6g}"
 
 
-def _row(name, q, value, source="", width=14) -> str:
-    return f"{name:<{width}}{_cell(q, value):>14}  {_unit(q):<8}{source}".rstrip()
+def row(name, q, value, source="", width=14) -> str:
+    """One line of a result table: name (in ``width`` columns), value, unit, source."""
+    return f"{name:<{width}}{value_cell(q, value):>14}  {unit_cell(q):<8}{source}".rstrip()
 
 
-__all__ = ["META", "Result"]
+__all__ = ["META", "Result", "row", "unit_cell", "value_cell"]

@@ -9,9 +9,14 @@
    (largest relative difference), so the peer is also a correctness check.
    The ratio is also given in-process (no start-up on either side).
 2. **Cost vs number of points**: in-process sweeps to Parquet of 10^3 … 3·10^6
-   points against the numpy peer; the fitted exponent of time ∝ N^k over
-   N ≥ 5·10^4 (k = 1 is linear; below, the fixed cost of a sweep dominates), and
-   the least-squares fixed cost and cost per point.
+   points against the numpy peer (wall time), and the model t = a + b·N^k of
+   the sweep's CPU time (:func:`cost_model`; the sizes take turns, best of
+   three): a, the fixed cost of a sweep (building the chunks' function,
+   opening the file), and the exponent k of the part that grows with N over
+   the sweeps of more than one chunk (k = 1: linear).  The slope of log t
+   against log N would read the fixed cost as sub-linear growth wherever it is
+   not negligible; wall time on a shared machine would measure the changing
+   load of the other work.
 3. **Peak memory** (full mode): the peak resident set (VmHWM) of a fresh
    process sweeping 10^6 and 10^7 points to Parquet (chunks of 65536 points),
    and of one that only imports and compiles: the chunking keeps it flat; the
@@ -151,28 +156,28 @@ def _peer_module(tmp: Path):
 
 
 def scaling(tmp: Path, sizes, repeat: int) -> list[dict]:
-    """In-process time to Parquet against N, ropemodel vs the numpy peer (best of ``repeat``)."""
+    """In-process time to Parquet against N, ropemodel vs the numpy peer (best of ``repeat``): wall time, and
+    ropemodel's CPU time (every thread of this process), which a busy machine's other work does not inflate.
+    The sizes take turns, so a change of the machine's load falls on every size alike."""
     import ropemodel as rm
 
     peer = _peer_module(tmp)
     scene = rm.load_scene()
-    rows = []
     rm.sweep(scene, {"alpha_u": [0.1, 0.2], "G_m": [3e5]}, out=tmp / "warm.parquet", collect=False)  # compile once
-    for n in sizes:
-        n_load = max(1, int(round(math.sqrt(n))))
-        n_alpha = max(1, n // n_load)
-        t_rm, t_np = [], []
-        for _ in range(repeat):
-            t = time.perf_counter()
+    grids = [(max(1, n // max(1, round(math.sqrt(n)))), max(1, round(math.sqrt(n)))) for n in sizes]
+    t_rm, cpu_rm, t_np = ({g: [] for g in grids} for _ in range(3))
+    for _ in range(repeat):
+        for n_alpha, n_load in grids:
+            t, c = time.perf_counter(), time.process_time()
             rm.sweep(scene, {"alpha_u": f"5deg:45deg:{n_alpha}", "G_m": f"300kN:500kN:{n_load}"},
                      out=tmp / "s.parquet", collect=False, progress=False, restart=True)
-            t_rm.append(time.perf_counter() - t)
+            t_rm[n_alpha, n_load].append(time.perf_counter() - t)
+            cpu_rm[n_alpha, n_load].append(time.process_time() - c)
             t = time.perf_counter()
             peer.main(n_alpha, n_load, str(tmp / "n.parquet"), ROW_GROUP, FIG9)
-            t_np.append(time.perf_counter() - t)
-        rows.append({"points": n_alpha * n_load, "ropemodel_s": min(t_rm), "numpy_s": min(t_np),
-                     "ratio": min(t_rm) / min(t_np)})
-    return rows
+            t_np[n_alpha, n_load].append(time.perf_counter() - t)
+    return [{"points": a * b, "ropemodel_s": min(t_rm[a, b]), "ropemodel_cpu_s": min(cpu_rm[a, b]),
+             "numpy_s": min(t_np[a, b]), "ratio": min(t_rm[a, b]) / min(t_np[a, b])} for a, b in grids]
 
 
 PEAK = r'''
@@ -218,6 +223,26 @@ def memory(tmp: Path, sizes) -> list[dict]:
         rss, secs = res.stdout.split()
         rows.append({"points": n, "peak_rss_bytes": int(rss), "seconds": float(secs)})
     return rows
+
+
+def cost_model(sizes, times) -> tuple[float, float, float]:
+    """The fixed cost a [s], the cost b [s] and the exponent k of t = a + b·N^k from sweep times ``times`` [s]
+    of ``sizes`` points; k = 1 is a cost linear in N.
+
+    a is the smallest sweep's time (at 10^3 points its growing part is below 1 % of it); k and b are the
+    least-squares line through log(t − a) against log(N − N_min) over the sweeps of more than one chunk of
+    65536 points (at least two such sizes): a sweep of one partial chunk also pays the chunk's own costs.
+    A linear cost gives k = 1 exactly, whatever a; the slope of log t itself would read the fixed cost as
+    sub-linear growth.
+    """
+    n, t = np.asarray(sizes, float), np.asarray(times, float)
+    first = int(np.argmin(n))
+    big = n > ROW_GROUP
+    if big.sum() < 2 or (t[big] <= t[first]).any():
+        raise ValueError(f"t = a + b N^k needs two sweeps of more than {ROW_GROUP} points, each slower than the "
+                         f"smallest: {dict(zip(n.tolist(), t.tolist()))}")
+    k, log_b = np.polyfit(np.log(n[big] - n[first]), np.log(t[big] - t[first]), 1)
+    return float(t[first]), float(np.exp(log_b)), float(k)
 
 
 def _plot(scale, mem, path):
@@ -266,14 +291,9 @@ def main(out_dir=None, fast: bool = False, publish: bool = True) -> dict:
         else:  # memory first: fresh processes, measured before this one grows
             mem = memory(tmp, [1_000_000, 10_000_000])
             head = cli_vs_numpy(tmp, 1000, 1000, repeat=3)
-            scale = scaling(tmp, [1_000, 10_000, 100_000, 1_000_000, 3_000_000], repeat=2)
-    sizes = np.array([r["points"] for r in scale], float)
-    times = np.array([r["ropemodel_s"] for r in scale])
-    big = sizes >= 5e4  # the fixed cost of a sweep (~0.1 s: build, compile lookup, files) hides N below
-    if big.sum() < 2:
-        big[:] = True
-    k = float(np.polyfit(np.log(sizes[big]), np.log(times[big]), 1)[0])
-    per_point, fixed = (float(c) for c in np.polyfit(sizes, times, 1))  # t = fixed + per_point * N
+            scale = scaling(tmp, [1_000, 10_000, 100_000, 1_000_000, 3_000_000], repeat=3)
+    sizes = [r["points"] for r in scale]
+    fit = cost_model(sizes, [r["ropemodel_cpu_s"] for r in scale]) if sum(n > ROW_GROUP for n in sizes) > 1 else None
     pd.DataFrame([head]).to_csv(out / "cli_vs_numpy.csv", index=False)
     pd.DataFrame(scale).to_csv(out / "scaling.csv", index=False)
     if mem:
@@ -289,13 +309,16 @@ def main(out_dir=None, fast: bool = False, publish: bool = True) -> dict:
     for r in scale:
         print(f"  in-process {r['points']:>9.0f} points: ropemodel / numpy = {r['ratio']:.2f}, "
               f"ropemodel {r['ropemodel_s'] / r['points'] * 1e9:.0f} ns/point")
-    print(f"cost ~ N^{k:.2f} for N >= {sizes[big].min():.0f} (1 = linear); least squares t = a + b N: "
-          f"fixed a = {fixed * 1e3:.0f} ms, b = {per_point * 1e9:.0f} ns/point (this machine)")
+    if fit:
+        print(f"CPU time t = a + b N^k: k = {fit[2]:.3f} (1 = linear), fixed a = {fit[0] * 1e3:.0f} ms, "
+              f"b N at 10^6 points = {fit[1] * 1e6 ** fit[2]:.2f} s (this machine)")
+    else:
+        print("CPU time t = a + b N^k: not fitted (--fast times two sizes)")
     for r in mem:
         label = "imports + compile only" if r["points"] == 0 else f"{r['points']:.0e} points"
         print(f"  peak RSS {label}: {r['peak_rss_bytes'] / 2 ** 20:.0f} MiB")
-    return {"cli_vs_numpy": head, "scaling": scale, "exponent": k, "fixed_s": fixed, "per_point_s": per_point,
-            "memory": mem}
+    a, b, k = fit or (None, None, None)
+    return {"cli_vs_numpy": head, "scaling": scale, "exponent": k, "fixed_s": a, "b": b, "memory": mem}
 
 
 if __name__ == "__main__":

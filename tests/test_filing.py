@@ -209,3 +209,20 @@ def test_the_sheet_carries_the_filing_data():
     assert data["document"]["signoff"][0] == {"role": "prepared", "name": "A. Engineer", "date": "2026-11-20"}
     assert data["basis"]["rope"]["designation"] == "42 6x36WS-IWRC 1770 U sZ"
     assert any("test certificate" in m for m in data["basis"]["missing"])
+
+
+def test_the_basis_names_only_the_defaults_the_report_computes_from():
+    """A whole trip is computed piece by piece, with no transient (issue 21, item 6: the report computes what
+    the scene calls for and nothing else): the defaults only a transient reads (its speed threshold, the rope's
+    damping, the tensioner carriage's mass, an unlimited stroke) are no assumption of a trip's report, while
+    its drive efficiency and the static acceleration printed in its equations are.  A start-up's report runs
+    the transient, so its speed threshold is one."""
+    from ropemodel.reports import load
+    from ropemodel.reports.sheet import sheet
+
+    def defaults(name: str) -> set[str]:
+        lines = sheet(load(name))["basis"]["assumptions"]
+        return {line.split(" = ")[0] for line in lines if "(default)" in line}
+
+    assert defaults("trip_fig9") == {"eta", "a_h"}
+    assert defaults("winch_start") == {"v_eps"}

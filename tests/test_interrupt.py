@@ -157,7 +157,7 @@ def _ipopt_interrupted_at_its_third_evaluation():
 def test_an_interrupt_consumed_by_casadi_still_ends_the_command(monkeypatch, capfd):
     """Before: IPOPT returned (status NonIpopt_Exception_Thrown), CasADi printed its WARNING, and the
     command printed its result with exit 0.  The command below prints a result after such a solve."""
-    import ropemodel.problem
+    import ropemodel.envelope
     from ropemodel.cli import main
 
     statuses = []
@@ -170,7 +170,7 @@ def test_an_interrupt_consumed_by_casadi_still_ends_the_command(monkeypatch, cap
         statuses.append(_ipopt_interrupted_at_its_third_evaluation())
         return Result()
 
-    monkeypatch.setattr(ropemodel.problem, "run", run)
+    monkeypatch.setattr(ropemodel.envelope, "run", run)     # what `ropemodel run` calls
     code = main(["run"])
     out, err = capfd.readouterr()
     assert statuses == ["NonIpopt_Exception_Thrown"]   # IPOPT was stopped and returned: the interrupt consumed

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import base64
 import functools
+import math
 import re
 from html.parser import HTMLParser
 
@@ -131,7 +132,10 @@ def _hand_margins(values: dict) -> dict:
         out[f"slip_margin_{w}"] = v[f"F_S_{w}"] * v[f"traction_{w}"] / (v["n_slip"] * v[f"F_C_{w}"]) - 1
         out[f"slack_margin_{w}"] = v[f"F_S_{w}"] - v["F_S_min"]
         out[f"taut_margin_{w}"] = v[f"F_C_{w}"] - v["F_S_min"]
+        # along the route (a one-piece route's unwinding rope has nothing between its ends: no F_S_least)
+        out[f"route_margin_{w}"] = min(v.get(f"F_S_least_{w}", math.inf), v[f"F_C_least_{w}"]) - v["F_S_min"]
         out[f"stroke_margin_{w}"] = v["stroke"] - v[f"dF_{w}"]
+    out["sheave_margin"] = v["F_nwl"] / 2 - v["F_S_min"]
     return out
 
 
@@ -139,7 +143,7 @@ def test_every_check_of_the_sizing_scene_with_its_margin_and_verdict():
     page = Page(page_of("winch_sizing_fig9"))
     scene = rm.load_scene("winch_sizing_fig9")
     names = margin_names(scene.built.outputs)
-    assert len(names) == 11
+    assert len(names) == 14
     # the numbers the page prints: inputs, derived rope properties, results (display units)
     shown = {}
     for cls in ("pairs", "singles"):
@@ -147,9 +151,9 @@ def test_every_check_of_the_sizing_scene_with_its_margin_and_verdict():
             for key in ("down", "up", "value"):
                 if r.get(key):
                     shown[r["quantity"] + {"down": "_down", "up": "_up", "value": ""}[key]] = number(r[key])[0]
-    for cls in ("inputs", "derived", "defaults"):
+    for cls in ("inputs", "derived", "defaults"):   # (x_m is "anywhere": each check at its worst place)
         shown.update({r["parameter" if cls != "derived" else "quantity"]: number(r["value"])[0]
-                      for r in page.table(cls)})
+                      for r in page.table(cls) if r["value"] != "anywhere"})
     hand = _hand_margins(shown)
     rows = page.table("checks", 0)                    # at the scene's own (starting) design
     assert [r["margin"] for r in rows] == names
@@ -160,7 +164,7 @@ def test_every_check_of_the_sizing_scene_with_its_margin_and_verdict():
     failed = [r["margin"] for r in rows if r["result"] == "FAIL"]
     # 1000 mm is far too short for this rope's stretch; 1.5 wraps at mu_d = 0.2 slip when hauling up
     assert sorted(failed) == ["slip_margin_up", "stroke_margin_down", "stroke_margin_up"]
-    assert f"{len(failed)} of 11 checks FAIL" in page_of("winch_sizing_fig9")
+    assert f"{len(failed)} of 14 checks FAIL" in page_of("winch_sizing_fig9")
 
 
 def test_the_sizing_section_shows_the_design_and_every_check_passing():
@@ -178,7 +182,7 @@ def test_the_sizing_section_shows_the_design_and_every_check_passing():
         assert table[k]["recommended (catalogue)"] == q[k].show(design.design[k])
     for a in design.active:
         assert f"<code>{a}</code>" in page_of("winch_sizing_fig9")
-    assert "All 11 checks pass." in page_of("winch_sizing_fig9")
+    assert "All 14 checks pass." in page_of("winch_sizing_fig9")
 
 
 def test_catalogue_rope_properties_are_marked_as_derived():

@@ -83,7 +83,7 @@ def test_cli_prints_the_page_to_pdf(tmp_path, capsys):
     assert main(["report", "winch_sizing_fig9", "-o", str(html), "--pdf", str(pdf)]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert lines[:2] == [f"wrote {html}", f"wrote {pdf}"]
-    assert len(lines) == 4 and lines[2].startswith("checks at the scene's values: 3 of 11 FAIL")   # as the page
+    assert len(lines) == 4 and lines[2].startswith("checks at the scene's values: 3 of 14 FAIL")   # as the page
     assert lines[3].startswith("sizing: design d = ") and lines[3].endswith(", every check met")
     data = pdf.read_bytes()
     assert data.startswith(b"%PDF-") and b"%%EOF" in data[-64:]

@@ -131,15 +131,62 @@ def _two(a2):
             + 0.05 * 467e3 * math.cos(a2) + 0.05 * 80 * (400 * math.cos(a1) + 650 * math.cos(a2)))
 
 
-def test_run_worst_puts_the_load_where_F_C_up_is_largest(capsys):
-    """--worst: the segment of the largest F_C_up, by hand (docs/physics.md §4: the load term
-    G_m (sin α_j + μ_pm cos α_j))."""
+def test_run_takes_each_result_at_its_worst_place_by_default(capsys):
+    """No x_m: each result at its own worst place (and manoeuvre: route_segments has 5 s ramps), by hand
+    (docs/physics.md §4: the load term G_m (sin α_j + μ_pm cos α_j + a/g), the ramps' inertia on both sides);
+    the old --worst is refused and says what replaced it (the change of default: the old default, the start of
+    a trip, gave the forces of the 3° segment)."""
     from ropemodel.cli import main
 
-    assert main(["run", "route_segments", "--worst", "--json"]) == 0
+    assert main(["run", "route_segments", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    slopes = [(400.0, 22.0), (650.0, 9.0), (300.0, 3.0)]
-    j = max(range(3), key=lambda i: math.sin(math.radians(slopes[i][1])) + 0.05 * math.cos(math.radians(slopes[i][1])))
-    assert j == 0 and out["G_ml"] == pytest.approx(467e3 * math.sin(math.radians(22.0)), rel=1e-12)
-    assert main(["run", "example", "--worst"]) == 2
-    assert "--worst needs a route of segments" in capsys.readouterr().err
+    q_l, G_m, F_nwl, L = 80.0, 467e3, 30e3, [400.0, 650.0, 300.0]
+    al = np.radians([22.0, 9.0, 3.0])
+    mu = np.array([0.06, 0.05, 0.05])
+    a = 2.5 / 5.0
+    m_C = (G_m + q_l * sum(L)) / G
+
+    def F_C_up(j, acc):
+        return (0.5 * F_nwl + q_l * np.sum(L * np.sin(al)) + G_m * math.sin(al[j])
+                + 0.05 * G_m * math.cos(al[j]) + q_l * np.sum(mu * L * np.cos(al)) + m_C * acc)
+
+    truth = max(F_C_up(j, acc) for j in range(3) for acc in (0.0, a, -a))
+    assert out["F_C_up"] == pytest.approx(truth, rel=1e-12) and truth == F_C_up(0, a)
+    assert out["worst_case"]["outputs"]["F_C_up"]["where"] == {"segment": 1, "x_m": 400.0, "direction": "up",
+                                                              "manoeuvre": "start"}
+    assert main(["run", "route_segments", "--worst"]) == 2
+    assert "--worst is gone" in capsys.readouterr().err
+
+
+def test_the_readme_envelope_of_route_segments_by_hand():
+    """The README's `ropemodel run route_segments` excerpt, each printed number (6 digits) by hand: lowering,
+    the drive brakes hardest stopping on the 22° segment and motors starting on the 3° one."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    block = text.split("$ ropemodel run route_segments\n", 1)[1].split("```", 1)[0]
+    q_l, G_m, F, L, eta, v, a = 80.0, 467e3, 30e3, np.array([400.0, 650.0, 300.0]), 0.85, 2.5, 0.5
+    al = np.radians([22.0, 9.0, 3.0])
+    mu = np.array([0.06, 0.05, 0.05])
+    L_u = L.sum()
+
+    def forces(j, acc, s=1.0):
+        F_S = 0.5 * F + q_l * np.sum(L * np.sin(al)) - s * (0.05 * q_l * np.sum(L * np.cos(al)) + q_l * L_u / G * acc)
+        F_C = (0.5 * F + q_l * np.sum(L * np.sin(al)) + G_m * math.sin(al[j])
+               + s * (0.05 * G_m * math.cos(al[j]) + q_l * np.sum(mu * L * np.cos(al)) + (G_m + q_l * L_u) / G * acc))
+        return F_C, F_S
+
+    def drive(F_C, F_S, s):
+        """The drive's power: the drum's s (F_C − F_S) v, /η motoring, ·η braking (four quadrants)."""
+        P = s * (F_C - F_S) * v
+        return (P / eta if P > 0 else P * eta) / 1e3
+
+    start, stop = forces(0, a), forces(2, -a)
+    lowered_stop, lowered_start = forces(0, -a, -1.0), forces(2, a, -1.0)
+    hand = {("F_S_up", "largest"): stop[1] / 1e3, ("F_S_up", "least"): start[1] / 1e3,
+            ("F_C_up", "largest"): start[0] / 1e3, ("dF_up", "largest"): 5.8 * (start[0] + start[1] + F) / 1e3,
+            ("N_p_up", "largest"): drive(*start, 1.0), ("N_p_up", "least"): drive(*stop, 1.0),
+            ("N_p_down", "least"): drive(*lowered_stop, -1.0), ("N_p_down", "largest"): drive(*lowered_start, -1.0)}
+    for (name, sense), value in hand.items():
+        line = next(ln for ln in block.splitlines() if ln.split()[:2] == [name, sense])
+        assert float(line.split()[2]) == pytest.approx(value, rel=5e-6), line

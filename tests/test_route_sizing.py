@@ -1,8 +1,14 @@
-"""Sizing on a route of segments: every check with the load on every segment and through a trip's ramps.
+"""Sizing on a route of segments: every check with the load anywhere on the route and through a trip's ramps.
 
-Truth: a one-dimensional search written here (docs/physics.md §4 sums and inertia written out, the
-least pretension for no slip / taut ropes over every state, then the diameter where the rope safety
-of the worst state is exactly met), as in tests/test_sizing.py for the paper's straight route.
+Truth: a one-dimensional search written here (docs/physics.md §4 written out in numpy in tests/_route_truth.py:
+the forces at the drum, the least tension along each side by brute force; the least pretension for no slip and
+taut ropes everywhere in the loop over every place of the load, manoeuvre and direction, then the diameter
+where the rope safety of the worst case is exactly met), as in tests/test_sizing.py for the paper's straight
+route.  The places are many points along the route and both sides of every joint, not the library's list.
+
+Changed with the worst case by default: the checks were made with the load in the middle of each segment in
+steady motion and at a trip's start and stop only where the trip starts and stops; a start (or a stop) can
+happen with the load anywhere, and the tension must hold everywhere in the loop, not only at the drum.
 """
 
 from __future__ import annotations
@@ -10,6 +16,7 @@ from __future__ import annotations
 import math
 
 import pytest
+from _route_truth import Route, places, rope
 from scipy.optimize import brentq
 
 import ropemodel as rm
@@ -17,8 +24,6 @@ from optimisation.design import size
 from optimisation.ipopt import solve_continuous
 from optimisation.problem import SizingProblem, load_sizing
 
-G = 9.80665
-K, W, C = 0.356, 4090.0, 0.460        # 6x36-IWRC, EN 12385-4
 SEGMENTS = [(400.0, 22.0, 0.06), (650.0, 9.0, 0.05), (300.0, 3.0, 0.05)]
 P = dict(G_m=467e3, mu_pm=0.05, mu_pl=0.05, v_pj=2.5, t_ramp=5.0, mu_d=0.2, alpha_d=math.radians(540),
          n_slip=1.25, n_rope=4.5, F_S_min=5e3, rope_grade=1770e6, rope_E=100e9)
@@ -55,51 +60,43 @@ t_ramp = "5 s"
 '''
 
 
-def _states():
-    """(load's segment, acceleration, direction) of every state: each segment in steady motion, and the
-    start and stop of each direction's trip where they happen (an upward trip starts at the last segment)."""
-    a = P["v_pj"] / P["t_ramp"]
-    out = [(j, 0.0, d) for j in range(3) for d in ("up", "down")]
-    return out + [(2, a, "up"), (0, -a, "up"), (0, a, "down"), (2, -a, "down")]
+def _route(d, segments=SEGMENTS) -> Route:
+    """The haulage at diameter d with no pretension: each force is then its part beyond F_nwl/2."""
+    return Route(tuple(g[0] for g in segments), tuple(g[1] for g in segments), tuple(g[2] for g in segments),
+                 G_m=P["G_m"], q_l=rope(d)["q_l"], F_nwl=0.0, mu_pm=P["mu_pm"], mu_pl=P["mu_pl"])
 
 
-def _parts(d, j, acc, direction, segments=SEGMENTS):
-    """(constant part of F_S, constant part of F_C) [N]: F_S = F_nwl/2 + s, F_C = F_nwl/2 + c."""
-    q = G * W * d * d
-    L = [g[0] for g in segments]
-    al = [math.radians(g[1]) for g in segments]
-    mu = [g[2] for g in segments]
-    L_u = sum(L)
-    sgn = 1.0 if direction == "up" else -1.0
-    weight = sum(q * Li * math.sin(ai) for Li, ai in zip(L, al))
-    s = weight - sgn * (P["mu_pl"] * sum(q * Li * math.cos(ai) for Li, ai in zip(L, al)) + q * L_u / G * acc)
-    c = (weight + P["G_m"] * math.sin(al[j])
-         + sgn * (P["mu_pm"] * P["G_m"] * math.cos(al[j])
-                  + sum(m * q * Li * math.cos(ai) for m, Li, ai in zip(mu, L, al))
-                  + (P["G_m"] + q * L_u) / G * acc))
-    return s, c
+def _cases(d, segments=SEGMENTS):
+    """(F_C part, F_S part, least tension part of either side) [N] of every place, manoeuvre and direction."""
+    r, a = _route(d, segments), P["v_pj"] / P["t_ramp"]
+    out = []
+    for x in places(r, 20):
+        for acc in (0.0, a, -a):
+            for s in (1.0, -1.0):
+                F_C, F_S = r.drum(float(x), acc, s)
+                least = min(r.least(side, float(x), acc, s, n=201) for side in ("winding", "unwinding"))
+                out.append((F_C, F_S, least))
+    return out
 
 
 def _least_F(d, segments):
     r, n = math.exp(P["mu_d"] * P["alpha_d"]), P["n_slip"]
-    need = [0.0]
-    for st in _states():
-        s, c = _parts(d, *st, segments)
-        need += [2 * (n * c - r * s) / (r - n), 2 * (P["F_S_min"] - s), 2 * (P["F_S_min"] - c)]
+    need = [2 * P["F_S_min"]]                              # the return sheave: F_nwl/2 >= F_S_min
+    for c, s, least in _cases(d, segments):
+        need += [2 * (n * c - r * s) / (r - n), 2 * (P["F_S_min"] - least)]
     return max(need)
 
 
 def _safety(d, segments):
     F = _least_F(d, segments)
-    F_min = K * d * d * P["rope_grade"]
-    return min(F_min / (P["n_rope"] * (0.5 * F + _parts(d, *st, segments)[1])) - 1 for st in _states())
+    return min(rope(d)["F_min"] / (P["n_rope"] * (0.5 * F + c)) - 1 for c, _, _ in _cases(d, segments))
 
 
 def _hand(segments=SEGMENTS):
     d = brentq(_safety, 0.005, 0.2, args=(segments,), xtol=1e-15, rtol=1e-15)
     F = _least_F(d, segments)
-    q_lw = sum(g[0] for g in segments) / (P["rope_E"] * C * d * d)
-    stroke = max(q_lw * (2 * F + sum(_parts(d, *st, segments))) for st in _states())
+    q_lw = sum(g[0] for g in segments) / (P["rope_E"] * 0.460 * d * d)
+    stroke = max(q_lw * (2 * F + c + s) for c, s, _ in _cases(d, segments))
     return {"d": d, "F_nwl": F, "stroke": stroke}
 
 
@@ -110,11 +107,18 @@ def scene(tmp_path_factory):
     return load_sizing(f, emit=False)
 
 
-def test_route_sizing_checks_every_segment_and_the_ramps(scene):
+def test_route_sizing_checks_every_place_and_manoeuvre(scene):
+    """Every check with the load at the return-sheave end of each segment and at the drive, in steady motion,
+    a start and a stop; each check only in the cases it can differ in (the unwinding rope's does not depend
+    on where the load is, the return sheave's on nothing)."""
     problem = SizingProblem(scene)
-    labels = {c.split(" @ ")[1] for c in problem.constraints if " @ " in c}
-    assert labels == {"segment 1", "segment 2", "segment 3", "start of an upward trip", "stop of an upward trip",
-                      "start of a downward trip", "stop of a downward trip"}
+    labels = {c.split(" @ ")[1] for c in problem.constraints if c.startswith("safety_margin_up @ ")}
+    places = ["segment 1, x_m = 400 m", "segment 2, x_m = 1050 m", "segment 3, x_m = 1350 m",
+              "segment 1, x_m = 0 m"]
+    assert labels == {f"{p}, {m}" for p in places for m in ("steady", "start", "stop")}
+    assert {c for c in problem.constraints if c.startswith("slack_margin_up")} == {
+        f"slack_margin_up @ {m}" for m in ("steady", "start", "stop")}
+    assert "sheave_margin" in problem.constraints
 
 
 def test_route_sizing_equals_the_one_dimensional_search(scene):
@@ -131,7 +135,7 @@ def test_route_catalogue_design_passes_its_checks_in_every_state(scene):
     assert design.feasible and min(design.margins.values()) >= 0.0
     assert design.design["d"] >= _hand()["d"]
     active = {c.split(" @ ")[1] for c in design.active_continuous if " @ " in c}
-    assert "segment 1" in active     # the steep segment at the drive, in steady motion, sets the rope
+    assert "segment 1, x_m = 400 m, start" in active     # a start with the load on the steep segment at the drive
 
 
 def _without_ramps(raw):
@@ -142,8 +146,8 @@ def _without_ramps(raw):
 
 
 def test_a_start_on_the_steep_end_needs_more_rope(tmp_path):
-    """Steep at the return sheave's end, where an upward trip starts: the start's inertia there sets the rope
-    (the same route without ramps needs less), and the one-dimensional search agrees."""
+    """Steep at the return sheave's end: a start with the load there sets the rope (the same route without
+    ramps needs less), and the one-dimensional search agrees."""
     f = tmp_path / "reversed.toml"
     segments = TOML.split("[[route]]")
     f.write_text(segments[0] + "[[route]]" + segments[3].split("[parameters]")[0] + "[[route]]" + segments[2]
@@ -152,7 +156,7 @@ def test_a_start_on_the_steep_end_needs_more_rope(tmp_path):
     assert [scene.parameters[f"alpha_{i}"] for i in (1, 2, 3)] == pytest.approx([math.radians(a) for a in (3, 9, 22)])
     design = size(scene, with_sensitivities=False)
     active = {c.split(" @ ")[1] for c in design.active_continuous if " @ " in c}
-    assert "start of an upward trip" in active
+    assert "segment 3, x_m = 1350 m, start" in active
     lighter = size(_without_ramps(scene.raw), with_sensitivities=False)
     assert lighter.continuous["d"] < 0.99 * design.continuous["d"]
     assert design.continuous["d"] == pytest.approx(_hand(list(reversed(SEGMENTS)))["d"], rel=1e-8)

@@ -5,7 +5,7 @@ import math
 import pytest
 from _studies import load_study
 
-Q, G_M, F_NWL, MU = 80.0, 467e3, 20e3, 0.05
+Q, G_M, F_NWL, MU = 80.0, 467e3, 30e3, 0.05    # route_segments.toml
 SEGMENTS = [(400.0, 22.0, 0.06), (650.0, 9.0, 0.05), (300.0, 3.0, 0.05)]
 
 
@@ -23,7 +23,7 @@ def test_route_trip_study(tmp_path):
     assert table.loc[("route", "up"), "F_C_max"] == pytest.approx(_F_C_up(22.0), rel=1e-12)
     # the equivalent slope (same length and rise) hides it: 22 % lower here
     ratio = table.loc[("route", "up"), "F_C_max"] / table.loc[("equivalent slope", "up"), "F_C_max"]
-    assert ratio == pytest.approx(1.288, abs=0.001)
+    assert ratio == pytest.approx(1.280, abs=0.001)
     # the same rise: the energy of an upward trip differs only by the rope's resistance on the slopes
     assert table.loc[("route", "up"), "E_trip"] == pytest.approx(table.loc[("equivalent slope", "up"), "E_trip"],
                                                                  rel=0.02)

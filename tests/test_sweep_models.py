@@ -31,13 +31,22 @@ def _swept_parameter(scene):
 
 @pytest.mark.parametrize("name", SCENES)
 def test_sweep_equals_single_solves(name):
+    """Each point equals ``rm.run`` at it: one solve, or on a scene that leaves the load's place or the manoeuvre
+    open each output's worst over the cases (reduced by numpy there, inside the swept Function here), and the
+    place and acceleration of its governing case (the ``@x_m``, ``@a_h`` columns)."""
     scene = rm.load_scene(str(resources.files("ropemodel.data").joinpath(name)))
     par, values = _swept_parameter(scene)
     frame = rm.sweep(scene, {par: values}, si=True, progress=False)
-    problem = rm.Problem(scene)
     for i, v in enumerate(values):
-        single = problem.solve({par: v})
-        for j, out in enumerate(problem.unknowns):
-            got = frame.iloc[i, 1 + j]
-            assert got == pytest.approx(single[out], rel=1e-10, abs=1e-12), (name, par, v, out)
+        single = rm.run(scene.with_values({par: v}))
+        env = getattr(single, "envelope", None)
+        for col in frame.columns[1:]:
+            out, _, inp = col.split(" [")[0].partition("@")
+            got = frame.loc[i, col]
+            if inp:
+                want = env.worst(out).case.values(env.params)[inp]
+            else:
+                want = single[out]
+            assert got == pytest.approx(want, rel=1e-10, abs=1e-12), (name, par, v, col)
+        assert {c.split(" [")[0] for c in frame.columns[1:] if "@" not in c} == set(single.outputs)
     assert np.isfinite(frame.to_numpy(dtype=float)).all()

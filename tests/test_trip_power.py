@@ -79,8 +79,8 @@ def test_size_names_the_sign_of_its_power(capsys):
     out = capsys.readouterr().out
     up = next(line for line in out.splitlines() if line.startswith("N_p_up"))
     down = next(line for line in out.splitlines() if line.startswith("N_p_down"))
-    assert up.split()[-1] == "motoring" and float(up.split()[1]) > 0
-    assert down.split()[-1] == "braking" and float(down.split()[1]) < 0
+    assert up.split()[3] == "motoring" and float(up.split()[1]) > 0          # N_p_up  605.1  kW  motoring (at …)
+    assert down.split()[3] == "braking" and float(down.split()[1]) < 0
 
 
 def test_the_symbolic_drive_power_is_safe_on_both_sides():

@@ -221,12 +221,14 @@ def test_sweep_shows_its_units(capsys, tmp_path):
 
 def test_route_picture_is_the_forces_where_the_load_is(capsys):
     """On a route of segments the forces step where the load crosses a joint: each segment's level is
-    ``ropemodel run --set x_m=...`` with the load in it."""
+    ``ropemodel run --at x_m=... --at a_h=0`` with the load in it (the picture of the worst case: steady
+    motion, the starts and stops are in its envelope)."""
     result = rm.run(rm.load_scene("route_segments"))
     ax = result.plot()
+    assert ax.get_title().endswith("steady motion")
     x, F = ax.lines[0].get_data()                                   # F_C, up [kN]
     for x_m in (200.0, 700.0, 1200.0):
-        data = command_json(capsys, "run", "route_segments", "--set", f"x_m={x_m:g}m")
+        data = command_json(capsys, "run", "route_segments", "--at", f"x_m={x_m:g}m", "--at", "a_h=0m/s^2")
         assert np.interp(x_m, x, F) * 1e3 == pytest.approx(data["F_C_up"], rel=1e-12)
     data = command_json(capsys, "run", "krauze2025_fig9")
     F = rm.run(rm.load_scene()).plot().lines[0].get_data()[1]      # the paper's route: wherever the load is

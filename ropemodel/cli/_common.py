@@ -108,6 +108,40 @@ def scene_from_args(args, optional=(), announce: bool = True):
     return scene
 
 
+def add_at_argument(parser) -> None:
+    """``--at NAME=VALUE``: one point (the load's place, the acceleration) instead of the worst case."""
+    parser.add_argument("--at", action="append", metavar="NAME=VALUE", default=[],
+                        help="one point instead of the worst case: the load's place x_m (e.g. x_m=1300m) or the "
+                             "haulage's acceleration a_h (with the ramps' inertia); repeat for both")
+
+
+def pinned(scene, items):
+    """The scene with the case inputs of ``--at`` set (each must be one the scene's results depend on)."""
+    from ropemodel.envelope import CASE_INPUTS
+
+    values, found = assignments(items, "--at"), Problems()
+    for name in values:
+        if name not in CASE_INPUTS:
+            found.add(f"--at {name}: --at takes the load's place x_m or the acceleration a_h; set other "
+                      f"parameters with --set {name}=...")
+        elif name not in scene.built.parameters:
+            found.add(f"--at {name}: this scene's results do not depend on {name} "
+                      + ("(a straight route without design checks: the forces are the same wherever the load is)"
+                         if name == "x_m" else "(no ramps' inertia: set [effects] inertia = \"rigid\")"))
+    found.raise_if_any()
+    return scene.with_values(values, bare="refuse", origin="--at") if values else scene
+
+
+def worst_case_scene(args):
+    """The scene of the command line as the worst case takes it: its starts and stops switched on where it
+    gives ``t_ramp`` (:func:`ropemodel.envelope.with_ramps`), its warnings printed, ``--at`` applied."""
+    from ropemodel.envelope import with_ramps
+
+    scene = with_ramps(scene_from_args(args, announce=False))
+    warn(scene.warnings)
+    return pinned(scene, getattr(args, "at", []))
+
+
 def sizing_scene_from_args(args):
     """The scene of a sizing command (``size``, ``sweep --sizing``, ``sensitivity --sizing``) as sizing reads it:
     no starting design needed (d, F_nwl, stroke, and D on a rigid drum), design checks on; its warnings on
@@ -123,10 +157,13 @@ def sizing_scene_from_args(args):
 def warn_unread(scene, command: str, reads=None, chosen=None) -> None:
     """Warn of each value given on top of the scene's file (``--set``) that ``command`` does not use:
     ``chosen`` (name → how) it sets itself, the rest are not among ``reads`` (default: the parameters every
-    output of the scene's static model is computed from)."""
+    output of the scene's static model is computed from, and those its worst case reads:
+    :func:`ropemodel.envelope.reads`)."""
+    from ropemodel.envelope import reads as case_reads
     from ropemodel.unread import not_read
 
-    warn(not_read(scene, scene.built.inputs_of() if reads is None else reads, command, chosen))
+    reads = scene.built.inputs_of() if reads is None else set(reads)
+    warn(not_read(scene, reads | case_reads(scene), command, chosen))
 
 
 def warn(lines) -> None:

@@ -1,31 +1,37 @@
-"""``ropemodel run [SCENE] [--set NAME=VALUE ...] [--worst] [--json]``: solve a scene forward."""
+"""``ropemodel run [SCENE] [--set NAME=VALUE ...] [--at NAME=VALUE ...] [--json]``: solve a scene forward.
+
+Where the scene leaves the load's place (``x_m``) open, or the manoeuvre (``a_h``, with the ramps' inertia),
+each result is its worst over every place and manoeuvre, with where it governs (:mod:`ropemodel.envelope`);
+``--at x_m=...`` (and ``--at a_h=...``) gives one point instead.
+"""
 
 from __future__ import annotations
 
-from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn_unread
+import argparse
+
+from ropemodel.cli._common import add_at_argument, add_scene_arguments, warn_unread, worst_case_scene
 from ropemodel.errors import InputError
 
 NAME = "run"
-HELP = "compute every output of a scene (default: the built-in Fig. 9 example)"
+HELP = "compute every output of a scene (default: the built-in Fig. 9 example); on a route, each at its worst"
+#: what replaced ``--worst`` (removed: the worst case is the default)
+WORST_GONE = ("--worst is gone: run takes every result at its own worst place and manoeuvre by default, and says "
+              "where; --at x_m=... gives one place of the load")
 
 
 def add_arguments(parser) -> None:
     add_scene_arguments(parser)
-    parser.add_argument("--worst", action="store_true",
-                        help="on a route of segments: put the load where the upward winding force F_C_up is "
-                             "largest (the rope's, the stroke's and the drive's worst case) instead of at x_m")
+    add_at_argument(parser)
+    parser.add_argument("--worst", action="store_true", help=argparse.SUPPRESS)
 
 
 def main(args) -> int:
-    from ropemodel.problem import run, worst_position
+    from ropemodel.envelope import run
 
-    scene = scene_from_args(args)
-    warn_unread(scene, "run")
     if args.worst:
-        if scene.effects.get("route") != "segments":
-            raise InputError("--worst needs a route of segments ([effects] route = \"segments\"): on the paper's "
-                             "straight route the forces do not depend on where the load is")
-        scene = scene.with_values({"x_m": worst_position(scene)}, origin="--worst")
+        raise InputError(WORST_GONE)
+    scene = worst_case_scene(args)
+    warn_unread(scene, "run")
     result = run(scene)
     print(result.to_json() if args.json else result.table())
     return 0

@@ -12,8 +12,8 @@ from __future__ import annotations
 import json
 import math
 
-from ropemodel.cli._common import (add_scene_arguments, name_list, named, refuse_without, scene_from_args,
-                                   sizing_scene_from_args, warn_unread)
+from ropemodel.cli._common import (add_at_argument, add_scene_arguments, name_list, named, refuse_without,
+                                   sizing_scene_from_args, warn_unread, worst_case_scene)
 from ropemodel.errors import InputError
 from ropemodel.progress import status
 
@@ -33,6 +33,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--samples", type=int, default=None,
                         help="Sobol base samples N, a power of two >= 4 (N*(D+2) evaluations; default 1024)")
     parser.add_argument("--seed", type=int, default=None, help="seed of the Sobol sequence scrambling, 0 to 2**32 - 1")
+    add_at_argument(parser)
     parser.add_argument("--sizing", action="store_true",
                         help="Sobol indices of the sizing optimum (d, F_nwl, stroke) instead of the outputs")
 
@@ -65,7 +66,7 @@ def main(args) -> int:
     else:
         refuse_without(args, "--sobol ranges", "samples", "seed", "sizing")
     plot = check_plot(args.plot) if args.plot is not None else None   # before any work
-    scene = sizing_scene_from_args(args) if args.sizing and ranges else scene_from_args(args)
+    scene = sizing_scene_from_args(args) if args.sizing and ranges else worst_case_scene(args)
     if outputs:
         scene.built.check_names(outputs, "output")
     if not (args.sizing and ranges):

@@ -44,6 +44,8 @@ def _num(v):
 
 
 def _text(design) -> str:
+    from ropemodel.envelope import where_text
+
     q = design.scene.built.quantities
     lines = [f"{design.scene.name}: sizing"]
     if design.continuous:
@@ -54,21 +56,26 @@ def _text(design) -> str:
             lines.append(f"{k:<12}{cat}{q[k].to_display(design.continuous[k]):>14.6g}  {q[k].display_unit}")
     if design.feasible:
         lines.append("")
-        lines.append("active constraints: " + ", ".join(design.active))
+        lines.append("active constraints:")
+        lines += [f"  {a}" for a in design.active]
         for k, v in design.power.items():
             sign = q[k].sign_text(v)   # a drive power: motoring (> 0) or braking (< 0)
-            lines.append(f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}" + (f"  {sign}" if sign else ""))
+            lines.append(f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}" + (f"  {sign}" if sign else "")
+                         + "  (at its worst)")
+        for kind, e in design.drive.items():
+            lines.append(f"{'drive ' + kind:<16}{q['N_p_up'].to_display(e['value']):>10.6g}  "
+                         f"{q['N_p_up'].display_unit}  (largest; {where_text(e['where'], direction=True)})")
         if design.least_drum is not None:
             lines.append(f"{'D_min':<12}{q['D'].to_display(design.least_drum):>14.6g}  {q['D'].display_unit}"
                          f"  (no drum diameter given: the least drum, D_ratio_min d)")
         lines.append("")
-        lines.append(f"{'check margin':<22}{'value':>14}  {'unit':<6}{'':<6}rule")
+        lines.append(f"{'check margin':<22}{'value':>14}  {'unit':<6}{'':<6}where it is least; rule")
         for k, v in design.margins.items():
             c = q[k.split(" @ ")[0]]       # on a route: "slip_margin_up @ segment 2"
             unit = "-" if c.display_unit == "1" else c.display_unit
             shown = c.to_display(v) if abs(v) > 1e-9 else 0.0  # an active check prints as 0, not -8.9e-13
             lines.append(f"{k:<22}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS':<6}"
-                         f"{design.scene.check_basis(k)}")
+                         f"{where_text(design.governing.get(k))}; {design.scene.check_basis(k)}")
     lines.append("")
     lines.append(design.message)
     return "\n".join(lines)

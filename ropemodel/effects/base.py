@@ -152,9 +152,17 @@ class Submodel:
         worst over positions, loads or manoeuvres; ``values`` as :meth:`invalid`.  ``{}`` for none."""
         return {}
 
-    def frames(self, values: dict[str, float], scene) -> dict:
-        """Extra tables (title → pandas DataFrame with units in its columns) for a solved point."""
+    def frames(self, values: dict[str, float], scene, where: dict | None = None) -> dict:
+        """Extra tables (title → pandas DataFrame with units in its columns) for a solved point; ``where``:
+        output → the place that governs its value, when the values are each output's worst case
+        (:mod:`ropemodel.envelope`)."""
         return {}
+
+    def sibling(self, effect: str) -> Submodel:
+        """The chosen variant of another ``effect`` of this model (built with the same options and effects),
+        for what only it knows (e.g. the route's segments), found through the registry."""
+        spec = REGISTRY[self.model][effect]
+        return spec.variants[self.effects.get(effect, spec.default)](self.options, self.effects)
 
 
 @dataclass

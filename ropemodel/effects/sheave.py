@@ -204,7 +204,7 @@ class _Lining(Submodel):
                              f"{float(o.get('rtol', 1e-7)):g} at this point; loosen [numerics] rtol or use "
                              "method = 'closed'")
 
-    def frames(self, values, scene):
+    def frames(self, values, scene, where=None):
         return {"tension along the arc": distribution_frame(values, scene)}
 
 

@@ -32,6 +32,8 @@ DIRECTIONS = {"up": kr.UP, "down": kr.DOWN}
 SRC = "Krauze et al. 2025"
 
 POSITIVE = dict(positive=True)      # solved for in log space where it is an unknown (its domain is > 0)
+#: an output whose worst case is its largest value (:attr:`ropemodel.quantity.Quantity.worst`)
+LARGEST = dict(worst=("largest",))
 
 #: what a signed power's sign means (four-quadrant convention)
 SIGNS = ("braking", "motoring")
@@ -107,8 +109,10 @@ class HaulageForces(Submodel):
     quantities = (
         F_NWL,
         G_LMC,
-        *per_direction("F_S", "N", "force in the unwinding rope", "kN", equation=f"{SRC}, eq. (12)"),
-        *per_direction("F_C", "N", "force in the winding rope", "kN", equation=f"{SRC}, eq. (13)"),
+        *per_direction("F_S", "N", "force in the unwinding rope", "kN", equation=f"{SRC}, eq. (12)",
+                       worst=("least", "largest")),
+        *per_direction("F_C", "N", "force in the winding rope", "kN", equation=f"{SRC}, eq. (13)",
+                       worst=("largest",)),
     )
 
     def equations(self, v):
@@ -137,23 +141,35 @@ class HaulageForces(Submodel):
 
     def invalid_mask(self, values):
         """A rope force <= 0: the rope would have to push, so it is slack (the model no longer holds)."""
-        out = {}
-        for name in _FORCES:
-            if name in values:
-                mask = np.asarray(values[name]) <= 0.0
-                if np.any(mask):
-                    out[f"{name} <= 0: the {_ROPE[name[2]]} rope is slack ({_TRAVEL[name[4:]]})"] = mask
-        return out
+        return slack_masks(values, _FORCES)
 
     def invalid(self, values):
-        forces = {n: values[n] for n in _FORCES if n in values}
-        if not forces or min(forces.values()) > 0.0:
-            return []
-        worst = min(forces, key=forces.get)
-        need = values.get("F_nwl", 0.0) - 2.0 * forces[worst]
-        return [f"{worst} = {forces[worst] / 1e3:.6g} kN: the {_ROPE[worst[2]]} rope would have to push "
-                f"({_TRAVEL[worst[4:]]}); a rope cannot, it is slack and the model no longer holds. "
-                f"Every rope stays taut with F_nwl > {need / 1e3:.6g} kN (now {values.get('F_nwl', 0.0) / 1e3:.6g} kN)"]
+        return slack_reasons(values, _FORCES)
+
+
+def slack_masks(values: dict, names, where: str = "") -> dict:
+    """Reason → mask of the points where a rope tension among ``names`` (``F_S_up``, ``F_C_least_down``: the
+    side is the letter after ``F_``, the direction the suffix) is <= 0: the rope would have to push, so it is
+    slack (the model no longer holds) ``where`` (e.g. " inside the route")."""
+    out = {}
+    for name in (n for n in names if n in values):
+        mask = np.asarray(values[name]) <= 0.0
+        if np.any(mask):
+            out[f"{name} <= 0: the {_ROPE[name[2]]} rope is slack{where} ({_TRAVEL[name.rsplit('_', 1)[1]]})"] = mask
+    return out
+
+
+def slack_reasons(values: dict, names, where: str = "") -> list[str]:
+    """:func:`slack_masks` at one point: the least of ``names`` if <= 0, in words, with the least F_nwl that keeps
+    every rope taut (each tension carries F_nwl/2)."""
+    forces: dict[str, float] = {n: float(values[n]) for n in names if n in values}
+    if not forces or min(forces.values()) > 0.0:
+        return []
+    worst = min(forces, key=lambda n: forces[n])
+    need, now = values.get("F_nwl", 0.0) - 2.0 * forces[worst], values.get("F_nwl", 0.0)
+    return [f"{worst} = {forces[worst] / 1e3:.6g} kN: the {_ROPE[worst[2]]} rope would have to push{where} "
+            f"({_TRAVEL[worst.rsplit('_', 1)[1]]}); a rope cannot, it is slack and the model no longer holds. "
+            f"Every rope stays taut with F_nwl > {need / 1e3:.6g} kN (now {now / 1e3:.6g} kN)"]
 
 
 define_effect(MODEL, "inertia", "none", "inertia of a haulage speeding up or slowing down (rigid rope)")
@@ -167,6 +183,20 @@ class SteadyMotion(Submodel):
     assumptions = ("Steady motion: the forces are those at constant speed; starting and stopping add inertia "
                    "(inertia = \"rigid\", or the transient).",)
 
+    def acceleration(self, v):
+        """The haulage's acceleration the forces include [m/s²]: none."""
+        return 0.0
+
+
+#: the deceleration of an emergency stop: no default number (no source fits every safety brake), so without it
+#: no emergency stop is checked, and the output says so
+A_E = Q("a_e", "m/s^2", "deceleration of an emergency stop (the safety brake's, > 0); 0: none checked", "m/s^2",
+        guess=1.0, default=0.0,
+        **dom.domain(0.0, 100.0, "0 (none checked) to 10 g: beyond any safety brake (emergency brakes of mine "
+                                 "hoists about 5 m/s^2)"),
+        default_note="not given: no emergency stop is checked (no general source gives a deceleration that fits "
+                     "every safety brake: give the brake's rated deceleration)")
+
 
 @register(MODEL, "inertia", "rigid")
 class RigidInertia(Submodel):
@@ -178,16 +208,25 @@ class RigidInertia(Submodel):
     citations = ("krauze2025",)
     quantities = (
         Q("a_h", "m/s^2", "acceleration of the haulage in its direction of travel (< 0: slowing down)", "m/s^2",
-          guess=0.5, default=0.0, default_note="not given: steady motion (a trip sets it along its ramps)",
+          guess=0.5, default=0.0,
+          default_note="not given: every manoeuvre of the scene, each result at its worst (steady motion; a start "
+                       "and a stop at the ramp's acceleration with t_ramp; an emergency stop at -a_e with a_e); "
+                       "steady motion at a single point (a trip sets it along its ramps)",
           **dom.domain(-100.0, 100.0, "10 g either way: beyond any haulage's start or stop (emergency brakes "
                                       "of mine hoists about 5 m/s^2)")),
+        A_E,
         Q("I_C", "N", "inertia force of the winding side (load and winding rope), (G_m + q_l L_u)/g a_h", "kN",
           equation="rigid-body inertia (not in the paper)"),
         Q("I_S", "N", "inertia force of the unwinding rope, q_l L_u/g a_h", "kN",
           equation="rigid-body inertia (not in the paper)"),
     )
 
+    def acceleration(self, v):
+        """The haulage's acceleration the forces include [m/s²]: a_h."""
+        return v["a_h"]
+
     def equations(self, v):
+        v["a_e"]  # noqa: B018 - a parameter of the scene: the emergency stop of the worst case (ropemodel.envelope)
         return [
             Equation("I_C", v["I_C"] - rt.winding_side_mass(v["G_m"], v["q_l"], v["L_u"]) * v["a_h"],
                      "rigid-body inertia (not in the paper)"),
@@ -203,6 +242,8 @@ class ResistanceCase1(Submodel):
     description = "one resistance coefficient mu_pl for all rope sections"
     assumptions = ("One resistance coefficient μ_pl for every section of the rope, eq. (15).",)
     citations = ("krauze2025",)
+    #: the winding rope's resistance changes at point A (the straight route is two pieces there)
+    split_at_A = False
 
     def equations(self, v):
         if self.effects.get("route") == "segments":   # each segment carries its own coefficient
@@ -223,6 +264,7 @@ class ResistanceCase2(Submodel):
 
     description = "separate coefficients mu_pl1, mu_pl2 for the winding rope either side of point A"
     citations = ("krauze2025",)
+    split_at_A = True
 
 
 @register(MODEL, "elongation", "krauze2025")
@@ -245,10 +287,11 @@ class Elongation(Submodel):
           **dom.domain(1e-12, 10.0, "q_lw = L_u/EA from 1 m of the stiffest rope (EA about 5e10 N) to 100 km "
                                     "of an 8-mm synthetic rope (EA about 1e4 N)")),
         Q("dF_nwl", "m", "elongation under the initial tension", "mm", equation=f"{SRC}, eq. (22)"),
-        *per_direction("dF_C", "m", "elongation of the winding rope", "mm", equation=f"{SRC}, eq. (19)"),
-        *per_direction("dF_S", "m", "elongation of the unwinding rope", "mm", equation=f"{SRC}, eq. (20)"),
-        *per_direction("dF_CS", "m", "elongation of both ropes", "mm", equation=f"{SRC}, eq. (21)"),
-        *per_direction("dF", "m", "minimum stroke of the return sheave", "mm", equation=f"{SRC}, eq. (23)"),
+        *per_direction("dF_C", "m", "elongation of the winding rope", "mm", equation=f"{SRC}, eq. (19)", **LARGEST),
+        *per_direction("dF_S", "m", "elongation of the unwinding rope", "mm", equation=f"{SRC}, eq. (20)", **LARGEST),
+        *per_direction("dF_CS", "m", "elongation of both ropes", "mm", equation=f"{SRC}, eq. (21)", **LARGEST),
+        *per_direction("dF", "m", "minimum stroke of the return sheave", "mm", equation=f"{SRC}, eq. (23)",
+                       **LARGEST),
     )
 
     def equations(self, v):
@@ -298,10 +341,10 @@ class DrivePower(Submodel):
         ETA,
         *per_direction("P_drum", "W", "power at the drum, (F_C − F_S) times the load's signed speed: > 0 motoring, "
                        "< 0 braking", "kW", equation="force balance on the drum (not in the paper)",
-                       signs=SIGNS),
+                       signs=SIGNS, worst=("largest", "least")),
         *per_direction("N_p", "W", "drive power, P_drum/η motoring (> 0), P_drum·η braking (< 0)", "kW",
                        equation="force balance on the drum and the drive train's efficiency (not in the paper)",
-                       signs=SIGNS),
+                       signs=SIGNS, worst=("largest", "least")),
     )
 
     def equations(self, v):

@@ -4,12 +4,21 @@
 ``design``  margins (>= 0: the check passes):
 
     safety_margin_w = F_min / (n_rope · F_C_w) − 1     rope safety F_min / F_C >= n_rope
-    slack_margin_w  = F_S_w − F_S_min        [N]       unwinding rope never slack
-    taut_margin_w   = F_C_w − F_S_min        [N]       winding rope never slack (lowering on gentle slopes)
+    slack_margin_w  = F_S_w − F_S_min        [N]       unwinding rope taut at the drum
+    taut_margin_w   = F_C_w − F_S_min        [N]       winding rope taut at the drum (lowering on gentle slopes)
+    route_margin_w  = min(F_S_least_w, F_C_least_w) − F_S_min  [N]   both ropes taut along the route
+    sheave_margin   = F_nwl/2 − F_S_min      [N]       both ropes taut at the return sheave
     stroke_margin_w = stroke − ΔF_w          [m]       tensioner stroke covers eq. (23)
     drum_margin     = D / (D_ratio_min · d) − 1         drum D >= D_ratio_min · d (d the rope diameter)
 
 for each way of travel w in (up, down).  The no-slip check is the lining effect's ``slip_margin_w``.
+F_S_least_w and F_C_least_w are each rope side's least tension along the route, between the drum and the
+return sheave: at the route's joints and beside the load (:func:`ropemodel.papers.route.least_rope_tension`,
+docs/physics.md §4).  On a gentle slope, in a dip or while a lowering speeds up the tension can be least
+there, far below the forces at the drum.  The tension between two joints lies between theirs, so the least
+tension anywhere in the loop is that of its three places, the drum, along the route and the return sheave,
+and the checks hold each above F_S_min (each place once: a check never repeats another, which would make
+the sizing NLP degenerate).
 Krauze et al. (2025) give eq. (23) (least stroke ΔF) and the rule D >= 30 d (their
 introduction, "Drum diameter D is selected based on rope diameter d, ensuring
 compliance with minimum conditions D >= 30d"): hence the default D_ratio_min = 30.
@@ -21,12 +30,20 @@ the same way either way, and each check names where its factor comes from).
 
 from __future__ import annotations
 
+from typing import Any
+
+from ropemodel._math import fmin
 from ropemodel.effects import domains as dom
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
-from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, STROKE, Q, per_direction
+from ropemodel.effects.transient.travel import X_M
+from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, STROKE, Q, per_direction, slack_masks, slack_reasons
 from ropemodel.effects.winch_rope import D_ROPE, F_MIN
+from ropemodel.papers import route as rt
 
 SRC = "Krauze et al. 2025"
+LEAST = "least tension along the side, docs/physics.md §4 (not in the paper)"
+LEAST_SENSE = ("least",)
+LEAST_FORCES = ("F_S_least_up", "F_S_least_down", "F_C_least_up", "F_C_least_down")
 
 define_effect(MODEL, "checks", "none", "design checks with their margins: safety, slack, stroke, drum")
 
@@ -36,6 +53,8 @@ CHECKS = (
     ("slip_margin", "no slip on the drum (lining effect)", "1"),
     ("slack_margin", "unwinding rope not slack F_S >= F_S_min", "N"),
     ("taut_margin", "winding rope not slack F_C >= F_S_min", "N"),
+    ("route_margin", "both ropes taut along the route: least tension >= F_S_min", "N"),
+    ("sheave_margin", "both ropes taut at the return sheave: F_nwl/2 >= F_S_min", "N"),
     ("stroke_margin", "tensioner stroke >= dF", "m"),
     ("drum_margin", "drum D >= D_ratio_min d", "1"),
 )
@@ -73,27 +92,44 @@ class DesignChecks(Submodel):
         F_MIN,
         D_DRUM,
         Q("n_rope", "1", "required safety factor of the rope F_min / F_C", guess=5.0, **dom.FACTOR),
-        Q("F_S_min", "N", "least tension allowed in either rope (unwinding F_S and winding F_C)", "kN", **dom.FORCE,
+        Q("F_S_min", "N", "least tension allowed anywhere in either rope (drum to return sheave)", "kN", **dom.FORCE,
           default=0.0, default_note="no least tension given: the ropes need only stay taut (> 0)"),
+        X_M,
         STROKE,
         Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", default=30.0, symbol="(D/d)_min",
           **dom.domain(1.0, 1e4, "at least 1 (a drum around its rope); rules ask 18 to 120"),
           equation=f"{SRC}, introduction: D >= 30 d"),
+        *per_direction("F_S_least", "N", "least tension of the unwinding rope along the route (at its joints, "
+                       "between the drum and the return sheave)", "kN", symbol="F_S,least", equation=LEAST,
+                       worst=LEAST_SENSE),
+        *per_direction("F_C_least", "N", "least tension of the winding rope along the route (at its joints and "
+                       "beside the load, between the drum and the return sheave)", "kN", symbol="F_C,least",
+                       equation=LEAST, worst=LEAST_SENSE),
         *per_direction("safety_margin", "1", "margin of rope safety F_min/(n_rope F_C) - 1 (>= 0 passes)",
-                       symbol="m_safety", equation="rope safety check, F_min / F_C ≥ n_rope (not in the paper)"),
+                       symbol="m_safety", equation="rope safety check, F_min / F_C ≥ n_rope (not in the paper)",
+                       worst=LEAST_SENSE),
         *per_direction("slack_margin", "N", "margin against a slack unwinding rope F_S - F_S_min (>= 0 passes)",
-                       "kN", symbol="m_slack", equation="slack-rope check of the unwinding rope (not in the paper)"),
+                       "kN", symbol="m_slack", equation="slack-rope check of the unwinding rope (not in the paper)",
+                       worst=LEAST_SENSE),
         *per_direction("taut_margin", "N", "margin against a slack winding rope F_C - F_S_min (>= 0 passes; "
                        "when lowering on a gentle slope the winding rope can go slack)", "kN", symbol="m_taut",
-                       equation="slack-rope check of the winding rope (not in the paper)"),
+                       equation="slack-rope check of the winding rope (not in the paper)", worst=LEAST_SENSE),
+        *per_direction("route_margin", "N", "margin against a rope slack along the route min(F_S_least, "
+                       "F_C_least) - F_S_min (>= 0 passes)", "kN", symbol="m_route",
+                       equation="slack-rope check along the route, docs/physics.md §4 (not in the paper)",
+                       worst=LEAST_SENSE),
         *per_direction("stroke_margin", "m", "stroke left over stroke - dF (>= 0 passes)", "mm", symbol="m_stroke",
-                       equation=f"stroke - dF, {SRC} eq. (23)"),
+                       equation=f"stroke - dF, {SRC} eq. (23)", worst=LEAST_SENSE),
+        Q("sheave_margin", "N", "margin against a slack rope at the return sheave F_nwl/2 - F_S_min (>= 0 passes)",
+          "kN", symbol="m_sheave", equation="slack-rope check at the return sheave (not in the paper)",
+          worst=LEAST_SENSE),
         Q("drum_margin", "1", "margin of the drum D/(D_ratio_min d) - 1 (>= 0 passes)", symbol="m_drum",
-          equation=f"D / (D_ratio_min d) - 1, {SRC} introduction"),
+          equation=f"D / (D_ratio_min d) - 1, {SRC} introduction", worst=LEAST_SENSE),
     )
+    invalid_needs = LEAST_FORCES
 
     def equations(self, v):
-        eqs = []
+        eqs = self._least_tensions(v)
         for way in DIRECTIONS:
             eqs += [
                 Equation(f"safety_margin_{way}",
@@ -103,20 +139,68 @@ class DesignChecks(Submodel):
                          "slack-rope check of the unwinding rope (not in the paper)"),
                 Equation(f"taut_margin_{way}", v[f"taut_margin_{way}"] - (v[f"F_C_{way}"] - v["F_S_min"]),
                          "slack-rope check of the winding rope (not in the paper)"),
+                Equation(f"route_margin_{way}", v[f"route_margin_{way}"] - self._route_margin(v, way),
+                         "slack-rope check along the route, docs/physics.md §4 (not in the paper)"),
                 Equation(f"stroke_margin_{way}", v[f"stroke_margin_{way}"] - (v["stroke"] - v[f"dF_{way}"]),
                          "stroke check against eq. (23)"),
             ]
+        eqs.append(Equation("sheave_margin", v["sheave_margin"] - (0.5 * v["F_nwl"] - v["F_S_min"]),
+                            "slack-rope check at the return sheave (not in the paper)"))
         eqs.append(Equation("drum_margin", v["D_ratio_min"] * v["d"] * (v["drum_margin"] + 1.0) - v["D"],
                             "drum check, the introduction's D ≥ 30 d with D_ratio_min"))
         return eqs
 
-    def frames(self, values, scene):
-        return {"design checks": checks_frame(values, scene.built.quantities, scene.check_basis)}
+    def _least_tensions(self, v) -> list[Equation]:
+        """F_S_least, F_C_least of each direction: the tension profile of each side along the route's pieces
+        (the route effect's :meth:`profile`), with the inertia the forces include (docs/physics.md §4)."""
+        route = _hook(self.sibling("route")).profile(v)
+        a = _hook(self.sibling("inertia")).acceleration(v)
+        F_end, q_l = 0.5 * v["F_nwl"], v["q_l"]
+        eqs = []
+        for way, s in DIRECTIONS.items():
+            unwind = [rt.rope_gradient(al, v["mu_pl"], -s, a) for al in route.inclinations]
+            wind = [rt.rope_gradient(al, mu, s, a) for al, mu in zip(route.inclinations, route.mus)]
+            pull = rt.load_pull(v["G_ml"], v["T_m"], v["G_m"], s, a)
+            if len(route.lengths) > 1:     # one piece: the unwinding rope has nothing between its ends
+                eqs.append(Equation(f"F_S_least_{way}", v[f"F_S_least_{way}"]
+                                    - rt.least_rope_tension(F_end, q_l, route.lengths, unwind), LEAST))
+            eqs.append(Equation(f"F_C_least_{way}", v[f"F_C_least_{way}"]
+                                - rt.least_rope_tension(F_end, q_l, route.lengths, wind, v["x_m"], pull), LEAST))
+        return eqs
+
+    def _route_margin(self, v, way: str):
+        """min(F_S_least, F_C_least) − F_S_min, of the sides that have something between their ends."""
+        least = v[f"F_C_least_{way}"]
+        if len(_hook(self.sibling("route")).profile(v).lengths) > 1:
+            least = fmin(v[f"F_S_least_{way}"], least)
+        return least - v["F_S_min"]
+
+    def invalid_needs_for(self, outputs):
+        """The least tensions of the directions of ``outputs`` when each belongs to one, else all four."""
+        ways = {o.rsplit("_", 1)[-1] for o in outputs}
+        return LEAST_FORCES if not ways <= set(DIRECTIONS) else tuple(f for f in LEAST_FORCES
+                                                                        if f.rsplit("_", 1)[-1] in ways)
+
+    def invalid_mask(self, values):
+        """A least tension <= 0: the rope would have to push inside the route (it is slack there)."""
+        return slack_masks(values, LEAST_FORCES, " inside the route")
+
+    def invalid(self, values):
+        return slack_reasons(values, LEAST_FORCES, " inside the route")
+
+    def frames(self, values, scene, where=None):
+        return {"design checks": checks_frame(values, scene.built.quantities, scene.check_basis, where)}
 
 
-def checks_frame(values: dict, quantities: dict, basis=None):
+def _hook(submodel) -> Any:
+    """A sibling submodel, asked for a hook its effect's variants all have (``profile``, ``acceleration``)."""
+    return submodel
+
+
+def checks_frame(values: dict, quantities: dict, basis=None, where: dict | None = None):
     """Table of every margin present in ``values`` (a pandas DataFrame): check, direction, margin
-    (display unit), pass/fail, and the rule its factor comes from (``basis(margin name) -> text``)."""
+    (display unit), pass/fail, the rule its factor comes from (``basis(margin name) -> text``) and, when
+    ``where`` gives it (margin → text), where the margin is least."""
     import pandas as pd
 
     text = {base: t for base, t, _ in CHECKS}
@@ -126,5 +210,7 @@ def checks_frame(values: dict, quantities: dict, basis=None):
         q = quantities[n]
         unit = "-" if q.display_unit == "1" else q.display_unit
         rows.append({"check": text[base], "direction": way or "-", "margin": q.to_display(values[n]),
-                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO", "rule": basis(n) if basis else "-"})
-    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass", "rule"])
+                     "unit": unit, "pass": "yes" if values[n] >= 0 else "NO", "rule": basis(n) if basis else "-",
+                     "where": (where or {}).get(n, "")})
+    columns = ["check", "direction", "margin", "unit", "pass", "rule"] + (["where"] if where else [])
+    return pd.DataFrame(rows, columns=["check", "direction", "margin", "unit", "pass", "rule", "where"])[columns]

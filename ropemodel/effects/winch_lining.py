@@ -71,10 +71,10 @@ def _margin_equations(v, traction):
 
 TRACTION = per_direction("traction", "1", "tension ratio the drum transmits at the onset of slip",
                          equation="rigid: exp(mu_d alpha_d); voigt: Hajduk 1992 eq. (19) with S_0 = F_S",
-                         positive=True, guess=2.0)
+                         positive=True, guess=2.0, worst=("least",))
 
 MARGINS = per_direction("slip_margin", "1", "margin against slip on the drum (>= 0: no slip)", symbol="m_slip",
-                        equation="F_S traction / (n_slip F_C) - 1")
+                        equation="F_S traction / (n_slip F_C) - 1", worst=("least",))
 
 
 @register(MODEL, "lining", "none")

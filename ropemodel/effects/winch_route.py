@@ -16,10 +16,11 @@
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 from ropemodel.effects.base import Equation, Submodel, register
-from ropemodel.effects.transient.travel import X_M
 from ropemodel.effects import domains as dom
+from ropemodel.effects.transient.travel import X_M, beyond_route
 from ropemodel.effects.winch import JUDGEMENT, MODEL, POSITIVE, ROPE_MU, SRC, Q, usual
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
@@ -65,6 +66,15 @@ OUTPUTS = (
 _Q = {q.name: q for q in INPUTS + OUTPUTS}
 
 
+class Profile(NamedTuple):
+    """The route as straight pieces from the drive: their lengths [m], inclinations [rad] and the winding
+    rope's resistance coefficient on each [-] (symbols of the model, or numbers)."""
+
+    lengths: list
+    inclinations: list
+    mus: list
+
+
 @register(MODEL, "route", "straight")
 class StraightRoute(Submodel):
     """The paper's route: one incline of length L_u at α_u, point A at L_ul, Krauze et al. (2025) eq. (1)-(11)."""
@@ -92,11 +102,19 @@ class StraightRoute(Submodel):
         ]
         return eqs
 
+    def profile(self, v) -> Profile:
+        """The incline as one piece, or, where the winding rope's resistance changes at point A (case 2), two
+        pieces either side of it: μ_pl2 toward the drive, μ_pl1 beyond (eq. (17))."""
+        if getattr(self.sibling("resistance"), "split_at_A", False):
+            return Profile([v["L_ul"], v["L_u"] - v["L_ul"]], [v["alpha_u"]] * 2, [v["mu_pl2"], v["mu_pl1"]])
+        return Profile([v["L_u"]], [v["alpha_u"]], [v["mu_pl1"]])
+
     def rules(self, values):
+        out = beyond_route(values)
         if "L_ul" in values and "L_u" in values and values["L_ul"] > values["L_u"]:
-            return [f"L_ul = {values['L_ul']:g} m is beyond L_u = {values['L_u']:g} m: point A must lie on the "
-                    f"route, 0 <= L_ul <= L_u"]
-        return []
+            out.append(f"L_ul = {values['L_ul']:g} m is beyond L_u = {values['L_u']:g} m: point A must lie on the "
+                       f"route, 0 <= L_ul <= L_u")
+        return out
 
 
 
@@ -119,8 +137,9 @@ def segment_quantities(i: int, has_mu: bool) -> tuple:
 class SegmentedRoute(Submodel):
     """A route of straight segments (``[[route]]`` tables), the load at ``x_m``: :mod:`ropemodel.papers.route`.
 
-    ``x_m`` not given is the start of a trip (:data:`ropemodel.effects.transient.travel.X_M`): for the
-    static forces, the load at the return sheave's end (the last segment), where an upward trip starts.
+    ``x_m`` not given (:data:`ropemodel.effects.transient.travel.X_M`) is every place on the route: the
+    commands take each result at its worst (:mod:`ropemodel.envelope`); evaluated at one point, the load is
+    then on the last segment.
 
     Builds L_u = Σ L_i, the load's weight and resistance on its segment (eq. (1), (5), (7)) and the
     sums over the route of the rope's weight and resistance (eq. (2), (6), (10), (11)); the forces
@@ -145,9 +164,7 @@ class SegmentedRoute(Submodel):
 
     def equations(self, v):
         n = len(self.segments)
-        L = [v[f"L_{i}"] for i in range(1, n + 1)]
-        alpha = [v[f"alpha_{i}"] for i in range(1, n + 1)]
-        mu = [v[f"mu_w{i}"] for i in range(1, n + 1)]
+        L, alpha, mu = self.profile(v)
         x, G_m = v["x_m"], v["G_m"]
         src = "route of segments"
         eqs = [Equation(f"mu_w{i}", v[f"mu_w{i}"] - v["mu_pl"], "mu_winding not given: mu_pl")
@@ -172,6 +189,11 @@ class SegmentedRoute(Submodel):
                      f"eq. (11), {src}"),
         ]
 
+    def profile(self, v) -> Profile:
+        """The segments: L_i, α_i, μ_wi."""
+        n = range(1, len(self.segments) + 1)
+        return Profile([v[f"L_{i}"] for i in n], [v[f"alpha_{i}"] for i in n], [v[f"mu_w{i}"] for i in n])
+
     def transient_route(self, values: dict, numbers: dict):
         """The route as the transient's rope model asks it (:class:`ropemodel.effects.transient.route.Segments`):
         lengths as numbers (geometry), inclinations and coefficients as the values (may be symbols)."""
@@ -187,7 +209,7 @@ class SegmentedRoute(Submodel):
             return []
         total, out = sum(lengths), []
         for name, what in (("x_m", "the load"), ("L_ul", "point A")):
-            # x_m not given (inf) is the start of an upward trip: the load on the last segment
+            # x_m not given (inf): anywhere on the route
             if name in values and math.isfinite(values[name]) and not 0.0 <= values[name] <= total:
                 out.append(f"{name} = {values[name]:g} m is beyond the route: {what} must be on it, 0 <= {name} <= "
                            f"L_u = {total:g} m (the sum of the segments)")

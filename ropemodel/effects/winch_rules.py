@@ -11,7 +11,9 @@ rope_safety        ``n_rope``      safety_margin (F_min/F_C ≥ n_rope)       ro
                                    (and safety_margin_S of the transients)
 drum_ratio         ``D_ratio_min`` drum_margin (D ≥ D_ratio_min d)          drum = friction-drum
 slip_safety        ``n_slip``      slip_margin (lining effect)              drum = friction-drum
-least_tension      ``F_S_min``     slack_margin, taut_margin                 —
+least_tension      ``F_S_min``     slack_margin, taut_margin,                —
+                                   route_margin (along the route),
+                                   sheave_margin (at the return sheave)
 =================  ==============  =======================================  ===========================
 
 **The suspended length** (engineering judgement; no rule cited defines it for an endless haulage).
@@ -64,6 +66,6 @@ bind_rules(
         Binding("rope_safety", "n_rope", ("safety_margin", "safety_margin_S"), {"rope": "friction-drum"}),
         Binding("drum_ratio", "D_ratio_min", ("drum_margin",), {"drum": "friction-drum"}),
         Binding("slip_safety", "n_slip", ("slip_margin",), {"drum": "friction-drum"}),
-        Binding("least_tension", "F_S_min", ("slack_margin", "taut_margin")),
+        Binding("least_tension", "F_S_min", ("slack_margin", "taut_margin", "route_margin", "sheave_margin")),
     ),
 )

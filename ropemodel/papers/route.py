@@ -19,13 +19,20 @@ Inertia (not in the paper): while the haulage speeds up at a_h [m/s²] in its di
 needs m_C a_h more pull and the unwinding side (q_l L_u/g) m_S a_h less, with the sign of travel,
 like the resistances of eq. (12)-(13): the rigid-body (inextensible rope) inertia of a ramp.
 
+Tension along a rope side (not in the paper, which gives the forces at the drum only): each side runs
+from the drum (x = 0) to the return sheave (x = L_u), where the tensioner holds it at F_nwl/2; toward the
+drive its tension rises on segment i by q_l g_i per metre, g_i = sin α_i + σ (μ_i cos α_i + a_h/g), with
+σ = +s on the winding side and −s on the unwinding side, and the winding side's load adds its pull
+J = G_ml + s (T_m + G_m a_h/g) on its drive side (:func:`rope_tension`, :func:`least_rope_tension`;
+the derivation and the sign conventions are in ``docs/physics.md`` §4).
+
 Every function works on floats, numpy arrays and CasADi expressions; lists hold one entry per
 segment.  Units: N, m, rad.
 """
 
 from __future__ import annotations
 
-from ropemodel._math import cos, if_else, sin
+from ropemodel._math import cos, fmax, fmin, if_else, sin
 
 #: standard gravity [m/s²] (CGPM 1901)
 G_N = 9.80665
@@ -63,8 +70,6 @@ def rope_resistance_along_route(q_l, lengths, inclinations, mus):
 
 def _overlap(start, end, s0, s1):
     """Length of [start, end] ∩ [s0, s1] (0 if they do not meet)."""
-    from ropemodel._math import fmax, fmin
-
     return fmax(fmin(end, s1) - fmax(start, s0), 0.0)
 
 
@@ -118,6 +123,136 @@ def load_weight_normal_route(G_m, x, lengths, inclinations):
 def load_resistance_route(mu_pm, G_m, x, lengths, inclinations):
     """T_m = μ_pm G_m cos α_j [N] (eq. (7) on the load's segment)."""
     return mu_pm * G_m * cos(at_position(x, lengths, inclinations))
+
+
+def rope_gradient(inclination, mu, sign, a_h=0.0, g=G_N):
+    """g_i = sin α_i + σ (μ_i cos α_i + a_h/g) [-]: how fast a rope side's tension rises toward the drive on a
+    segment, per metre and per unit rope weight (docs/physics.md §4; not in Krauze et al. 2025).
+
+    inclination α_i [rad] (> 0: rising toward the drive); mu μ_i [-] the side's resistance coefficient there
+    (μ_i of the winding rope, μ_pl of the unwinding one); sign σ = +s on the winding side and −s on the
+    unwinding side (s = +1 hauling up, −1 lowering); a_h [m/s²] the haulage's acceleration in its direction of
+    travel (rigid rope; 0 in steady motion).  The sum of q_l L_i g_i over the route is the paper's
+    G_ls ∓ T_ls (unwinding) or G_l ± T_l (winding), eq. (12)-(13), plus the rope's inertia.
+
+    Examples
+    --------
+    The Fig. 9 incline (16°, μ_pl = 0.05) hauled up: the unwinding rope's tension rises toward the drum by
+    q_l (sin 16° − 0.05 cos 16°) per metre, so over 1150 m at 80 N/m it gains G_ls − T_ls = 25.3586 −
+    4.4218 kN (eq. (6), (11)):
+
+    >>> import math
+    >>> round(80.0 * 1150.0 * rope_gradient(math.radians(16.0), 0.05, -1.0) / 1e3, 4)
+    20.9368
+    """
+    return sin(inclination) + sign * (mu * cos(inclination) + a_h / g)
+
+
+def load_pull(G_ml, T_m, G_m, sign, a_h=0.0, g=G_N):
+    """J = G_ml + s (T_m + G_m a_h/g) [N]: how much more the winding rope pulls on the drive side of the load
+    than beyond it (eq. (1), (7) on the load's segment, plus its inertia; s = +1 hauling up, −1 lowering).
+    Negative when lowering on a slope gentler than the load's resistance (or while a lowering speeds up):
+    the rope beyond the load then pulls it down the route."""
+    return G_ml + sign * (T_m + G_m * a_h / g)
+
+
+def tension_at_joints(F_end, q_l, lengths, gradients):
+    """[T_0, T_1, …, T_n] [N]: a rope side's tension at the joints x_0 = 0 (the drum), x_k = L_1 + … + L_k,
+    x_n = L_u (the return sheave, where it is F_end = F_nwl/2), without a load on the side:
+    T_{k−1} = T_k + q_l L_k g_k (:func:`rope_gradient`), docs/physics.md §4.
+
+    Examples
+    --------
+    Fig. 9 hauled up, the unwinding rope: 10 kN at the return sheave, F_S_up = 30.9368 kN at the drum
+    (eq. (12)):
+
+    >>> import math
+    >>> g = rope_gradient(math.radians(16.0), 0.05, -1.0)
+    >>> [round(t / 1e3, 4) for t in tension_at_joints(10e3, 80.0, [1150.0], [g])]
+    [30.9368, 10.0]
+    """
+    out = [F_end]
+    for length, gradient in zip(reversed(list(lengths)), reversed(list(gradients))):
+        out.append(out[-1] + q_l * length * gradient)
+    return out[::-1]
+
+
+def rope_tension(x, F_end, q_l, lengths, gradients, x_m=None, load=0.0):
+    """T(x) [N]: a rope side's tension at x [m] from the drive, 0 <= x <= L_u (docs/physics.md §4)::
+
+        T(x) = F_end + q_l Σ_i g_i ℓ_i(x) + J [x < x_m]
+
+    with ℓ_i(x) the part of segment i between x and the return sheave, F_end = F_nwl/2 the tension there,
+    g_i the side's gradients (:func:`rope_gradient`) and, on the winding side, the load at x_m [m] with its
+    pull J = ``load`` (:func:`load_pull`) on its drive side.  At x = x_m this is the tension just beyond
+    the load (on its return-sheave side); just before it the tension is T(x_m) + J.
+
+    Examples
+    --------
+    Fig. 9 hauled up, the winding rope (μ_pl = 0.05) with the load at 800 m: 10 kN at the return sheave and
+    F_C_up = 190.949 kN at the drum (eq. (13)); just beyond the load, 10 kN and the 350 m of rope beyond it,
+    10 + 0.08·350·(sin 16° + 0.05 cos 16°) = 19.064 kN:
+
+    >>> import math
+    >>> a = math.radians(16.0)
+    >>> g, J = rope_gradient(a, 0.05, 1.0), load_pull(467e3 * math.sin(a), 0.05 * 467e3 * math.cos(a), 467e3, 1.0)
+    >>> [round(rope_tension(x, 10e3, 80.0, [1150.0], [g], 800.0, J) / 1e3, 3) for x in (0.0, 800.0, 1150.0)]
+    [190.949, 19.064, 10.0]
+    """
+    L_u = route_length(lengths)
+    total, start = F_end, 0.0
+    for length, gradient in zip(lengths, gradients):
+        total = total + q_l * gradient * _overlap(start, start + length, x, L_u)
+        start = start + length
+    return total if x_m is None else total + if_else(x < x_m, load, 0.0)
+
+
+def least_rope_tension(F_end, q_l, lengths, gradients, x_m=None, load=0.0):
+    """The least tension [N] of a rope side along the route, between its ends: at the route's joints and beside
+    the load (docs/physics.md §4).  Its ends have their own values, the drum's force (eq. (12)-(13)) and the
+    return sheave's F_end = F_nwl/2, so that a check of each of the three places never repeats another.
+
+    The tension (:func:`rope_tension`) is linear on each segment, so the side's least value is at the drum,
+    at a joint x_k (where the gradient changes from falling to rising toward the drive), beside the load, or
+    at the return sheave.  Between the ends::
+
+        min( min_{0 < k < n} (T_k + J [x_k < x_m]),  T(x_m) + J [x_m > 0],  T(x_m) [x_m < L_u] )
+
+    with T_k the tension at the joints without the load (:func:`tension_at_joints`), T(x_m) + J just before
+    the load (on its drive side; at the drive that is the drum's force) and T(x_m) just beyond it (at the
+    return sheave, F_end).  Which joint it is does not depend on q_l or F_end.  A load beyond the route
+    (x_m > L_u) is at the return sheave.  Arguments as :func:`rope_tension`; ``x_m=None``: a side without a
+    load (the unwinding rope).  A side with neither a joint nor a load between its ends (one segment, the
+    unwinding rope) has nothing between them: its least there is that of its ends.
+
+    Examples
+    --------
+    A dip: from the drive 300 m down at 5°, then 300 m up at 2° to the return sheave (α = 5°, −2°); the
+    unwinding rope of a haulage hauling up (μ_pl = 0.05, q_l = 80 N/m, 10 kN at the return sheave) is
+    least at the bottom of the dip, below both ends:
+
+    >>> import math
+    >>> g = [rope_gradient(math.radians(a), 0.05, -1.0) for a in (5.0, -2.0)]
+    >>> [round(t / 1e3, 4) for t in tension_at_joints(10e3, 80.0, [300.0, 300.0], g)]
+    [8.8594, 7.9631, 10.0]
+    >>> round(least_rope_tension(10e3, 80.0, [300.0, 300.0], g) / 1e3, 4)
+    7.9631
+    """
+    joints = tension_at_joints(F_end, q_l, lengths, gradients)
+    L_u = route_length(lengths)
+    if x_m is not None:
+        x_m = fmin(x_m, L_u)
+    at, out = 0.0, None
+    for k in range(1, len(joints) - 1):
+        at = at + lengths[k - 1]
+        here = joints[k] if x_m is None else joints[k] + if_else(at < x_m, load, 0.0)
+        out = here if out is None else fmin(out, here)
+    if x_m is not None:
+        beside = rope_tension(x_m, F_end, q_l, lengths, gradients)
+        before = if_else(x_m > 0.0, beside + load, beside)           # at the drive: the drum's force
+        after = if_else(x_m < L_u, beside, beside + load)            # at the return sheave: F_end
+        out = fmin(before, after) if out is None else fmin(out, fmin(before, after))
+    return fmin(joints[0], joints[-1]) if out is None else out
 
 
 def winding_side_mass(G_m, q_l, L_u, g=G_N):

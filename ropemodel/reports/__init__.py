@@ -42,17 +42,21 @@ Adding a section, e.g. the energy cost of a trip on a route of segments: a modul
 
     from ropemodel.reports import page
     from ropemodel.reports.registry import section
+    from ropemodel.reports.sections.trip import reads
 
     PRICE = 0.15   # per kWh: an assumed tariff
 
 
-    @section("energy", "Energy cost", when=lambda ctx: ctx.scene.effects.get("route") == "segments")
+    @section("energy", "Energy cost", when=lambda ctx: ctx.scene.effects.get("route") == "segments", reads=reads)
     def energy(ctx):
         kwh = {d: run.summary["E_trip"] / 3.6e6 for d, run in ctx.trips.items()}
         return page.table(["trip", "energy [kWh]", "cost at 0.15 per kWh"],
                           [[d, f"{e:.3f}", f"{PRICE * e:.2f}"] for d, e in kwh.items()])
 
-and its name in :data:`ropemodel.reports.sections.MODULES` where it belongs (after ``"trip"``).
+and its name in :data:`ropemodel.reports.sections.MODULES` where it belongs (after ``"trip"``).  A section
+whose numbers come from more than the equations' inputs says what else it reads (``reads=``, here the trips'
+parameters): the basis of the calculation lists a default as an assumption only where a section reads it
+(:attr:`Context.reads`).
 That is the one place: the page, its table of contents, the error handling and the tests of every
 built-in scene (``tests/test_report*.py``: no network reference, not blank in Chromium) pick it up.
 """

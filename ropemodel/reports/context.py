@@ -94,8 +94,9 @@ class Context:
 
     @once
     def result(self):
-        """The forward solve (:class:`~ropemodel.result.Result`) at :attr:`point`."""
-        from ropemodel.problem import run
+        """The forward solve (:class:`~ropemodel.result.Result`) at :attr:`point`: each result at its worst over
+        the load's places and the manoeuvres the scene leaves open (:func:`ropemodel.envelope.run`)."""
+        from ropemodel.envelope import run
 
         return run(self.point)
 
@@ -113,6 +114,19 @@ class Context:
 
         scene = prepare(self.point)
         return {d: trip(scene, d) for d in ("up", "down")}
+
+    @once
+    def reads(self) -> frozenset[str]:
+        """The parameters the report's numbers are computed from: every input of the equations it shows, and
+        what each section that applies computes from beyond them (:attr:`Section.reads
+        <ropemodel.reports.registry.Section.reads>`: a trip, the sizing, a transient)."""
+        from ropemodel.reports.registry import sections
+
+        out = set(self.scene.built.inputs_of())
+        for s in sections():
+            if s.reads is not None and s.applies(self):
+                out |= s.reads(self)
+        return frozenset(out)
 
     @property
     def quantities(self) -> dict:

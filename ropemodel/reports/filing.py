@@ -4,7 +4,7 @@ its source and status, the assumptions and the data still missing.
 Each comes from where the number or the choice lives, never from a list kept here: the scene's rule set
 (:mod:`ropemodel.rules.describe`), the rope catalogue (``ropemodel/data/ropes.toml``:
 :mod:`ropemodel.papers.en12385`), each effect variant's ``assumptions`` and ``missing``
-(:class:`ropemodel.effects.base.Submodel`), the defaults the scene relied on (each with its reason), and
+(:class:`ropemodel.effects.base.Submodel`), the defaults the calculation relied on (each with its reason), and
 the scene's ``[report]`` table (:mod:`ropemodel.scene_report`).  The page (sections "document" and
 "basis") and the calculation sheet (:mod:`ropemodel.reports.sheet`) show the same lists.
 
@@ -13,6 +13,8 @@ Statuses are the rule sets' (:data:`ropemodel.rules.vocabulary.STATUSES`): "conf
 """
 
 from __future__ import annotations
+
+from collections.abc import Iterable
 
 from ropemodel.core.formulas import shown
 from ropemodel.core.infix import G_N
@@ -127,13 +129,14 @@ def _uses_gravity(model) -> bool:
 # ------------------------------------------------------------------------------------------ assumptions
 
 
-def assumptions(scene) -> list[str]:
-    """What the calculation takes for granted: each chosen variant's assumptions, then each default relied on."""
-    model, q = scene.built, scene.built.quantities
+def assumptions(scene, reads: Iterable[str]) -> list[str]:
+    """What the calculation takes for granted: each chosen variant's assumptions, then each default relied on
+    (one of the parameters in ``reads``, those the calculation is computed from)."""
+    model, q, reads = scene.built, scene.built.quantities, set(reads)
     out = [a for sm in model.submodels for a in sm.assumptions]
     factors = describe.factors(scene)
     for name, why in scene.defaults.items():
-        if name not in factors:       # a default factor is listed with the normative numbers
+        if name in reads and name not in factors:       # a default factor is listed with the normative numbers
             out.append(f"{name} = {q[name].show(scene.parameters[name])} (default): {why}")
     return out
 

@@ -25,25 +25,31 @@ class Section:
     render: ``render(ctx) -> str``, the section's HTML (a fragment: no ``<html>``, no ``<section>``); text
         from the scene must be escaped (the helpers of :mod:`ropemodel.reports.page` do).
     applies: ``applies(ctx) -> bool``; a section whose predicate is false is left out of the page.
+    reads: ``reads(ctx) -> set of parameter names`` its numbers are computed from beyond the inputs of the
+        equations every report shows (a trip, the sizing, a transient), or None for none beyond them: the
+        report relies on a default only where one of its sections reads it (:attr:`Context.reads
+        <ropemodel.reports.context.Context.reads>`).
     """
 
     name: str
     title: str
     render: Callable
     applies: Callable = always
+    reads: Callable | None = None
 
 
 #: every registered section, in page order
 SECTIONS: list[Section] = []
 
 
-def section(name: str, title: str, when: Callable = always):
-    """Decorator: register ``render(ctx) -> HTML`` as the section ``name`` shown when ``when(ctx)`` holds."""
+def section(name: str, title: str, when: Callable = always, reads: Callable | None = None):
+    """Decorator: register ``render(ctx) -> HTML`` as the section ``name`` shown when ``when(ctx)`` holds, its
+    numbers computed from the equations' inputs and ``reads(ctx)`` (:class:`Section`)."""
 
     def deco(render: Callable) -> Callable:
         if any(s.name == name for s in SECTIONS):
             raise RuntimeError(f"report section {name!r} registered twice")
-        SECTIONS.append(Section(name, title, render, when))
+        SECTIONS.append(Section(name, title, render, when, reads))
         return render
 
     return deco

@@ -95,7 +95,7 @@ def basis(ctx, values: dict) -> dict:
     from ropemodel.reports import filing
 
     return {"rope": filing.rope_designation(ctx.scene, values), "normative": filing.normative_numbers(ctx.scene),
-            "statuses": filing.STATUS_TEXT, "assumptions": filing.assumptions(ctx.scene),
+            "statuses": filing.STATUS_TEXT, "assumptions": filing.assumptions(ctx.scene, ctx.reads),
             "missing": filing.missing(ctx.scene, values)}
 
 
@@ -104,12 +104,14 @@ def sheet(ctx) -> dict:
     from ropemodel.reports.sections.scene import stamp, version
 
     result, scene = ctx.result, ctx.scene
+    # a result at its worst case: the equations at one case, where each holds with its own inputs
+    point, at = result.point() if hasattr(result, "point") else (result, None)
     return {
         "sheet": "ropemodel calculation sheet", "format": FORMAT, "ropemodel": version(), "created": stamp(ctx),
         "scene": {"name": scene.name, "model": scene.model, "file": scene.source, "sha256": scene.digest},
         "at": "the recommended design" if ctx.at_design else "the scene's values",
         "units": "SI", "evaluate": EVALUATE,
         "document": document(ctx), "basis": basis(ctx, result.values),
-        "equations": entries(result.model, result.values),
+        "equations": entries(point.model, point.values), "equations_at": at,
         "references": references(result.model),
     }

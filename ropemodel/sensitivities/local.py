@@ -6,6 +6,12 @@ percent change of an input, so quantities of any unit compare on one scale
 problem's compiled Function — exact, through explicit blocks and through
 Newton blocks alike (implicit function theorem) — never from differences.
 
+On a route without ``x_m`` (or with the ramps' inertia and no ``a_h``) each output is its worst over the
+load cases (:mod:`ropemodel.envelope`), and its elasticities are those of that worst: the derivatives at the
+case that governs it (where the worst is unique, the derivative of the worst is the governing case's), the
+case's place and acceleration moving with the parameters they come from (the segments' lengths, v_pj,
+t_ramp, a_e).  Each row names that case (``where``).
+
 Zeros: where ``y = 0`` (or ``y`` is zero up to rounding, i.e. ``|y|`` below
 ``1e-12`` times the sum of the terms ``|∂y/∂p_j · p_j|`` that make it up) or
 ``p = 0``, the elasticity is undefined.  It is then reported as missing with
@@ -18,12 +24,15 @@ times that sum is rounding of an exact cancellation and reported as 0.
 from __future__ import annotations
 
 import math
+from collections import ChainMap
 from collections.abc import Mapping, Sequence
+from typing import Any
 
 import casadi as ca
 import numpy as np
 import pandas as pd
 
+from ropemodel.envelope import envelope, free, load_cases, with_ramps
 from ropemodel.errors import InputError, SolveError
 from ropemodel.problem import Problem
 from ropemodel.scene import SceneLike, as_scene
@@ -33,8 +42,9 @@ from ropemodel.units import label
 ZERO_RTOL = 1e-12
 
 
-def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, outputs=None):
-    """(y, J, x): outputs, ∂outputs/∂parameters (SI) and the parameter values at one point."""
+def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, outputs=None, case=None):
+    """(y, J, x): outputs, ∂outputs/∂parameters (SI) and the parameter values at one point; ``case`` (a
+    :class:`~ropemodel.envelope.LoadCase`) sets the load's place and acceleration from the parameters."""
     fun = problem.function
     x = problem.inputs(values)
     parameters = list(problem.knowns) if parameters is None else list(parameters)
@@ -51,6 +61,9 @@ def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, o
     ruled = problem.scene.ruled()      # a factor a rule gives follows its length, plus its own change
     for k, v in problem.scene.rule_values(args, [p for p in parameters if p not in ruled]).items():
         args[k] = v + (args[k] - x[k])
+    if case is not None:
+        given: ChainMap[str, Any] = ChainMap(args, problem.scene.parameters)
+        args.update({k: ca.MX(v) if isinstance(v, float) else v for k, v in case.values(given).items()})
     res = fun.call(args)
     Y = ca.vertcat(*[res[o] for o in outputs])
     f = ca.Function("elasticity_jacobian", [P], [Y, ca.jacobian(Y, P)])
@@ -92,7 +105,8 @@ def elasticities(scene: SceneLike, values: Mapping | None = None, outputs: Seque
         One row per (output, parameter): ``output``, ``parameter``, ``y`` [y_unit], ``y_unit``,
         ``p`` [p_unit], ``p_unit`` (display units: kN, deg, mm, ...), ``dy_dp`` [y_unit/p_unit],
         ``elasticity`` [-] (% change of y per % change of p; missing where y = 0 or p = 0),
-        ``defined`` (bool) and ``note`` (why undefined).
+        ``defined`` (bool), ``note`` (why undefined) and ``where`` (the load case of the output's worst;
+        empty at a single point).
 
     Raises
     ------
@@ -114,11 +128,47 @@ def elasticities(scene: SceneLike, values: Mapping | None = None, outputs: Seque
     2     mu_pm  190.9485     kN      0.1175
     """
     scene = as_scene(scene)
+    values = dict(values or {})
+    pinned = {k: values.pop(k) for k in list(values) if k in scene.built.parameters}
+    scene = with_ramps(scene.with_values(pinned) if pinned else scene)
     problem = Problem(scene, given, find)
+    open_ = [k for k in free(scene) if k not in find]
     if parameters is None:
         x = problem.inputs(values)
-        parameters = [k for k in problem.knowns if math.isfinite(x[k])]
-    y, J, p, outputs = jacobian(problem, values, parameters, outputs)
+        parameters = [k for k in problem.knowns if math.isfinite(x[k]) and k not in open_]
+    rows = []
+    for case, outs, where in _governing(scene, problem, outputs, find):
+        y, J, p, names = jacobian(problem, values, parameters, outs, case)
+        rows += _rows(problem, y, J, p, names, where)
+    return pd.DataFrame(rows)
+
+
+def _governing(scene, problem: Problem, outputs, find):
+    """[(case, outputs, where)]: the outputs grouped by the load case that governs their worst (one group, no
+    case, at a single point)."""
+    cases = load_cases(scene, pinned=find)
+    if len(cases) == 1:
+        return [(cases[0], outputs, {})]
+    if problem.given:
+        raise InputError(f"an inverse question's elasticities are taken at one point: give the load's place and "
+                         f"the manoeuvre ({', '.join(free(scene))}) in values")
+    env = envelope(Problem(scene), cases)
+    if outputs is None:
+        outputs = [o for o in problem.unknowns if o not in env.no_worst]
+    bad = [o for o in outputs if o in env.no_worst]
+    if bad:
+        raise InputError(f"{', '.join(bad)} change with the load's place or the manoeuvre and have no worst case: "
+                         f"give one point, values={{{', '.join(repr(k) + ': ...' for k in free(scene))}}} "
+                         f"(--at on the command line)")
+    groups: dict[int, list[str]] = {}
+    for o in outputs:
+        i = cases.index(env.worst(o).case) if o in env.extremes else 0
+        groups.setdefault(i, []).append(o)
+    where = env.where()
+    return [(cases[i], outs, {o: where.get(o, "the same in every case") for o in outs}) for i, outs in groups.items()]
+
+
+def _rows(problem: Problem, y, J, p, outputs, where) -> list[dict]:
     q = problem.model.quantities
     names = list(p)
     pv = np.array([p[k] for k in names])
@@ -139,8 +189,8 @@ def elasticities(scene: SceneLike, values: Mapping | None = None, outputs: Seque
                     e = 0.0  # terms that cancel exactly (e.g. equal resistances of both ropes): rounding of 0
             rows.append({"output": o, "parameter": k, "y": y[i] * fy, "y_unit": q[o].display_unit,
                          "p": pv[j] * fp, "p_unit": q[k].display_unit, "dy_dp": float(J[i, j] * fy / fp),
-                         "elasticity": e, "defined": not note, "note": note})
-    return pd.DataFrame(rows)
+                         "elasticity": e, "defined": not note, "note": note, "where": where.get(o, "")})
+    return rows
 
 
 def matrix(frame: pd.DataFrame) -> pd.DataFrame:
@@ -168,6 +218,10 @@ def table(frame: pd.DataFrame, width: int = 10) -> str:
             why = "y=0" if "y = 0" in str(r.note) else "p=0"
             text += f"{r.elasticity:>{width}.3g}" if r.defined else f"{why:>{width}}"
         lines.append(text)
+    where = dict(zip(frame["output"], frame["where"])) if "where" in frame else {}
+    if any(where.values()):
+        lines += ["", "each output at its worst, the elasticities there:"]
+        lines += [f"  {o}: {where[o]}" for o in outs if where.get(o)]
     notes = frame.loc[~frame["defined"], ["output", "parameter", "dy_dp", "y_unit", "p_unit", "note"]]
     if len(notes):
         lines += ["", "undefined elasticities (y = 0 or p = 0): derivative dy/dp instead"]

@@ -125,7 +125,8 @@ def sobol(scene: SceneLike, ranges: Mapping, outputs: Sequence[str] | None = Non
     ranges : dict
         ``{name: "LOW:HIGH"}`` with units (``"300kN:500kN"``) or ``(low, high)`` in SI units.
     outputs : list of str, optional
-        Outputs to analyse (default: every unknown of the problem).
+        Outputs to analyse (default: those :func:`ropemodel.sweep` gives: every unknown, each at its worst
+        where the scene leaves the load's place or the manoeuvre open).
     n : int
         Base samples, a power of two ≥ 4; the model runs n·(k + 2) times for k ranges.
     seed : int
@@ -175,11 +176,12 @@ def sobol(scene: SceneLike, ranges: Mapping, outputs: Sequence[str] | None = Non
     for k, (lo, hi) in si_ranges.items():
         q[k].check(lo, f"{k} (low end of its range)")
         q[k].check(hi, f"{k} (high end of its range)")
-    outputs = list(problem.unknowns) if outputs is None else list(outputs)
+    outputs = None if outputs is None else list(outputs)   # default: the sweep's (at their worst on a route)
     options = {"progress": False, **sweep_options}     # the samples are one sweep's points: no bar unless asked
 
     def func(columns):
         frame = sweep(scene, pd.DataFrame(columns), outputs, given=given, find=find, si=True, **options)
-        return {o: frame.iloc[:, len(columns) + i].to_numpy() for i, o in enumerate(outputs)}
+        names = {c: c.split(" [")[0] for c in frame.columns[len(columns):]}
+        return {o: frame[c].to_numpy() for c, o in names.items() if "@" not in o}   # not the governing places
 
     return sobol_indices(func, si_ranges, n, seed)

@@ -29,7 +29,8 @@ class ChunkJob:
     errors: ``"raise"`` (SolveError naming the first bad point) or ``"mark"``: NaN outputs at such a
         point, ``solved`` False and the reason in ``invalid``.
     physics: submodels whose :meth:`~ropemodel.effects.base.Submodel.invalid_mask` says where the
-        model no longer holds (a slack rope); watch: the names they read → the output holding each.
+        model no longer holds (a slack rope); watch: per load case (its name, "" at a single point), the
+        names they read → the output holding each (:mod:`ropemodel.sweeps.worst`).
     """
 
     job: Job
@@ -39,7 +40,7 @@ class ChunkJob:
     errors: str = "raise"
     roundtrip: dict[str, str] = field(default_factory=dict)
     physics: list = field(default_factory=list)
-    watch: dict[str, str] = field(default_factory=dict)
+    watch: list[tuple[str, dict[str, str]]] = field(default_factory=list)
 
 
 def run_chunk(job: ChunkJob, start: int, inputs: dict[str, np.ndarray]) -> pa.Table:
@@ -93,15 +94,16 @@ def run_chunk(job: ChunkJob, start: int, inputs: dict[str, np.ndarray]) -> pa.Ta
 def _outside_physics(job: ChunkJob, inputs: dict, outs: dict, ok: np.ndarray) -> dict:
     """Reason → mask of the solved points where the model no longer holds (``ok`` is updated)."""
     n = len(ok)
-    values = {}
-    for name, key in job.watch.items():
-        v = inputs.get(key, outs.get(key, job.job.constants.get(key)))
-        values[name] = np.broadcast_to(np.asarray(v, dtype=float), (n,))
     found = {}
-    for sm in job.physics:
-        for why, mask in sm.invalid_mask(values).items():
-            bad = ok & np.asarray(mask, dtype=bool)
-            if bad.any():
-                found[f"outside the model: {why}"] = bad
-                ok &= ~bad
+    for case, watch in job.watch:
+        values = {}
+        for name, key in watch.items():
+            v = inputs.get(key, outs.get(key, job.job.constants.get(key)))
+            values[name] = np.broadcast_to(np.asarray(v, dtype=float), (n,))
+        for sm in job.physics:
+            for why, mask in sm.invalid_mask(values).items():
+                bad = ok & np.asarray(mask, dtype=bool)
+                if bad.any():
+                    found[f"outside the model{' with the load at ' + case if case else ''}: {why}"] = bad
+                    ok &= ~bad
     return found

@@ -31,6 +31,8 @@ import pyarrow as pa
 
 from ropemodel import __version__
 from ropemodel.core.evaluate import COMPILE_MIN, Job, evaluator
+from ropemodel.envelope import reads as case_reads
+from ropemodel.envelope import with_ramps
 from ropemodel.errors import InputError
 from ropemodel.progress import bar, enabled, status
 from ropemodel.problem import Problem
@@ -41,6 +43,7 @@ from ropemodel.sweeps.files import OutputLock, check_disk, check_output, check_s
 from ropemodel.sweeps.points import MAX_AXIS, Points, grid, table
 from ropemodel.sweeps.store import ChunkStore, complete_rows, discard_parts, read_output
 from ropemodel.sweeps.validate import check_ranges, check_rules
+from ropemodel.sweeps import worst as worst_case
 from ropemodel.units import label
 from ropemodel.views.records import SweepFileViews
 
@@ -213,6 +216,7 @@ class _Plan:
     errors: str
     bounds: list[tuple[int, int]]
     signature: dict
+    worst: worst_case.Worst | None = None
 
     @property
     def n(self) -> int:
@@ -221,11 +225,14 @@ class _Plan:
     def labels(self) -> list[str]:
         q = self.problem.model.quantities
         cols = [label(k, q[k].unit if self.si else q[k].display_unit) for k in [*self.pts.names, *self.outputs]]
+        cols += [label(c, worst_case.UNITS[k]) for c, k in (self.worst.where_columns(self.outputs) if self.worst
+                                                            else [])]
         return cols + (list(MARK_COLUMNS) if self.errors == "mark" else [])
 
 
 def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out, collect) -> _Plan:
     given_values = {k: v for k, v in given.items() if v is not None} if isinstance(given, dict) else {}
+    scene = with_ramps(scene)
     problem = Problem(scene, list(given), find)
     model = problem.model
     inputs = {k: model.quantities[k] for k in problem.knowns}
@@ -236,9 +243,10 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
     pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=model.outputs)
     if pts.n == 0:
         raise InputError("no points to sweep")
+    worst, outputs = worst_case.plan(scene, problem, pts.names, find, outputs)
     outputs = _outputs(problem, outputs, pts.names)
     if not given and not find:
-        _idle(model, pts.names, outputs)
+        _idle(model, pts.names, outputs, case_reads(scene) if worst else set())
     check_size(pts.n, len(pts.names) + len(outputs) + 2 * (errors == "mark"), out=out, collect=collect)
     base = problem.inputs({**given_values, **{n: float(pts.values_of(n)[0]) for n in pts.names}})
     check_ranges(pts, inputs)
@@ -246,12 +254,13 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
     n_chunks = -(-pts.n // chunk_size)
     bounds = [(k * chunk_size, min(pts.n, (k + 1) * chunk_size)) for k in range(n_chunks)]
     signature = _signature(scene, problem, pts, base, outputs, chunk_size, si, errors)
-    return _Plan(problem, pts, base, outputs, si, errors, bounds, signature)
+    return _Plan(problem, pts, base, outputs, si, errors, bounds, signature, worst)
 
 
-def _idle(model, names, outputs) -> None:
-    """A :class:`~ropemodel.scene.SceneWarning` naming the varied inputs no output of the sweep depends on."""
-    reads = model.inputs_of(outputs)
+def _idle(model, names, outputs, cases=frozenset()) -> None:
+    """A :class:`~ropemodel.scene.SceneWarning` naming the varied inputs no output of the sweep depends on,
+    neither through the equations nor through the worst case's places and manoeuvres (``cases``)."""
+    reads = model.inputs_of(outputs) | set(cases)
     idle = [n for n in names if n not in reads]
     if idle:
         which = ", ".join(outputs) if len(outputs) <= 4 else "the outputs asked for"
@@ -337,9 +346,11 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
     order = list(varied) + [k for k in problem.knowns if k not in varied]
     syms = {k: ca.MX.sym(k) for k in problem.knowns}
     args = {**syms, **problem.scene.rule_values(syms, varied)}   # a swept length carries its rule's factor
-    res = fun.call(args)
-    outs = [res[o] for o in outputs]
-    names = list(outputs)
+    if plan.worst is None:
+        res = fun.call(args)
+        names, outs, per_case = list(outputs), [res[o] for o in outputs], [("", res)]
+    else:
+        names, outs, per_case = worst_case.columns(plan.worst, fun, args, base, outputs, problem.model.quantities)
     roundtrip = {}
     if problem.given:
         forward = Problem(problem.scene).function
@@ -350,14 +361,7 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
             names.append(f"roundtrip_{g}")
             outs.append(back[g])
     physics = [sm for sm in problem.model.submodels if sm.invalid_needs_for(outputs)]
-    watch = {}
-    for name in dict.fromkeys(n for sm in physics for n in sm.invalid_needs_for(outputs)):
-        if name in problem.knowns or name in outputs:
-            watch[name] = name
-        elif name in problem.unknowns:
-            watch[name] = f"watch_{name}"
-            names.append(watch[name])
-            outs.append(res[name])
+    watch = worst_case.watches(per_case, physics, problem, outputs, plan.worst is None, names, outs)
     sel = ca.Function("sweep_point", [syms[k] for k in order], outs, order, names)
     if fun.is_a("SXFunction"):
         sel = sel.expand()
@@ -366,6 +370,8 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
     for name in list(varied) + outputs:
         unit = q[name].unit if si else q[name].display_unit
         columns.append((label(name, unit), name, 1.0 if si else float(q[name].to_display(1.0))))
+    if plan.worst is not None:
+        columns += [(label(c, worst_case.UNITS[k]), c, 1.0) for c, k in plan.worst.where_columns(outputs)]
     checks = {n: (q[n].low, q[n].high, q[n].low_open, q[n].high_open,
                   f"{q[n].range_text()}, {q[n].description}") for n in problem.find if n in outputs}
     constants = {k: float(base[k]) for k in order[len(varied):]}

@@ -116,12 +116,13 @@ def _pairs(names: list[str]) -> list[tuple[str, str]]:
 
 
 def along(result: ResultViews, columns: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """The result's model evaluated at many values of some inputs, the others at the result's values."""
+    """The result's model evaluated at many values of some inputs, the others at the result's values (an input
+    a worst case leaves open, the acceleration a_h, at the scene's own value: steady motion)."""
     from ropemodel.core.compile import forward_of
     from ropemodel.core.evaluate import evaluate_columns
 
     fun = forward_of(result.model)
-    constants = {k: result.values[k] for k in fun.name_in() if k not in columns}
+    constants = {k: result.values.get(k, result.scene.parameters.get(k)) for k in fun.name_in() if k not in columns}
     return evaluate_columns(fun, columns, constants)
 
 
@@ -143,8 +144,9 @@ def _route(result: ResultViews, ax):
     for e in ends[:-1]:
         ax.axvline(e, color="0.6", lw=0.8)
     unit = html.unit_text(q["F_C_up"].display_unit)
-    return finish(ax, f"{result.scene.name}: rope forces as the load moves", "x_m, the load's distance from the "
-                  "drive [m]", f"force [{unit}]")
+    steady = ", steady motion" if "a_h" in result.model.parameters and "a_h" not in v else ""
+    return finish(ax, f"{result.scene.name}: rope forces as the load moves{steady}",
+                  "x_m, the load's distance from the drive [m]", f"force [{unit}]")
 
 
 def _arc(result: ResultViews, ax):

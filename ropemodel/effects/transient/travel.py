@@ -20,9 +20,20 @@ from ropemodel.quantity import Quantity
 define_effect(MODEL, "travel", "up", "direction of travel of the simulated transient (up: load hauled up)")
 
 X_M = Quantity("x_m", "m", "distance of the load from the drive along the winding rope", "m", **dom.ROUTE_POSITION,
-               unlimited=True, unlimited_text="start of a trip", default=math.inf, guess=1000.0,
-               default_note="not given: the start of a trip in the travel direction (upward: the load at the "
-                            "return sheave, x_m = L_u; downward: at the drive, x_m = 0)")
+               unlimited=True, unlimited_text="anywhere", default=math.inf, guess=1000.0,
+               default_note="not given: anywhere on the route, each result at its worst place (run, solve, size, "
+                            "sweep, sensitivity, report); a transient (simulate) starts at the start of a trip in "
+                            "its direction (upward: the load at the return sheave, x_m = L_u; downward: at the "
+                            "drive, x_m = 0)")
+
+
+def beyond_route(values) -> list[str]:
+    """The rule 0 <= x_m <= L_u (x_m given, L_u a parameter): one message, or none."""
+    x, L = values.get("x_m"), values.get("L_u")
+    if x is not None and L is not None and math.isfinite(x) and x > L:
+        return [f"x_m = {x:g} m is beyond the return sheave at L_u = {L:g} m: the load must be on the route, "
+                f"0 <= x_m <= L_u (leave x_m out for every place on the route)"]
+    return []
 
 
 class Travel(TransientSubmodel):
@@ -39,11 +50,7 @@ class Travel(TransientSubmodel):
         raise NotImplementedError
 
     def rules(self, values):
-        x, L = values.get("x_m"), values.get("L_u")
-        if x is not None and L is not None and math.isfinite(x) and x > L:
-            return [f"x_m = {x:g} m is beyond the return sheave at L_u = {L:g} m: the load must be on the route, "
-                    f"0 <= x_m <= L_u (leave x_m out to start at the beginning of a trip)"]
-        return []
+        return beyond_route(values)
 
     def bind(self, setup):
         super().bind(setup)

@@ -47,7 +47,7 @@ def basis(ctx):
                               s="; ".join(f"{k}: {v}" for k, v in filing.STATUS_TEXT.items()))
     else:
         html += page.fragment("<p>This model uses no normative number.</p>")
-    html += page.fragment("<h3>Assumptions</h3>") + _items(filing.assumptions(scene), "assumptions")
+    html += page.fragment("<h3>Assumptions</h3>") + _items(filing.assumptions(scene, ctx.reads), "assumptions")
     html += page.fragment("<h3>Data still missing</h3>")
     html += _items(filing.missing(scene, values(ctx)), "missing") or page.fragment("<p>None.</p>")
     return html

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
+from ropemodel.reports.sections.transient import every_parameter
 
 INTRO = """<p>Every design check holds through the start and stop of both directions of travel (four manoeuvres),
 not only at the static forces (<code>ropemodel size --dynamic</code>); every design verified by the hybrid simulator.
@@ -22,7 +23,7 @@ def _kN(x: float) -> str:
     return f"{x * 1e-3:.4g}"
 
 
-@section("dynamic_sizing", "Dynamic sizing", when=sizes_dynamically)
+@section("dynamic_sizing", "Dynamic sizing", when=sizes_dynamically, reads=every_parameter)
 def dynamic_sizing(ctx):
     design = ctx.design
     q = design.scene.built.quantities

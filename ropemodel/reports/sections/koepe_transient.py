@@ -7,6 +7,7 @@ from ropemodel.effects import effects_of
 from ropemodel.effects.koepe_transient.profile import KoepeProfile
 from ropemodel.reports import figures, page
 from ropemodel.reports.registry import section
+from ropemodel.reports.sections.transient import every_parameter
 
 #: the history's columns drawn: tensions and margin at the wheel [N], speeds [m/s]
 COLUMNS = ("t [s]", "T_L [N]", "T_E [N]", "T_min [N]", "slip_margin [N]", "v_rope [m/s]", "v_wheel [m/s]",
@@ -21,7 +22,7 @@ def has_koepe_transient(ctx) -> bool:
     return issubclass(effects_of(s.model)["dynamics"].variants[s.effects["dynamics"]], KoepeProfile)
 
 
-@section("koepe_transient", "Transient with elastic ropes", when=has_koepe_transient)
+@section("koepe_transient", "Transient with elastic ropes", when=has_koepe_transient, reads=every_parameter)
 def koepe_transient(ctx):
     sim = ctx.simulation
     html = page.fragment("<p>dynamics = \"{{ d }}\"{{ at }}: the head ropes elastic, slip judged at every instant "

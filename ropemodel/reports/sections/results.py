@@ -69,9 +69,29 @@ def results(ctx):
         html += page.fragment("<h3>Single quantities</h3>")
         html += page.table(["quantity", "value", "meaning", "equation"], rows, kinds=["name", "num", "", ""],
                            cls="singles")
+    html += worst_html(result)
     for title, frame in result.frames.items():
         if title not in SHOWN_ELSEWHERE:
             html += frame_html(title, frame)
+    return html
+
+
+def worst_html(result) -> str:
+    """For a result at its worst case: where each result is worst (its extremes, their places and manoeuvres),
+    and the results that vary with the case but have no worst."""
+    env = getattr(result, "envelope", None)
+    if env is None:
+        return ""
+    q = result.model.quantities
+    rows = [[n, e.sense, page.show(q[n], e.value), e.text(env.params)] for n, ext in env.extremes.items()
+            for e in ext]
+    html = page.fragment("<h3>Where each result is worst</h3><p>Over {{ s }}, both directions of travel.</p>",
+                         s=result.cases_text())
+    html += page.table(["quantity", "worst", "value", "where"], rows, kinds=["name", "", "num", ""], cls="worst")
+    if env.no_worst:
+        html += page.fragment('<p class="note">Vary with the load\'s place or the manoeuvre and have no worst '
+                              "(given at one point with <code>--set x_m=...</code>): {{ n }}.</p>",
+                              n=", ".join(env.no_worst))
     return html
 
 
@@ -91,30 +111,30 @@ def frame_html(title: str, frame):
     return html + page.table(list(map(str, frame.columns)), rows, kinds=["num"] * len(frame.columns))
 
 
-def check_rows(margins: dict, quantities: dict, scene=None, where=None):
-    """(rows, row classes, failed names) of a checks table: margin name, check (and where its worst case is,
-    from ``where``), direction, margin, verdict and the rule the check applies (its factor's provenance in
-    ``scene``)."""
+def check_rows(margins: dict, quantities: dict, scene=None, where: dict | None = None):
+    """(rows, row classes, failed names) of a checks table: margin name, check, direction, margin, verdict,
+    the rule the check applies (its factor's provenance in ``scene``) and, with ``where`` (margin → text),
+    where the margin is least."""
     text = {base: t for base, t, _ in CHECKS}
-    where = where or {}
     rows, classes, failed = [], [], []
     for n in margins_of(margins):
         v = margins[n]
         base, way = (n.rsplit("_", 1) if _DIR.match(n) else (n, "-"))
         ok = v >= 0
-        rows.append([n, _meaning(text.get(base, quantities[n].description), where.get(n)), way,
+        rows.append([n, text.get(base, quantities[n].description), way,
                      page.show(quantities[n], 0.0 if abs(v) < ZERO else v), "pass" if ok else "FAIL",
-                     scene.check_basis(n) if scene is not None else "-"])
+                     scene.check_basis(n) if scene is not None else "-"]
+                    + ([where.get(n, "the same in every case")] if where else []))
         classes.append("pass" if ok else "fail")
         if not ok:
             failed.append(n)
     return rows, classes, failed
 
 
-def checks_html(margins: dict, quantities: dict, scene=None, where=None):
-    """A verdict line and the table of every margin in ``margins`` (SI), each with its rule (see "Rules") and
-    where its worst case is (``where``: margin name → text); nothing when there is none (no verdict over no
-    checks)."""
+def checks_html(margins: dict, quantities: dict, scene=None, where: dict | None = None):
+    """A verdict line and the table of every margin in ``margins`` (SI), each with its rule (see "Rules") and,
+    with ``where`` (margin → text), where it is least (the load's place and the manoeuvre); nothing when there
+    is none (no verdict over no checks)."""
     rows, classes, failed = check_rows(margins, quantities, scene, where)
     if not rows:
         return ""
@@ -122,8 +142,9 @@ def checks_html(margins: dict, quantities: dict, scene=None, where=None):
         line = page.verdict(False, f"{len(failed)} of {len(rows)} checks FAIL: {', '.join(failed)}")
     else:
         line = page.verdict(True, f"All {len(rows)} checks pass.")
-    return line + page.table(["margin", "check", "direction", "margin value", "result", "rule"], rows,
-                             kinds=["name", "", "", "num", "", ""], row_class=classes, cls="checks")
+    head = ["margin", "check", "direction", "margin value", "result", "rule"] + (["where it is least"] if where else [])
+    return line + page.table(head, rows, kinds=["name", "", "", "num", "", ""] + ([""] if where else []),
+                             row_class=classes, cls="checks")
 
 
 def _has_checks(ctx) -> bool:
@@ -140,6 +161,13 @@ def checks(ctx):
              "at the scene's own values" + (" (its starting design; the sizing's design is checked under "
                                             "\"Sizing\")" if ctx.sizing else ""))
     html = page.fragment("<p>Every check {{ w }}: a margin ≥ 0 passes. Ratio margins are fractions "
-                         "(0.1: 10 % to spare), the others in the quantity's unit.</p>", w=where)
+                         "(0.1: 10 % to spare), the others in the quantity's unit.{{ e }}</p>", w=where,
+                         e=_span(result))
     return html + checks_html({n: result.values[n] for n in margins_of(result.outputs)}, result.model.quantities,
                               result.scene, result.where)
+
+
+def _span(result) -> str:
+    """What the worst case spans, for a result at its worst (else nothing)."""
+    text = getattr(result, "cases_text", None)
+    return f" Each at its worst over {text()}, both directions." if text else ""

@@ -3,6 +3,7 @@ the recommended design; or, when no design exists, which checks conflict and by 
 
 from __future__ import annotations
 
+from ropemodel.envelope import where_text
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
 from ropemodel.reports.sections.results import checks_html
@@ -17,7 +18,14 @@ def design_text(design) -> str:
     return ", ".join(f"{k} = {q[k].show(design.design[k])}" for k in ("d", "F_nwl", "stroke"))
 
 
-@section("sizing", "Sizing", when=lambda ctx: ctx.sizing)
+def reads(ctx) -> set[str]:
+    """What the sizing is computed from (:func:`optimisation.problem.reads`)."""
+    from optimisation.problem import reads as sizing_reads
+
+    return sizing_reads(ctx.scene)[0]
+
+
+@section("sizing", "Sizing", when=lambda ctx: ctx.sizing, reads=reads)
 def sizing(ctx):
     design = ctx.design
     q = design.scene.built.quantities
@@ -36,13 +44,18 @@ def sizing(ctx):
     html += page.fragment("<h3>Active constraints</h3><p>What fixes the design (at the recommended design):</p>"
                           "<ul>{% for a in active %}<li><code>{{ a }}</code></li>{% endfor %}</ul>",
                           active=design.active)
-    extra = [[k, page.show(q[k], v), q[k].description] for k, v in design.power.items()]
+    extra = [[k, page.show(q[k], v), q[k].description + " (at its worst)"] for k, v in design.power.items()]
+    extra += [[f"drive {kind}", page.show(q["N_p_up"], e["value"]),
+               f"the drive's largest {kind} power: {where_text(e['where'], direction=True)}"]
+              for kind, e in getattr(design, "drive", {}).items()]
     if design.least_drum is not None:
         extra.append(["D_min", page.show(q["D"], design.least_drum),
                       "no drum diameter given: the least drum, D_ratio_min d"])
     if extra:
         html += page.table(["quantity", "value", "meaning"], extra, kinds=["name", "num", ""])
-    checks = checks_html({k: v for k, v in design.margins.items() if k in q}, q, design.scene)   # static checks
+    where = {k: where_text(w) for k, w in getattr(design, "governing", {}).items()}
+    checks = checks_html({k: v for k, v in design.margins.items() if k in q}, q, design.scene,
+                         where or None)   # static checks
     if checks:
         html += page.fragment("<h3>Checks at the recommended design</h3>") + checks
     return html + page.fragment('<p class="note">{{ m }}</p>', m=design.message)

@@ -39,7 +39,12 @@ def has_transient(ctx) -> bool:
     return issubclass(profile, Profile) and not issubclass(profile, Trip)
 
 
-@section("transient", "Transient", when=has_transient)
+def every_parameter(ctx) -> set[str]:
+    """A transient's system of parts reads every parameter of the scene."""
+    return set(ctx.scene.parameters)
+
+
+@section("transient", "Transient", when=has_transient, reads=every_parameter)
 def transient(ctx):
     sim = ctx.simulation
     history = sim.history

@@ -35,7 +35,14 @@ def has_trip(ctx) -> bool:
             and "v_pj" in given and "t_ramp" in given)
 
 
-@section("trip", "Trip", when=has_trip)
+def reads(ctx) -> set[str]:
+    """What the trips are computed from (:func:`ropemodel.trips.reads`)."""
+    from ropemodel.trips import prepare, reads as trip_reads
+
+    return trip_reads(prepare(ctx.scene))[0]
+
+
+@section("trip", "Trip", when=has_trip, reads=reads)
 def trip(ctx):
     runs = ctx.trips
     braking = next(iter(runs.values())).braking
