@@ -13,6 +13,7 @@ source and status); the site's scene reference (``docs/scenes.md``) holds them a
 what ``ropemodel run`` prints, ``run-example`` (:data:`OUTPUTS`: a command's output, computed only for a
 file that holds it).  ``python -m ropemodel.docs`` rewrites every file of :func:`files`.
 """
+
 from __future__ import annotations
 
 import math

@@ -1,7 +1,7 @@
 """Work budgets: a job's size counted before it starts, refused above its budget, run with --no-limit.
 
 Truths: the counts written out here from their definitions (history rows t_end/sim_dt + 1, Sobol
-evaluations N(D + 2), route sizing load positions x segments), and the README's table of budgets.
+evaluations N(D + 2), route sizing load positions x segments), and the documentation's table of budgets.
 """
 
 from __future__ import annotations
