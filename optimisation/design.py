@@ -57,6 +57,8 @@ class Design(DesignViews):
     units: dict[str, str] = field(default_factory=dict)
     message: str = ""
     lexicographic_ok: bool | None = None
+    #: the rope's stiffness at the recommended design: EA [N], q_lw [m/N] (what the stroke rests on)
+    rope: dict[str, float] = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         """The JSON contract of ``ropemodel size --json`` (SI numbers)."""
@@ -81,10 +83,16 @@ class Design(DesignViews):
                                  "relax_alone": self.diagnosis.alone, "elastic": self.diagnosis.elastic,
                                  "where": self.diagnosis.where.strip(), "needs": self.diagnosis.needs}
         out["message"] = self.message
+        out.update(self.rope)
+        out["elongation"] = self.scene.effects.get("elongation")
         rules = rules_summary(self.scene)
         if rules:
             out["rules"] = rules
         return out
+
+
+#: the rope's stiffness a design states (the stroke rests on it)
+ROPE_STIFFNESS = ("EA", "q_lw")
 
 
 #: the drive power of each direction (signed: motoring > 0, braking < 0)
@@ -253,6 +261,7 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     design.margins, design.governing, design.power, design.drive, values = at_design(problem, xs)
     if problem.least_drum:
         design.least_drum = values["D"]
+    design.rope = {k: values[k] for k in ROPE_STIFFNESS if k in values}
     design.message = "design found"
     if sol.lexicographic_ok is False:
         design.message += ("; warning: the rope mass alone is not optimal at this design (the pretension or "

@@ -33,6 +33,15 @@ CITATIONS: dict[str, str] = {
         "F. A. Edwards (1992). Hoisting systems. Chapter 17.5 in H. L. Hartman (ed.), SME Mining Engineering "
         "Handbook, 2nd ed. Society for Mining, Metallurgy, and Exploration, Littleton, CO."
     ),
+    "rope_extension": (
+        "Properties of extension of steel wire ropes (rope makers' technical information: Bridon, Wire Rope "
+        "Technical Information; Certex, Properties of Extension of Steel Wire Ropes): constructional stretch by "
+        "core and load, elastic extension, thermal expansion."
+    ),
+    "feyrer2015": (
+        "K. Feyrer (2015). Wire Ropes: Tension, Endurance, Reliability, 2nd ed. Springer, Berlin. Section 1.3: the "
+        "rope elasticity modulus, rising with the rope tensile stress."
+    ),
     "antislip_cn": (
         "Anti-slip factor of multi-rope friction hoists, Chinese design practice: "
         "sigma = (exp(mu*alpha) - 1) T2/(T1 - T2). No primary text held; definition as in docs/physics.md s. 7."

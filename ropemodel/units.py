@@ -30,13 +30,13 @@ from functools import lru_cache
 
 from ropemodel.errors import InputError, suggest
 
-# dimension vectors: (mass, length, time, angle)
-_M, _L, _T, _A = (1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1)
-_ONE = (0, 0, 0, 0)
+# dimension vectors: (mass, length, time, angle, temperature)
+_M, _L, _T, _A, _K = (1, 0, 0, 0, 0), (0, 1, 0, 0, 0), (0, 0, 1, 0, 0), (0, 0, 0, 1, 0), (0, 0, 0, 0, 1)
+_ONE = (0, 0, 0, 0, 0)
 
 
 def _dim(*pairs) -> tuple[int, ...]:
-    out = [0, 0, 0, 0]
+    out = [0, 0, 0, 0, 0]
     for base, power in pairs:
         for i, b in enumerate(base):
             out[i] += b * power
@@ -68,6 +68,7 @@ UNITS: dict[str, tuple[float, tuple[int, ...], bool]] = {
     "turns": (2.0 * math.pi, _A, False),
     "rpm": (2.0 * math.pi / 60.0, _dim((_A, 1), (_T, -1)), False),
     "%": (0.01, _ONE, False),
+    "K": (1.0, _K, False),                                   # a temperature difference (kelvin)
     "Nm": (1.0, _dim((_FORCE, 1), (_L, 1)), True),           # torque, as catalogues print it
 }
 PREFIXES = {"p": 1e-12, "n": 1e-9, "u": 1e-6, "µ": 1e-6, "μ": 1e-6, "m": 1e-3, "c": 1e-2, "d": 1e-1,
@@ -171,7 +172,7 @@ _NAMED = {
     _dim((_L, 1), (_FORCE, -1)): "length per force", _dim((_FORCE, -1),): "1/force",
     _dim((_FORCE, 1), (_L, -1)): "force per length", _dim((_M, 1), (_L, -1)): "mass per length",
     _dim((_M, 1), (_L, -3)): "density", _dim((_L, 2),): "area", _dim((_FORCE, 1), (_L, -2), (_T, 1)): "viscosity",
-    _dim((_T, -1),): "1/time",
+    _dim((_T, -1),): "1/time", _K: "temperature difference", _dim((_K, -1),): "1/temperature",
 }
 
 

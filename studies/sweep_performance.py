@@ -73,6 +73,7 @@ def outputs(alpha, G_m, L_u, L_ul, mu_pm, mu_pl, F_nwl, v_pj, eta, q_l, q_lw):
     out["mu_pl1"] = np.full_like(s, mu_pl)
     out["mu_pl2"] = np.full_like(s, mu_pl)
     out["dF_nwl"] = np.full_like(s, q_lw * F_nwl)          # eq. (22)
+    out["EA"] = np.full_like(s, L_u / q_lw)                # the rope's stiffness, Hooke over the route
     for d in ("up", "down"):
         out[f"dF_C_{d}"] = q_lw * out[f"F_C_{d}"]           # eq. (19)
         out[f"dF_S_{d}"] = q_lw * out[f"F_S_{d}"]           # eq. (20)
@@ -83,11 +84,12 @@ def outputs(alpha, G_m, L_u, L_ul, mu_pm, mu_pl, F_nwl, v_pj, eta, q_l, q_lw):
         out[f"N_p_{d}"] = np.where(P > 0, P / eta, P * eta)
     return out
 ORDER = ["G_ml","G_l1","G_l2","G_l","G_mo","G_ls","T_m","T_l1","T_l2","T_l","T_ls","G_lmC","F_S_up","F_C_up",
-         "F_S_down","F_C_down","mu_pl1","mu_pl2","dF_nwl","dF_C_up","dF_S_up","dF_CS_up","dF_up","dF_C_down",
+         "F_S_down","F_C_down","mu_pl1","mu_pl2","dF_nwl","EA","dF_C_up","dF_S_up","dF_CS_up","dF_up","dF_C_down",
          "dF_S_down","dF_CS_down","dF_down","P_drum_up","N_p_up","P_drum_down","N_p_down"]
 UNIT = {k: ("kN", 1e-3) for k in ORDER}
 UNIT.update({k: ("-", 1.0) for k in ("mu_pl1", "mu_pl2")})
 UNIT.update({k: ("mm", 1e3) for k in ORDER if k.startswith("dF")})
+UNIT["EA"] = ("MN", 1e-6)
 UNIT.update({k: ("kW", 1e-3) for k in ("P_drum_up", "N_p_up", "P_drum_down", "N_p_down")})
 def main(n_alpha, n_load, path, row_group, p):
     a = np.radians(np.linspace(5.0, 45.0, n_alpha))

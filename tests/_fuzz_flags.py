@@ -26,8 +26,8 @@ DYNAMIC_SIZING = ["--vary", "G_m=460kN,467kN", "--sizing", "--dynamic", "-o", "{
 COMMON = {"set": (["--set", "mu_pl=0.06"], False, None), "json": (["--json"], False, None),
           "quiet": (["-q"], False, None), "no_limit": (["--no-limit"], False, None)}
 GOOD = {
-    "run": {"worst": (["--worst"], False, "route_segments")},
-    "solve": {"given": None, "find": None},
+    "run": {"worst": (["--worst"], False, "route_segments"), "at": (["--at", "x_m=100m"], False, "route_segments")},
+    "solve": {"given": None, "find": None, "at": (["--at", "x_m=100m"], False, "route_segments")},
     "size": {"discrete": (["--discrete", "bonmin"], False, None), "dynamic": (["--dynamic"], False, "dynamic"),
              "find": (["--dynamic", "--find", "t_ramp"], False, "dynamic")},
     "curve": {"set": (["--set", "R=80mm"], False, None),      # a capstan scene: none of the winch's names
@@ -47,7 +47,8 @@ GOOD = {
               "mark_failures": (["--mark-failures"], False, None), "restart": (["--restart"], False, None),
               "sizing": (SIZING, True, "winch_sizing_fig9"), "cold": ([*SIZING, "--cold"], True, "winch_sizing_fig9"),
               "dynamic": (DYNAMIC_SIZING, True, "dynamic"), "no_progress": (["--no-progress"], False, None)},
-    "sensitivity": {"scene": None, "outputs": None, "parameters": (["--parameters", "G_m"], False, None),
+    "sensitivity": {"scene": None, "outputs": None, "at": (["--at", "x_m=100m"], False, "route_segments"),
+                    "parameters": (["--parameters", "G_m"], False, None),
                     "plot": (["--plot", "{d}/t.png"], False, None),
                     "sobol": (["--sobol", "G_m=400kN:467kN", "--samples", "8"], False, None),
                     "samples": (["--sobol", "G_m=400kN:467kN", "--samples", "16"], False, None),

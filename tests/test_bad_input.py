@@ -69,7 +69,8 @@ def test_every_mistake_is_named_at_once():
     assert str(err.value).startswith("6 problems")
 @pytest.mark.parametrize("data, pattern", [
     ({"effects": {"elongaton": "none"}}, r"unknown effect 'elongaton'.*did you mean 'elongation'"),
-    ({"effects": {"elongation": "off"}}, r"elongation = 'off' is not a variant; valid variants: krauze2025, none"),
+    ({"effects": {"elongation": "off"}},
+     r"elongation = 'off' is not a variant; valid variants: asbuilt, asbuilt_stress, krauze2025, none"),
     ({"scene": {"model": "winhc"}}, r"unknown model 'winhc'.*did you mean 'winch'"),
     ({"paramaters": {}}, r"unknown table \[paramaters\].*did you mean 'parameters'"),
     ({"scene": {"nmae": "x"}}, r"unknown key 'nmae' in \[scene\].*did you mean 'name'"),

@@ -61,7 +61,8 @@ def test_elongation_off_builds_no_elongation_equation(fig9):
     assert {"dF_up", "dF_nwl", "dF_C_down"} <= set(on.outputs)
     assert not [o for o in off.outputs if o.startswith("dF")]
     assert "q_lw" not in off.parameters
-    assert len(on.equations) - len(off.equations) == 9  # eq. (19)-(21), (23) per direction + eq. (22)
+    # eq. (19)-(21), (23) per direction + eq. (22) + the rope's EA = L_u/q_lw
+    assert len(on.equations) - len(off.equations) == 10
 
 
 def test_power_only_when_asked():

@@ -43,6 +43,18 @@ def _num(v):
     return v
 
 
+def _rope_lines(design, q) -> list[str]:
+    """The rope's EA and q_lw at the design and the elongation method the stroke comes from."""
+    from ropemodel.effects import REGISTRY
+
+    lines = [f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}" for k, v in design.rope.items()]
+    variant = design.scene.effects.get("elongation")
+    if variant:
+        spec = REGISTRY[design.scene.built.name]["elongation"].variants[variant]
+        lines.append(f"stroke from elongation = \"{variant}\": {spec.description}")
+    return lines
+
+
 def _text(design) -> str:
     from ropemodel.envelope import where_text
 
@@ -68,6 +80,7 @@ def _text(design) -> str:
         if design.least_drum is not None:
             lines.append(f"{'D_min':<12}{q['D'].to_display(design.least_drum):>14.6g}  {q['D'].display_unit}"
                          f"  (no drum diameter given: the least drum, D_ratio_min d)")
+        lines += _rope_lines(design, q)
         lines.append("")
         lines.append(f"{'check margin':<22}{'value':>14}  {'unit':<6}{'':<6}where it is least; rule")
         for k, v in design.margins.items():

@@ -79,7 +79,7 @@ def per_direction(name, unit, description, display=None, symbol="", **kw) -> tup
 define_effect(MODEL, "route", "straight", "the route: the paper's single incline, or a list of straight segments")
 define_effect(MODEL, "forces", "krauze2025", "haulage forces of both directions, eq. (12)-(14)")
 define_effect(MODEL, "resistance", "case1", "resistance coefficients of the winding rope, eq. (15)-(18)")
-define_effect(MODEL, "elongation", "krauze2025", "rope elongation and tensioner stroke, eq. (19)-(23)")
+define_effect(MODEL, "elongation", "krauze2025", "rope elongation and tensioner stroke: eq. (19)-(23), or as built")
 define_effect(MODEL, "power", "none", "drive power per direction")
 
 
@@ -183,6 +183,10 @@ class SteadyMotion(Submodel):
     assumptions = ("Steady motion: the forces are those at constant speed; starting and stopping add inertia "
                    "(inertia = \"rigid\", or the transient).",)
 
+    def rope_force_per_metre(self, v):
+        """The inertia force per metre of rope [N/m] (0: steady motion), for a side's tension profile."""
+        return 0.0
+
     def acceleration(self, v):
         """The haulage's acceleration the forces include [m/s²]: none."""
         return 0.0
@@ -220,6 +224,10 @@ class RigidInertia(Submodel):
         Q("I_S", "N", "inertia force of the unwinding rope, q_l L_u/g a_h", "kN",
           equation="rigid-body inertia (not in the paper)"),
     )
+
+    def rope_force_per_metre(self, v):
+        """The rope's inertia per metre, I_S/L_u = q_l a_h/g [N/m] (the same on both sides)."""
+        return v["I_S"] / v["L_u"]
 
     def acceleration(self, v):
         """The haulage's acceleration the forces include [m/s²]: a_h."""
@@ -267,35 +275,49 @@ class ResistanceCase2(Submodel):
     split_at_A = True
 
 
+#: the rope's stiffness and the elongations every elongation variant defines (declared once, shared)
+Q_LW = Q("q_lw", "m/N", "unit elongation of the installed rope", "mm/kN", guess=5.8e-6,
+         **usual(3e-7, 1.2e-3, "q_lw = L_u/(E C d^2) for routes of 100-3000 m and EN 12385-4 ropes of 8-60 mm "
+                               "(E C of 40-70 GPa); the paper's rope: 5.8 mm/kN"), **POSITIVE,
+         **dom.domain(1e-12, 10.0, "q_lw = L_u/EA from 1 m of the stiffest rope (EA about 5e10 N) to 100 km "
+                                   "of an 8-mm synthetic rope (EA about 1e4 N)"))
+EA = Q("EA", "N", "axial stiffness of the rope, L_u/q_lw", "MN",
+       equation="Hooke's law over the route (not in the paper)")
+_AS_BUILT = "as built: the side's tension profile integrated (docs/physics.md §8)"
+DF_NWL = Q("dF_nwl", "m", "elongation under the initial tension", "mm",
+           equation=f"{SRC}, eq. (22)")
+DF_SIDES = (*per_direction("dF_C", "m", "elongation of the winding rope", "mm",
+                           equation=f"{SRC}, eq. (19); {_AS_BUILT}", **LARGEST),
+            *per_direction("dF_S", "m", "elongation of the unwinding rope", "mm",
+                           equation=f"{SRC}, eq. (20); {_AS_BUILT}", **LARGEST),
+            *per_direction("dF_CS", "m", "elongation of both ropes", "mm", equation=f"{SRC}, eq. (21)",
+                           **LARGEST))
+DF = per_direction("dF", "m", "minimum stroke of the return sheave", "mm",
+                   equation=f"{SRC}, eq. (23); as built: with reeving, constructional stretch, temperature",
+                   **LARGEST)
+
+
 @register(MODEL, "elongation", "krauze2025")
 class Elongation(Submodel):
     """Rope elongation and the minimum tensioner stroke, Krauze et al. (2025) eq. (19)-(23)."""
 
-    description = "elongation of both ropes and the minimum stroke of the return sheave"
+    description = ("eq. (19)-(23): each whole rope side under its force at the drive, the return sheave taking up "
+                   "the loop's whole elongation")
     assumptions = (
         "Each rope side stretches under its largest force over its whole length, eq. (19)-(20): the elastic "
         "elongation is bounded from above.",
         "No constructional (permanent) stretch of a new rope: it comes on top of the elastic elongation and usually "
         "dominates the first months.",
-        "The tensioner takes up the loop's whole elongation: its reeving (number of falls) is not modelled.",
+        "The tensioner takes up the loop's whole elongation: its reeving (number of falls) is not modelled "
+        "(elongation = \"asbuilt\" models the profile, the falls, constructional stretch and temperature).",
     )
     citations = ("krauze2025",)
-    quantities = (
-        Q("q_lw", "m/N", "unit elongation of the installed rope", "mm/kN", guess=5.8e-6,
-          **usual(3e-7, 1.2e-3, "q_lw = L_u/(E C d^2) for routes of 100-3000 m and EN 12385-4 ropes of 8-60 mm "
-                                "(E C of 40-70 GPa); the paper's rope: 5.8 mm/kN"), **POSITIVE,
-          **dom.domain(1e-12, 10.0, "q_lw = L_u/EA from 1 m of the stiffest rope (EA about 5e10 N) to 100 km "
-                                    "of an 8-mm synthetic rope (EA about 1e4 N)")),
-        Q("dF_nwl", "m", "elongation under the initial tension", "mm", equation=f"{SRC}, eq. (22)"),
-        *per_direction("dF_C", "m", "elongation of the winding rope", "mm", equation=f"{SRC}, eq. (19)", **LARGEST),
-        *per_direction("dF_S", "m", "elongation of the unwinding rope", "mm", equation=f"{SRC}, eq. (20)", **LARGEST),
-        *per_direction("dF_CS", "m", "elongation of both ropes", "mm", equation=f"{SRC}, eq. (21)", **LARGEST),
-        *per_direction("dF", "m", "minimum stroke of the return sheave", "mm", equation=f"{SRC}, eq. (23)",
-                       **LARGEST),
-    )
+    quantities = (Q_LW, EA, DF_NWL, *DF_SIDES, *DF)
 
     def equations(self, v):
-        eqs = [Equation("dF_nwl", v["dF_nwl"] - kr.elongation(v["q_lw"], v["F_nwl"]), "eq. (22)")]
+        eqs = [Equation("dF_nwl", v["dF_nwl"] - kr.elongation(v["q_lw"], v["F_nwl"]), "eq. (22)"),
+               Equation("EA", v["EA"] - v["L_u"] / v["q_lw"], "Hooke's law over the route: EA = L_u/q_lw "
+                                                              "(not in the paper)")]
         for d in DIRECTIONS:
             eqs += [
                 Equation(f"dF_C_{d}", v[f"dF_C_{d}"] - kr.elongation(v["q_lw"], v[f"F_C_{d}"]), "eq. (19)"),

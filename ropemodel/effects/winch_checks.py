@@ -45,6 +45,8 @@ LEAST = "least tension along the side, docs/physics.md §4 (not in the paper)"
 LEAST_SENSE = ("least",)
 LEAST_FORCES = ("F_S_least_up", "F_S_least_down", "F_C_least_up", "F_C_least_down")
 
+N_ROPE = Q("n_rope", "1", "required safety factor of the rope F_min / F_C", guess=5.0, **dom.FACTOR)
+
 define_effect(MODEL, "checks", "none", "design checks with their margins: safety, slack, stroke, drum")
 
 #: (margin name, check text, unit of the margin) in report order; slip comes from the lining effect
@@ -91,7 +93,7 @@ class DesignChecks(Submodel):
         D_ROPE,
         F_MIN,
         D_DRUM,
-        Q("n_rope", "1", "required safety factor of the rope F_min / F_C", guess=5.0, **dom.FACTOR),
+        N_ROPE,
         Q("F_S_min", "N", "least tension allowed anywhere in either rope (drum to return sheave)", "kN", **dom.FORCE,
           default=0.0, default_note="no least tension given: the ropes need only stay taut (> 0)"),
         X_M,
