@@ -84,7 +84,7 @@ _LINK = re.compile(r"(!?)\[([^\]]*)\]\(([^)\s]+)\)")
 
 
 def repository_paths(app, relative_path, parent_docname, content):
-    """Links and images of a file included from outside ``docs/`` (the README, studies/README.md) are
+    """Links and images of a file included from outside ``docs/`` (studies/README.md) are
     relative to that file: point them at the site's pages (``/page.md``, relative to this folder) and
     the repository's pictures; a link to another repository file becomes its path as text."""
     src = Path(app.srcdir)

@@ -1,18 +1,17 @@
-"""The README's reference tables, generated from the effect registry, and the output of ``ropemodel run`` it
-shows (``python -m ropemodel.docs``).
+"""The documentation's reference tables, generated from the effect registry, and the output of ``ropemodel run``
+the site shows (``python -m ropemodel.docs``).
 
-The README holds each table between ``<!-- generated: NAME -->`` and ``<!-- end: NAME -->``;
-:func:`render` returns the tables, :func:`update` rewrites them in a README, and a test checks
-that the committed README equals what :func:`update` would write (so the tables never drift from
+A page holds each table between ``<!-- generated: NAME -->`` and ``<!-- end: NAME -->``;
+:func:`render` returns the tables, :func:`update` rewrites them in a page, and a test checks
+that each committed page equals what :func:`update` would write (so the tables never drift from
 the code).  Tables: ``effects`` (every effect and variant of every model), per model
-``parameters-MODEL`` (unit, meaning, default and why, valid range and usual range, each with its source)
-and ``outputs-MODEL`` (unit, meaning, equation), and ``rule-sets`` and ``rules`` (every shipped rule
-set and rule, with its source and status); the site's scene reference (``docs/scenes.md``) holds these
-and, per model, ``variants-MODEL`` (every variant of every effect: what it builds, its parameters, what
-it computes with each equation's source, its papers) and ``numerics-MODEL`` (the ``[numerics]``
-options).  The README also shows what ``ropemodel run`` prints, ``run-example`` (:data:`OUTPUTS`: a
-command's output, computed only for a file that holds it).  ``python -m ropemodel.docs`` rewrites both
-files.
+``parameters-MODEL`` (unit, meaning, default and why, valid range and usual range, each with its source),
+``outputs-MODEL`` (unit, meaning, equation), ``variants-MODEL`` (every variant of every effect: what it
+builds, its parameters, what it computes with each equation's source, its papers) and ``numerics-MODEL``
+(the ``[numerics]`` options), and ``rule-sets`` and ``rules`` (every shipped rule set and rule, with its
+source and status); the site's scene reference (``docs/scenes.md``) holds them all.  A page may also show
+what ``ropemodel run`` prints, ``run-example`` (:data:`OUTPUTS`: a command's output, computed only for a
+file that holds it).  ``python -m ropemodel.docs`` rewrites every file of :func:`files`.
 """
 
 from __future__ import annotations
@@ -90,7 +89,7 @@ def run_example() -> str:
     return f"```text\n{run(load(emit=False)).table()}\n```"
 
 
-#: blocks of a command's output (the README's), computed only where a file holds them
+#: blocks of a command's output, computed only where a file holds them
 OUTPUTS = {"run-example": run_example}
 
 
@@ -173,13 +172,23 @@ def update(text: str) -> str:
     return _BLOCK.sub(fill, text)
 
 
-#: the files whose generated tables ``python -m ropemodel.docs`` rewrites by default
-FILES = ("README.md", "docs/scenes.md")
+def pages(root: Path | str = ".") -> list[Path]:
+    """README.md and every page of the site (``docs/**/*.md``; the built site and the generated gallery left out)."""
+    docs = Path(root) / "docs"
+    site = (p for p in docs.rglob("*.md") if not {"_build", "gallery"} & set(p.relative_to(docs).parts))
+    return [Path(root) / "README.md", *sorted(site)]
+
+
+def files(root: Path | str = ".") -> list[Path]:
+    """The files whose generated blocks ``python -m ropemodel.docs`` rewrites by default: those of
+    :func:`pages` that hold one."""
+    return [p for p in pages(root) if p.exists() and "<!-- generated: " in p.read_text(encoding="utf-8")]
 
 
 def main(argv=None) -> int:
-    """``python -m ropemodel.docs [FILE ...]``: rewrite the generated tables in place (default: :data:`FILES`)."""
-    for name in argv or sys.argv[1:] or FILES:
+    """``python -m ropemodel.docs [FILE ...]``: rewrite the generated tables in place (default: :func:`files`
+    of the current folder)."""
+    for name in argv or sys.argv[1:] or files():
         path = Path(name)
         path.write_text(update(path.read_text(encoding="utf-8")), encoding="utf-8")
     return 0

@@ -219,9 +219,11 @@ def koepe_cases() -> list[Case]:
 
 
 def _readme_block(first_line: str) -> str:
-    from pathlib import Path
+    """The scene the documentation shows under "The shortest scene for each command" whose first line is
+    ``first_line`` (the scene reference, docs/scenes.md)."""
+    from _docs_text import section
 
-    text = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    text = section("The shortest scene for each command")
     start = text.index(first_line)
     return text[text.index("\n", start) + 1:text.index("```", start)]
 

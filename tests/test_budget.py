@@ -1,16 +1,16 @@
 """Work budgets: a job's size counted before it starts, refused above its budget, run with --no-limit.
 
 Truths: the counts written out here from their definitions (history rows t_end/sim_dt + 1, Sobol
-evaluations N(D + 2), route sizing load positions x segments), and the README's table of budgets.
+evaluations N(D + 2), route sizing load positions x segments), and the documentation's table of budgets.
 """
 
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
 import pytest
 
+from _docs_text import section
 from _fuzz_classes import route_scene
 from ropemodel import budget
 from ropemodel.cli import main
@@ -73,8 +73,8 @@ def test_lifted_restores():
 
 
 def test_readme_states_every_budget():
-    """The README's table gives each budget (and only those)."""
-    text = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    """The documentation's table (the scene reference, "Writing a scene") gives each budget (and only those)."""
+    text = section("Writing a scene")
     block = text[text.index("**Work budgets.**"):]
     block = block[:block.index("\n\n", block.index("| job |"))]
     shown = re.findall(r"\| (10\^\d+|2\^\d+|\d+) \|", block)

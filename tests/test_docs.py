@@ -1,20 +1,32 @@
-"""The README's reference tables are generated from the registry: the committed README must equal them."""
+"""The documentation's reference tables are generated from the registry (the committed pages must equal them),
+the shortest scenes and the run output it shows work as shown, and the README stays short (issue 26)."""
 
+import re
 from pathlib import Path
 
-from ropemodel.docs import render, update
+from _docs_text import README, section
+
+from ropemodel.docs import files, render, update
 
 ROOT = Path(__file__).resolve().parents[1]
-README = ROOT / "README.md"
 SITE = ROOT / "docs" / "scenes.md"          # the site's scene reference
 
 
-def test_readme_tables_match_the_registry():
+def test_every_generated_block_matches_the_registry():
+    """Every file holding a generated block (README.md, docs/**/*.md) holds what the code generates now."""
+    found = files(ROOT)
+    assert SITE in found and ROOT / "docs" / "machines" / "winch.md" in found
+    for path in found:
+        text = path.read_text(encoding="utf-8")
+        assert update(text) == text, f"{path.relative_to(ROOT)} drifted from the code: run python -m ropemodel.docs"
+
+
+def test_the_readme_fits_on_a_screen_or_two():
+    """Issue 26: a README of at most 250 lines, its links all reaching a file of the repository."""
     text = README.read_text(encoding="utf-8")
-    assert update(text) == text, "README tables drifted from the code: run python -m ropemodel.docs README.md"
-    for name in render():
-        if name.startswith(("effects", "parameters-", "outputs-")):
-            assert f"<!-- generated: {name} -->" in text, name
+    assert len(text.splitlines()) <= 250
+    links = [t.partition("#")[0] for t in re.findall(r"\]\(([^)\s]+)\)", text) if not re.match(r"^[a-z]+:|^#", t)]
+    assert links and not [t for t in links if not (ROOT / t).exists()], links
 
 
 def test_site_tables_match_the_registry():
@@ -52,14 +64,12 @@ def test_site_parameter_tables_are_the_quantities():
 
 
 def _shortest_scenes():
-    import re
-
-    text = README.read_text(encoding="utf-8")
+    text = section("The shortest scene for each command")
     return [b for b in re.findall(r"```toml\n(.*?)```", text, re.S) if b.startswith("# ropemodel ")]
 
 
-def test_the_readmes_shortest_scenes_work(tmp_path):
-    """Every 'shortest scene' the README shows loads without a warning and does its command's job."""
+def test_the_shortest_scenes_work(tmp_path):
+    """Every 'shortest scene' the scene reference shows loads without a warning and does its command's job."""
     import warnings
 
     import ropemodel as rm
@@ -83,14 +93,12 @@ def test_the_readmes_shortest_scenes_work(tmp_path):
                 assert rm.run(rm.load_scene(f)).values
 
 
-def test_the_readmes_run_output_is_what_ropemodel_run_prints(capsys):
-    """The block the README shows under "The built-in example" is the command's output today, to the byte."""
-    import re
-
+def test_the_run_output_shown_is_what_ropemodel_run_prints(capsys):
+    """The block the winch page shows under "The built-in example" is the command's output today, to the byte."""
     from ropemodel.cli import main
 
     block = re.search(r"<!-- generated: run-example -->\n```text\n(.*?)\n```\n<!-- end: run-example -->",
-                      README.read_text(encoding="utf-8"), re.S)
-    assert block, "the README's run block is not marked <!-- generated: run-example -->"
+                      section("The built-in example: Krauze et al. (2025), Fig. 9"), re.S)
+    assert block, "the built-in example's run block is not marked <!-- generated: run-example -->"
     assert main(["run"]) == 0
     assert capsys.readouterr().out == block[1] + "\n"

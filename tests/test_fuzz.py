@@ -251,10 +251,11 @@ def test_counts():
 
 
 def test_readme_states_the_count():
-    """The README's "Clean failure, always" quotes the fuzz's size: its cases, bad and valid."""
-    from pathlib import Path
+    """The documentation's "Clean failure, always" (the scene reference, "Writing a scene") quotes the fuzz's
+    size: its cases, bad and valid."""
+    from _docs_text import section
 
-    text = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    text = section("Writing a scene")
     total, _, _, by_outcome = counts()
     assert (f"{total:,} cases ({by_outcome['fail']:,} bad inputs, {by_outcome['sound']:,} valid inputs at the "
             f"edges)") in " ".join(text.split())

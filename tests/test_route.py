@@ -159,11 +159,12 @@ def test_run_takes_each_result_at_its_worst_place_by_default(capsys):
 
 
 def test_the_readme_envelope_of_route_segments_by_hand():
-    """The README's `ropemodel run route_segments` excerpt, each printed number (6 digits) by hand: lowering,
-    the drive brakes hardest stopping on the 22° segment and motors starting on the 3° one."""
-    from pathlib import Path
+    """The documentation's `ropemodel run route_segments` excerpt (the winch page, "The worst case by default"),
+    each printed number (6 digits) by hand: lowering, the drive brakes hardest stopping on the 22° segment and
+    motors starting on the 3° one."""
+    from _docs_text import section
 
-    text = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    text = section("The worst case by default")
     block = text.split("$ ropemodel run route_segments\n", 1)[1].split("```", 1)[0]
     q_l, G_m, F, L, eta, v, a = 80.0, 467e3, 30e3, np.array([400.0, 650.0, 300.0]), 0.85, 2.5, 0.5
     al = np.radians([22.0, 9.0, 3.0])

@@ -159,10 +159,11 @@ def test_lowering_on_route_segments_brakes():
 
 
 def test_the_readme_shows_the_trip_as_printed(capsys):
-    """The README's downward trip is the command's output (its numbers are the reference's, above)."""
-    from pathlib import Path
+    """The downward trip the documentation shows (the winch page, "Routes as they are built") is the command's
+    output (its numbers are the reference's, above)."""
+    from _docs_text import section
 
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    readme = section("Routes as they are built: segments, trips, energy per trip")
     shown = readme.split("$ ropemodel trip route_segments --direction down\n", 1)[1].split("```", 1)[0]
     assert main(["trip", "route_segments", "--direction", "down"]) == 0
     assert capsys.readouterr().out == shown

@@ -12,6 +12,7 @@ contact (:mod:`.wheel`) asks it for the rope's and the wheel's accelerations (:m
                           to suffice).  The wheel's inertia m_machine = J/R² must be given (> 0).
     ``deceleration``      constant-deceleration control: the wheel's deceleration rises linearly to a_brake in
                           t_apply and holds until the wheel is at rest; then the wheel is held.
+
 The drive ramp of a start (:class:`DriveRamp`): the wheel's acceleration rises linearly to s a_drive in t_jerk,
 holds, and falls to 0 in t_jerk, so that the wheel reaches v_max; then it runs at v_max.
 
