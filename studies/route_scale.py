@@ -61,9 +61,9 @@ n_slip = 1.25
 n_rope = 4.5
 F_S_min = "5 kN"
 """
-#: the largest profile ``size`` runs on (fast, full): its cost grows fastest (the sensitivities of the design to
+#: the largest profile ``size`` runs on, fast or full: its cost grows fastest (the sensitivities of the design to
 #: every segment's parameters; see the README)
-SIZE_UP_TO = {True: 100, False: 100}
+SIZE_UP_TO = 100
 COMMANDS = {"run": (RUN, ["run", "--json"]), "trip": (RUN, ["trip", "--json"]),
             "size": (SIZE, ["size", "--json", "--no-limit"])}    # above 50 segments: above the route-sizing budget
 #: in a fresh process: the command, then its wall time and peak memory on the last line of stdout
@@ -140,7 +140,7 @@ def measure(n: int, folder: Path, size_up_to: int) -> list[dict]:
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     out = output_dir(__file__, out_dir)
     sizes = (10, 30, 100) if fast else (10, 30, 100, 300, 1000)
-    table = pd.DataFrame([r for n in sizes for r in measure(n, out / f"n{n}", SIZE_UP_TO[fast])])
+    table = pd.DataFrame([r for n in sizes for r in measure(n, out / f"n{n}", SIZE_UP_TO)])
     first = table.groupby("command")["seconds"].transform("first")
     table["growth"] = table["seconds"] / first
     table["vs_numpy"] = table["seconds"] / table["numpy_seconds"]
