@@ -13,9 +13,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from ropemodel.dynamics.assemble import chosen
-from ropemodel.dynamics.hybrid import HybridIntegrator
 from ropemodel.dynamics.koepe_history import KoepeSimulation
-from ropemodel.dynamics.simulate import SIMULATORS
+from ropemodel.dynamics.simulate import SIMULATORS, integrate
 from ropemodel.dynamics.system import TransientSystem
 from ropemodel.effects.koepe_transient.profile import KoepeProfile
 from ropemodel.effects.transient.base import Setup, TransientSubmodel
@@ -52,7 +51,7 @@ def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | N
     >>> sim.summary["slip"], sim.summary["dynamics"], sim.summary["brake_control"]
     (False, 'braking', 'torque')
     """
-    from ropemodel.progress import bar, status
+    from ropemodel.progress import status
 
     scene = as_scene(scene)
     if values:
@@ -63,17 +62,7 @@ def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | N
     num = scene.numerics
     mesh = system.setup.part("head_elasticity").mesh
     atol = num["sim_rtol"] * 0.1 * max(float(mesh.e0.min()), 1e-9)
-    sim = KoepeSimulation(scene, system)
-    integrator = HybridIntegrator(system, num["sim_rtol"], num["sim_dt"], num["sim_integrator"], atol)
-    t_end = float(integrator.phases[-1].t1)
-    with bar(t_end, "simulate", unit="s", flag=progress, bar_format="{l_bar}{bar}| {n:.1f}/{total:.1f} s") as shown:
-        def record(times, X, out, mode):
-            sim.record(times, X, out, mode)
-            shown.update(max(0.0, min(float(times[-1]), t_end) - shown.n))
-
-        events = integrator.run(x0, mode, record)
-    sim.finish(events)
-    return sim
+    return integrate(KoepeSimulation(scene, system), system, x0, mode, atol, progress)
 
 
 SIMULATORS["koepe"] = simulate

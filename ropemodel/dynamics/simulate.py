@@ -50,7 +50,7 @@ def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | N
     >>> round(sim.summary["F_C_static"] / 1e3, 2), round(sim.summary["dynamic_factor"], 2)
     (190.95, 1.36)
     """
-    from ropemodel.progress import bar, status
+    from ropemodel.progress import status
 
     scene = as_scene(scene)
     if scene.model in SIMULATORS:
@@ -62,7 +62,16 @@ def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | N
         x0, mode = system.initial()
     num, nums = scene.numerics, system.setup.numbers
     atol = num["sim_rtol"] * 1e-1 * max(nums["L_u"] * nums["q_lw"] * system.setup.f_scale, 1e-9)
-    sim = Simulation(scene, system)
+    return integrate(Simulation(scene, system), system, x0, mode, atol, progress)
+
+
+def integrate(sim, system, x0, mode, atol: float, progress: bool | None):
+    """Run the hybrid integrator of ``system`` from ``(x0, mode)`` at the scene's ``[numerics]`` (sim_rtol,
+    sim_dt, sim_integrator; ``atol`` in the state's units), its history within the work budget, recording
+    into ``sim`` (a simulation of any model, with ``record`` and ``finish``) with a progress bar."""
+    from ropemodel.progress import bar
+
+    num = sim.scene.numerics
     integrator = HybridIntegrator(system, num["sim_rtol"], num["sim_dt"], num["sim_integrator"], atol)
     t_end = float(integrator.phases[-1].t1)
     _check_work(t_end, num["sim_dt"])
