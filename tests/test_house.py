@@ -75,3 +75,16 @@ def test_modules_and_functions_stay_short(path):
             if len(body) > 1 and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
                 body = body[1:]   # the docstring does not count
             assert node.end_lineno - body[0].lineno + 1 <= MAX_FUNCTION, f"{node.name} at line {node.lineno}"
+
+
+def test_tests_import_their_helpers_by_module_name():
+    """pytest puts ``tests/`` on the path (rootdir conftest), not the checkout: ``from tests._x import`` works
+    only where the checkout happens to be importable (an editable install's path, ``python -m pytest``) and
+    failed on CI's fresh clone. Helpers are imported as ``from _x import ...``."""
+    bad = []
+    for path in sorted((ROOT / "tests").glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = [node.module or ""] if isinstance(node, ast.ImportFrom) else (
+                [a.name for a in node.names] if isinstance(node, ast.Import) else [])
+            bad += [f"{path.name}: {n}" for n in names if n == "tests" or n.startswith("tests.")]
+    assert not bad, bad

@@ -16,7 +16,7 @@ from scipy.optimize import brentq
 
 import ropemodel as rm
 from ropemodel.cli import main
-from tests._koepe_truth import ISSUE, coasting, rel, slips, statics
+from _koepe_truth import ISSUE, coasting, rel, slips, statics
 
 NO_TAIL_DEEP = '''[scene]
 name = "deep, no tail ropes"

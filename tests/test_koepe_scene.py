@@ -13,7 +13,7 @@ import math
 import pytest
 
 import ropemodel as rm
-from tests._koepe_truth import ENDS, HOISTS, ISSUE, coasting, full, rel, rigid_slip, scene, slips, statics, tensions
+from _koepe_truth import ENDS, HOISTS, ISSUE, coasting, full, rel, rigid_slip, scene, slips, statics, tensions
 
 TOL = 1e-12    # the closed forms are evaluated in the same double precision; measured: 2.2e-16
 

@@ -14,7 +14,7 @@ import pytest
 
 import ropemodel as rm
 from ropemodel.problem import Problem
-from tests._koepe_truth import (ENDS, HOISTS, ISSUE, crept, hajduk_ratio, manoeuvres, rel, scene, slips, statics,
+from _koepe_truth import (ENDS, HOISTS, ISSUE, crept, hajduk_ratio, manoeuvres, rel, scene, slips, statics,
                                 tensions, voigt_slip)
 
 LINING = dict(Q_R=2e-7, lambda_R=0.5, Q_T=1e-7, lambda_T=0.2)
