@@ -46,10 +46,51 @@ def _transient_lines(design) -> list[str]:
     effects = ", ".join(f"{e} = {v}" + ("" if chosen else " (default)") for e, (v, chosen) in design.transient.items())
     if design.transient.get("rope_elasticity", ("",))[0] == "segments":
         effects += f" with [numerics] segments = {design.scene.numerics['segments']} per span"
-    lines = ["", f"transient: {effects}"]
+    lines = ["", f"transient: {effects}"] + _slip_lines(design.slip_factors) + _mesh_lines(design.mesh)
     if design.defaults:
         lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in design.defaults.items()]
     return lines
+
+
+def _slip_lines(factors: dict) -> list[str]:
+    """The static and the dynamic slip factor, in words."""
+    if not factors:
+        return []
+    static, dynamic = factors["n_slip"], factors.get("n_slip_dynamic")
+    lines = [f"slip on the drum, static checks: rho F_S >= n_slip F_C with n_slip = {static['value']:g} "
+             f"({static['basis']})"]
+    if dynamic is not None:
+        lines.append(f"slip on the drum through every manoeuvre: rho F_S(t) >= n_slip_dynamic F_C(t) at every instant, "
+                     f"n_slip_dynamic = {dynamic['value']:g} ({dynamic['basis']})")
+    return lines
+
+
+def _mesh_lines(mesh: dict) -> list[str]:
+    """The rope's elements per span the mesh control chose, its estimate and the back-offs."""
+    if not mesh.get("segments"):
+        return []
+    forces = {c: e for c, e in mesh["errors"].items() if mesh["units"][c] == "N"}
+    worst = max(forces, key=lambda c: forces[c]) if forces else None
+    text = (f"rope mesh: {mesh['segments']} elements per span (the scene's {mesh['segments_scene']}, doubled until "
+            f"Richardson's estimate of every force check's discretisation error is within mesh_tol = "
+            f"{mesh['tolerance'] * 1e-3:g} kN")
+    if worst is not None:
+        text += (f"; largest {forces[worst]:.4g} N, {worst}, backed off by {mesh['backoffs'][worst]:.4g} N; "
+                 f"each check backed off by its own estimate, --json: mesh")
+    return [text + ")"]
+
+
+def _basis(scene, base: str) -> str:
+    """The rule a check applies; a check through a manoeuvre with a factor of its own (the dynamic slip
+    factor) names that factor and where its value comes from."""
+    from optimisation.dynamic.manoeuvres import CHECK
+    from ropemodel.rules.describe import basis
+
+    basis_text = scene.check_basis(base)
+    factor = CHECK[base].factor if base in CHECK else ""
+    if basis_text == "-" and factor in scene.parameters:
+        return f"{factor}: {basis(scene, factor, short=True)}"
+    return basis_text
 
 
 def design_text(design) -> str:
@@ -79,7 +120,7 @@ def design_text(design) -> str:
             shown = shown if abs(v) > 1e-9 else 0.0     # an active check prints as 0, not -8.9e-13
             where = f"; load at {places[k]}" if k in places else ""
             lines.append(f"{k:<52}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS':<6}"
-                         f"{design.scene.check_basis(base)}{where}")
+                         f"{_basis(design.scene, base)}{where}")
     lines += _transient_lines(design)
     lines += ["", design.message]
     return "\n".join(lines)
