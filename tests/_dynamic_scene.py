@@ -52,6 +52,8 @@ def write_scene(tmp_path, extra: str = "", name: str = "dyn.toml", segments: int
     return path
 
 
+#: the dynamic slip factor's default (``n_slip_dynamic``): the slip reserve the tests ask of a dynamic design
+N_SLIP_DYNAMIC = 1.1
 #: the four manoeuvres
 MANOEUVRES = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
 

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from optimisation.dynamic.manoeuvres import CHECK
-from optimisation.dynamic.mesh import P_MAX, P_MIN, richardson
+from optimisation.dynamic.mesh import P_MAX, P_MIN, richardson, unsafe_part
 from ropemodel.effects.transient.contact import N_SLIP_DYNAMIC
 from ropemodel.effects.transient.rope import MESH_TOL
 
@@ -46,6 +46,16 @@ def test_richardson_order_is_clipped_at_two():
     E, order = richardson(*(5.0 + 64.0 * n ** -3.0 for n in (4, 8, 16)))
     assert order == P_MAX == 2.0 and P_MIN == 0.5
     assert E == pytest.approx((1.0 - 1.0 / 8.0) / (1.0 - 2.0 ** -2.0)) and E > 1.0
+
+
+def test_only_a_margin_that_falls_with_refinement_needs_a_back_off():
+    """A margin that rises steadily as the mesh is refined (the coarse mesh on the safe side) needs none; one that
+    falls needs all of its error; one with no steady trend needs all of it too."""
+    rising = [10.0 - 8.0 * n ** -1.0 for n in (4, 8, 16)]
+    falling = [10.0 + 8.0 * n ** -1.0 for n in (4, 8, 16)]
+    assert unsafe_part(*rising) == 0.0
+    assert unsafe_part(*falling) == pytest.approx(2.0)       # g(4) − g* = 8/4
+    assert unsafe_part(0.0, -1.0, 0.5) == richardson(0.0, -1.0, 0.5)[0] > 0.0
 
 
 def test_transient_slip_check_uses_the_dynamic_factor():

@@ -9,7 +9,7 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
-from _dynamic_scene import simulated_failures, write_scene
+from _dynamic_scene import N_SLIP_DYNAMIC, simulated_failures, write_scene
 
 from optimisation.dynamic import size_dynamic
 from optimisation.dynamic.problem import DynamicSizingProblem
@@ -33,7 +33,7 @@ def design(scene):
 def test_catalogue_design_keeps_every_check_in_the_four_simulated_manoeuvres(scene, design):
     assert design.feasible
     assert design.design["d"] in (0.046, 0.048, 0.050)   # catalogue sizes near the continuous optimum
-    assert simulated_failures(scene, design.design) == []
+    assert simulated_failures(scene, design.design, slip_factor=N_SLIP_DYNAMIC) == []
 
 
 def test_continuous_optimum_is_tight(scene, design):
@@ -42,10 +42,10 @@ def test_continuous_optimum_is_tight(scene, design):
     model's margin, as static sizing judges it)."""
     x = design.continuous
     problem = DynamicSizingProblem(scene)
-    assert simulated_failures(scene, x) == []
+    assert simulated_failures(scene, x, slip_factor=N_SLIP_DYNAMIC) == []
     for k in VARIABLES:
         lighter = {**x, k: 0.97 * x[k]}
-        failures = simulated_failures(scene, lighter)
+        failures = simulated_failures(scene, lighter, slip_factor=N_SLIP_DYNAMIC)
         if not failures:
             margins = problem.margins(np.array([lighter[v] for v in VARIABLES]) / problem.x_scale)
             failures = [c for c in problem.static_constraints if margins[c] < 0]
@@ -104,7 +104,8 @@ def test_sweep_of_the_dynamic_optimum(tmp_path, capsys):
     scene = load_sizing(path, emit=False)
     for _, row in frame.iterrows():
         design = {"d": row["d [mm]"] / 1e3, "F_nwl": row["F_nwl [kN]"] * 1e3, "stroke": row["stroke [mm]"] / 1e3}
-        assert simulated_failures(scene.with_values({"G_m": row["G_m [kN]"] * 1e3}), design) == []
+        assert simulated_failures(scene.with_values({"G_m": row["G_m [kN]"] * 1e3}), design,
+                                  slip_factor=N_SLIP_DYNAMIC) == []
 
 
 def test_report_section_shows_the_dynamic_design_and_the_manoeuvres(tmp_path, design):

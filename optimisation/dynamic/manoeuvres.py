@@ -133,3 +133,14 @@ CHECKS = (
           lambda o, a: o["take_up"], lambda o, a: o["take_up"]),
 )
 CHECK = {c.name: c for c in CHECKS}
+
+
+def basis_of(scene, name: str) -> str:
+    """The rule a check applies (``name``: a check through a manoeuvre or a static margin): the scene's rule for
+    it (e.g. ``n_rope: ...``), else the factor it applies itself and where that value comes from (the dynamic
+    slip factor, ``n_slip_dynamic: default: ...``), else "-"."""
+    text = scene.check_basis(name)
+    factor = CHECK[name].factor if name in CHECK else ""
+    if text == "-" and factor in scene.parameters:
+        return f"{factor}: {scene.basis(factor)}"
+    return text

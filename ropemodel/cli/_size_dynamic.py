@@ -45,7 +45,7 @@ def _places(manoeuvres) -> dict:
 def _transient_lines(design) -> list[str]:
     effects = ", ".join(f"{e} = {v}" + ("" if chosen else " (default)") for e, (v, chosen) in design.transient.items())
     if design.transient.get("rope_elasticity", ("",))[0] == "segments":
-        effects += f" with [numerics] segments = {design.scene.numerics['segments']} per span"
+        effects += f" with {design.mesh.get('segments') or design.scene.numerics['segments']} elements per span"
     lines = ["", f"transient: {effects}"] + _slip_lines(design.slip_factors) + _mesh_lines(design.mesh)
     if design.defaults:
         lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in design.defaults.items()]
@@ -80,22 +80,9 @@ def _mesh_lines(mesh: dict) -> list[str]:
     return [text + ")"]
 
 
-def _basis(scene, base: str) -> str:
-    """The rule a check applies; a check through a manoeuvre with a factor of its own (the dynamic slip
-    factor) names that factor and where its value comes from."""
-    from optimisation.dynamic.manoeuvres import CHECK
-    from ropemodel.rules.describe import basis
-
-    basis_text = scene.check_basis(base)
-    factor = CHECK[base].factor if base in CHECK else ""
-    if basis_text == "-" and factor in scene.parameters:
-        return f"{factor}: {basis(scene, factor, short=True)}"
-    return basis_text
-
-
 def design_text(design) -> str:
     """The human output of a :class:`~optimisation.dynamic.DynamicDesign` (units stated)."""
-    from optimisation.dynamic.manoeuvres import CHECK
+    from optimisation.dynamic.manoeuvres import CHECK, basis_of
 
     q = design.scene.built.quantities
     lines = [f"{design.scene.name}: dynamic sizing (start and stop in both directions, verified by simulation)"]
@@ -120,7 +107,7 @@ def design_text(design) -> str:
             shown = shown if abs(v) > 1e-9 else 0.0     # an active check prints as 0, not -8.9e-13
             where = f"; load at {places[k]}" if k in places else ""
             lines.append(f"{k:<52}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS':<6}"
-                         f"{_basis(design.scene, base)}{where}")
+                         f"{basis_of(design.scene, base)}{where}")
     lines += _transient_lines(design)
     lines += ["", design.message]
     return "\n".join(lines)

@@ -45,6 +45,7 @@ def dynamic_sizing(ctx):
     html += page.table(["manoeuvre", "governed with the load at", "F_C max [kN]", "F_S min [kN]", "take-up max [m]",
                         "dynamic factor [-]", "checks"], rows,
                        kinds=["name", "", "num", "num", "num", "num", ""], cls="manoeuvres")
+    html += _factors_and_mesh(design)
     html += page.fragment("<h3>What fixes the design</h3><p>Active at the continuous optimum (a check at an instant "
                           "of a manoeuvre, or a static check):</p><ul>{% for a in active %}<li><code>{{ a }}</code>"
                           "</li>{% endfor %}</ul>", active=design.active_continuous)
@@ -54,14 +55,35 @@ def dynamic_sizing(ctx):
 def _least_margins(manoeuvres, scene) -> str:
     """Each check's least margin through each manoeuvre (the simulator's history), in the check's own unit,
     with the rule its factor comes from."""
-    from optimisation.dynamic.manoeuvres import CHECK
+    from optimisation.dynamic.manoeuvres import CHECK, basis_of
 
     rows = []
     for m in manoeuvres:
         for name, least in m["least_margins"].items():
             unit = CHECK[name].shown
             rows.append([name, m["manoeuvre"], least["where"], f"{least['margin']:.6g}", "-" if unit == "1" else unit,
-                         f"{least['t']:.3f}", "pass" if least["margin"] >= 0 else "FAIL", scene.check_basis(name)])
+                         f"{least['t']:.3f}", "pass" if least["margin"] >= 0 else "FAIL", basis_of(scene, name)])
     return page.fragment("<h3>Least margins through the manoeuvres</h3>") + page.table(
         ["check", "manoeuvre", "with the load at", "least margin", "unit", "at t [s]", "verdict", "rule"], rows,
         kinds=["name", "", "", "num", "", "num", "", ""], cls="manoeuvre-checks")
+
+
+def _factors_and_mesh(design) -> str:
+    """The static and the dynamic slip factor in words, and the rope's elements per span the sizing chose."""
+    text = ""
+    f = design.slip_factors
+    if f:
+        text += ("<p>Slip on the drum: the static checks ask ρ F_S ≥ n_slip F_C with n_slip = {{ s }} ({{ sb }}); "
+                 "through every manoeuvre, at every instant, ρ F_S(t) ≥ n_slip_dynamic F_C(t) with n_slip_dynamic = "
+                 "{{ d }} ({{ db }}).</p>")
+    mesh = design.mesh
+    if mesh.get("segments"):
+        text += ("<p>The rope in {{ n }} elements per span (the scene's {{ n0 }}, doubled until Richardson's "
+                 "estimate of every force check's discretisation error was within mesh_tol = {{ tol }} kN); each "
+                 "check through a manoeuvre is backed off by its own estimate, the largest {{ worst }} N.</p>")
+    dyn = f.get("n_slip_dynamic", {})
+    forces = [b for c, b in mesh.get("backoffs", {}).items() if mesh["units"][c] == "N"]
+    return page.fragment(text, s=f"{f['n_slip']['value']:g}" if f else "", sb=f["n_slip"]["basis"] if f else "",
+                         d=f"{dyn.get('value', 1.0):g}", db=dyn.get("basis", ""), n=mesh.get("segments"),
+                         n0=mesh.get("segments_scene"), tol=f"{mesh.get('tolerance', 0.0) * 1e-3:g}",
+                         worst=f"{max(forces, default=0.0):.4g}")
