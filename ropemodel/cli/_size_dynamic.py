@@ -76,7 +76,7 @@ def _mesh_lines(mesh: dict) -> list[str]:
             f"{mesh['tolerance'] * 1e-3:g} kN")
     if worst is not None:
         text += (f"; largest {forces[worst]:.4g} N, {worst}, backed off by {mesh['backoffs'][worst]:.4g} N; "
-                 f"each check backed off by its own estimate, --json: mesh")
+                 f"each check backed off by the part of its own estimate on the unsafe side, --json: mesh")
     return [text + ")"]
 
 

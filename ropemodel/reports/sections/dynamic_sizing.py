@@ -80,7 +80,8 @@ def _factors_and_mesh(design) -> str:
     if mesh.get("segments"):
         text += ("<p>The rope in {{ n }} elements per span (the scene's {{ n0 }}, doubled until Richardson's "
                  "estimate of every force check's discretisation error was within mesh_tol = {{ tol }} kN); each "
-                 "check through a manoeuvre is backed off by its own estimate, the largest {{ worst }} N.</p>")
+                 "check through a manoeuvre is backed off by the part of its own estimate on the unsafe side, the "
+                 "largest back-off {{ worst }} N.</p>")
     dyn = f.get("n_slip_dynamic", {})
     forces = [b for c, b in mesh.get("backoffs", {}).items() if mesh["units"][c] == "N"]
     return page.fragment(text, s=f"{f['n_slip']['value']:g}" if f else "", sb=f["n_slip"]["basis"] if f else "",
