@@ -171,7 +171,7 @@ def _refined(problem, x0, p, fix_d, record, others):
     for _ in range(MAX_ROUNDS):
         if not sol.feasible:
             return problem, sol
-        found = minima(problem, sol.xs, p)
+        found = minima(problem, sol.xs, p, ADD_TOL + max(problem.backoffs.values(), default=0.0))
         low = [m for m in found if m.value < problem.backoff(m.check) - 0.5 * BACKOFF]
         more = [] if low else uncovered(problem, sol.xs, p, max(problem.backoffs.values(), default=BACKOFF))
         if record is not None:
