@@ -16,6 +16,7 @@ from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import VARIABLES, SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
 from ropemodel.effects.winch_checks import margin_names
+from ropemodel.effects.sizing import declared
 from ropemodel.papers import en12385 as ropes
 from ropemodel.rules.apply import with_rule_terms
 from ropemodel.rules.describe import summary as rules_summary
@@ -45,7 +46,7 @@ class Design(DesignViews):
     margins_continuous: dict[str, float] = field(default_factory=dict)
     #: check → where its worst margin is at the recommended design (segment, x_m, direction, manoeuvre; None:
     #: the same in every case)
-    governing: dict[str, dict | None] = field(default_factory=dict)
+    governing: dict[str, dict | str | None] = field(default_factory=dict)
     #: N_p_up, N_p_down at the recommended design: each at its worst over the load cases (larger magnitude)
     power: dict[str, float] = field(default_factory=dict)
     #: the drive's largest motoring and largest braking power over every case and direction, and where
@@ -59,6 +60,12 @@ class Design(DesignViews):
     lexicographic_ok: bool | None = None
     #: the rope's stiffness at the recommended design: EA [N], q_lw [m/N] (what the stroke rests on)
     rope: dict[str, float] = field(default_factory=dict)
+    #: a declared sizing's objective: its value at the design (SI), per value of the integer enumerated, in words
+    objective: dict[str, Any] = field(default_factory=dict)
+    #: the transients a declared sizing simulated at the design: what each is, whether it holds, its margins
+    verified: list[dict] = field(default_factory=list)
+    #: the model solved at a declared sizing's design
+    result: Any = None
 
     def to_dict(self) -> dict:
         """The JSON contract of ``ropemodel size --json`` (SI numbers)."""
@@ -84,6 +91,10 @@ class Design(DesignViews):
                                  "where": self.diagnosis.where.strip(), "needs": self.diagnosis.needs}
         out["message"] = self.message
         out.update(self.rope)
+        if self.objective:
+            out["objective"] = self.objective
+        if self.verified:
+            out["verified"] = self.verified
         out["elongation"] = self.scene.effects.get("elongation")
         rules = rules_summary(self.scene)
         if rules:
@@ -214,6 +225,11 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     ['slip_margin_up', 'stroke_margin_up', 'd (catalogue size)']
     """
     scene = load_sizing(scene, emit=False)
+    declaration = declared(scene.model)          # a model that declares its sizing (not the winch)
+    if declaration is not None:
+        from optimisation.declared import size_declared
+
+        return size_declared(scene, declaration)
     problem = SizingProblem(scene)
     design = Design(problem.scene, False, method=method, units=dict(problem.units))
     sol = solve_best(problem)

@@ -153,7 +153,7 @@ def remedies(problem: SizingProblem, conflicting, p, lbx, ubx, x0) -> list[str]:
     checks = [c.split(" @ ")[0] for c in conflicting]
     bases = list(dict.fromkeys(c.rsplit("_", 1)[0] if c.endswith(("_up", "_down")) else c for c in checks))
     for base in bases:
-        for name, sense in REMEDIES.get(base, ()):
+        for name, sense in getattr(problem, "remedies", REMEDIES).get(base, ()):
             if name not in problem.params:
                 continue
             found = []

@@ -63,9 +63,16 @@ def _text(design) -> str:
     if design.continuous:
         lines.append("")
         lines.append(f"{'':<12}{'catalogue':>14}{'continuous':>14}")
-        for k in ("d", "F_nwl", "stroke"):
+        for k in design.continuous:     # the design variables (the winch's d, F_nwl, stroke; a Koepe's n_head, ...)
             cat = f"{q[k].to_display(design.design[k]):>14.6g}" if design.design else f"{'-':>14}"
-            lines.append(f"{k:<12}{cat}{q[k].to_display(design.continuous[k]):>14.6g}  {q[k].display_unit}")
+            lines.append(f"{k:<12}{cat}{q[k].to_display(design.continuous[k]):>14.6g}  "
+                         f"{'-' if q[k].display_unit == '1' else q[k].display_unit}")
+        lines += [f"{k:<12}{q[k].to_display(v):>14.6g}{'':>14}  {q[k].display_unit}  (follows from the design)"
+                  for k, v in (design.design or {}).items() if k not in design.continuous]
+        if design.objective:
+            o = design.objective
+            lines += ["", f"minimised: {o['text']}", f"  {o['value']:.6g} kg at the design; per {o['integer']} "
+                      f"enumerated: " + ", ".join(f"{n}: {m:.6g} kg" for n, m in o["by_count"].items())]
     if design.feasible:
         lines.append("")
         lines.append("active constraints:")
