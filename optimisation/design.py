@@ -17,6 +17,7 @@ from optimisation.problem import VARIABLES, SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
 from ropemodel.effects.winch_checks import margin_names
 from ropemodel.effects.sizing import declared
+from ropemodel.errors import InputError
 from ropemodel.papers import en12385 as ropes
 from ropemodel.rules.apply import with_rule_terms
 from ropemodel.rules.describe import summary as rules_summary
@@ -229,6 +230,9 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     if declaration is not None:
         from optimisation.declared import size_declared
 
+        if method != DEFAULT_DISCRETE:
+            raise InputError(f"the {scene.model}'s catalogue size is chosen next size up: --discrete {method} sizes "
+                             f"the winch only")
         return size_declared(scene, declaration)
     problem = SizingProblem(scene)
     design = Design(problem.scene, False, method=method, units=dict(problem.units))

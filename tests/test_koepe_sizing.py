@@ -18,7 +18,8 @@ import re
 
 import numpy as np
 import pytest
-from _koepe_lumped import brake, example_hoist, mesh, steady_force
+from _docs_text import section
+from _koepe_lumped import brake, constant_deceleration, example_hoist, mesh, steady_force
 from _koepe_lumped import simulate as lumped
 from _koepe_truth import ENDS, G, ISSUE, STATIC, manoeuvres, rigid_slip, tensions
 
@@ -63,13 +64,13 @@ def checks(n, d, q_tail, D, mu=ISSUE["mu"]):
     return out, mass
 
 
-def brute_force(mu=ISSUE["mu"]):
+def brute_force(mu=ISSUE["mu"], counts=range(1, 11)):
     """The lightest design over n_head 1..10 x the catalogue x q_tail on the 0.1 kg/m grid, D the least wheel by
     D/d on the 0.1 m grid: (n_head, d [m], q_tail [kg/m], D [m], mass [kg]); None when no point passes."""
-    n, d, q = np.meshgrid(np.arange(1, 11), np.array(CATALOGUE_MM) / 1e3, np.arange(1, 601) * 0.1, indexing="ij")
+    n, d, q = np.meshgrid(np.array(counts), np.array(CATALOGUE_MM) / 1e3, np.arange(1, 601) * 0.1, indexing="ij")
     D = np.ceil(np.round(D_RATIO * d / 0.1, 9)) * 0.1
     margins, mass = checks(n, d, q, D, mu)
-    ok = np.logical_and.reduce([m >= 0 for m in margins.values()])
+    ok = np.logical_and.reduce(np.broadcast_arrays(*[m >= 0 for m in margins.values()]))
     if not ok.any():
         return None
     i = np.unravel_index(np.argmin(np.where(ok, mass, np.inf)), mass.shape)
@@ -173,3 +174,32 @@ def test_no_design_exits_1_with_the_remedy(capsys):
     assert "Traceback" not in captured.err and brute_force(0.12) is None
     mu = float(re.search(r"mu >= ([0-9.]+)", captured.out).group(1))     # the remedy: the least friction
     assert brute_force(mu) is not None and brute_force(0.99 * mu) is None
+
+
+def test_the_documented_sizing(design):
+    text = " ".join(section("Sizing a Koepe hoist").split())
+    n, d, q, D, mass = brute_force()
+    four = brute_force(counts=[4])
+    kg = lambda m: f"{m:,.1f} kg".replace(",", " ")     # noqa: E731  (46 128.6 kg)
+    for shown in (f"**{n} head ropes of {d * 1e3:.0f} mm** ({Q0 * (d / D0) ** 2:.2f} kg/m, "
+                  f"{F0 * (d / D0) ** 2 / 1e3:.0f} kN), **tail ropes of {q:.1f} kg/m**, a **{D:.1f} m wheel**, "
+                  f"{kg(mass)}", f"against {kg(four[4])} for four ropes ({four[1] * 1e3:.0f} mm"):
+        assert shown in text
+    assert design.objective["by_count"][4] == pytest.approx(four[4], rel=1e-12)
+
+
+@pytest.mark.parametrize("q_tail, slips", [(15.5, True), (20.0, False)])
+def test_the_lowering_stop_at_the_windows_floor(q_tail, slips):
+    """The issue's own hoist, lowering from 10 m/s at 1.5 m/s² reached in 0.3 s: the ropes slip during the stop with
+    15.5 kg/m tail ropes and hold with 20 kg/m (ropemodel's transient and the lumped model agree)."""
+    scene = rm.load_scene("koepe_braking").with_effects({"brake_control": "deceleration", "travel": "lower"},
+                                                        optional=("a_brake",))
+    s = simulate(scene.with_values({"a_brake": 1.5, "q_tail": q_tail}), progress=False).summary
+    h = example_hoist(q_tail=q_tail, EA_head=96.5e6, J=39.5e3 * 2.25**2, tau=0.01, N=s["segments"], reel=s["reel"])
+    run = lumped(h, s["y_start"], -10.0, constant_deceleration(-10.0, 1.5, 0.3), t_end=8.0, stop="rest",
+                 method="LSODA", rtol=1e-8, atol=1e-8)
+    lumped_slips = any("slip" in name for _, name in run.events)
+    assert s["slip"] == slips and lumped_slips == slips
+    if slips:
+        assert s["slip_events"][0]["t_start"] == pytest.approx(
+            next(t for t, name in run.events if "slip" in name), rel=1e-4)
