@@ -203,3 +203,15 @@ def test_the_lowering_stop_at_the_windows_floor(q_tail, slips):
     if slips:
         assert s["slip_events"][0]["t_start"] == pytest.approx(
             next(t for t, name in run.events if "slip" in name), rel=1e-4)
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["size", "koepe_example", "--discrete", "bonmin"], "next size up"),
+    (["size", "koepe_example", "--dynamic"], "without --dynamic"),
+    (["sweep", "koepe_example", "--sizing", "--vary", "m_payload=20t:22t:2", "-o", "k.csv"], "ropemodel size"),
+])
+def test_what_a_koepe_sizing_does_not_do_is_refused(argv, words, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    captured = capsys.readouterr()
+    assert words in captured.err and not captured.out.strip()
