@@ -149,8 +149,13 @@ def test_sizing_through_the_transient_holds_in_the_lumped_model():
         values = {**design_in_braking(x), **({} if y is None else {"y_start": y})}
         s = simulate(rm.load_scene("koepe_braking").with_values(values), progress=False).summary
         assert not s["slip"] and lumped_stop(x, s["y_start"], sim["segments"], sim["reel"]) == ["rest"]
-    margins, _ = checks(x["n_head"], x["d_head"], x["q_tail"], x["D"])
+    margins, mass = checks(x["n_head"], x["d_head"], x["q_tail"], x["D"])
     assert min(margins.values()) >= 0
+    text = " ".join(section("Sizing a Koepe hoist").split())      # docs/machines/koepe.md
+    kg = f"{mass:,.1f}".replace(",", " ")
+    assert (f"gives {x['n_head']:.0f} ropes of {x['d_head'] * 1e3:.0f} mm, tail ropes of {x['q_tail']:.1f} kg/m and "
+            f"the {x['D']:.1f} m wheel ({kg} kg; allowance {d.objective['brake_allowance_hoist']:.2f} of the "
+            f"hoisting slip limit)" in text)
 
 
 def test_text_and_json_show_the_design_with_units_and_what_governs(capsys):
