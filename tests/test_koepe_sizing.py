@@ -178,7 +178,9 @@ def test_no_design_exits_1_with_the_remedy(capsys):
     assert "no design meets every check with n_head = 1 to 10" in captured.out
     assert "Traceback" not in captured.err and brute_force(0.12) is None
     mu = float(re.search(r"mu >= ([0-9.]+)", captured.out).group(1))     # the remedy: the least friction
-    assert brute_force(mu) is not None and brute_force(0.99 * mu) is None
+    # the remedy's tail mass and wheel are continuous, the brute force's on 0.1 kg/m and 0.1 m grids: it finds a
+    # design 0.5 % above the friction named, and none 1 % below
+    assert brute_force(1.005 * mu) is not None and brute_force(0.99 * mu) is None
 
 
 def test_the_documented_sizing(design):
