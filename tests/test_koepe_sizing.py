@@ -181,6 +181,7 @@ def test_no_design_exits_1_with_the_remedy(capsys):
     # the remedy's tail mass and wheel are continuous, the brute force's on 0.1 kg/m and 0.1 m grids: it finds a
     # design 0.5 % above the friction named, and none 1 % below
     assert brute_force(1.005 * mu) is not None and brute_force(0.99 * mu) is None
+    assert f"`mu >= {mu:g}`" in section("Sizing a Koepe hoist")          # docs/machines/koepe.md
 
 
 def test_the_documented_sizing(design):
