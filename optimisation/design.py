@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -16,7 +16,7 @@ from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import VARIABLES, SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
 from ropemodel.effects.winch_checks import margin_names
-from ropemodel.effects.sizing import declared
+from ropemodel.effects.sizing import Declaration, declared
 from ropemodel.errors import InputError
 from ropemodel.papers import en12385 as ropes
 from ropemodel.rules.apply import with_rule_terms
@@ -181,6 +181,16 @@ def solve_best(problem: SizingProblem, p=None, x0=None) -> Solution:
     return sol
 
 
+def _size_declared(scene: Scene, method: str) -> Design:
+    """The sizing of a model that declares it (:mod:`optimisation.declared`)."""
+    from optimisation.declared import size_declared
+
+    if method != DEFAULT_DISCRETE:
+        raise InputError(f"the {scene.model}'s catalogue size is chosen next size up: --discrete {method} sizes "
+                         f"the winch only")
+    return size_declared(scene, cast(Declaration, declared(scene.model)))
+
+
 def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
     """Size the winch of ``scene``: the lightest catalogue rope, then the least pretension, then the least stroke
     (Krauze et al. 2025: every design check of eq. (12)-(23) as a constraint; ``ropemodel size``).
@@ -226,14 +236,8 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     ['slip_margin_up', 'stroke_margin_up', 'd (catalogue size)']
     """
     scene = load_sizing(scene, emit=False)
-    declaration = declared(scene.model)          # a model that declares its sizing (not the winch)
-    if declaration is not None:
-        from optimisation.declared import size_declared
-
-        if method != DEFAULT_DISCRETE:
-            raise InputError(f"the {scene.model}'s catalogue size is chosen next size up: --discrete {method} sizes "
-                             f"the winch only")
-        return size_declared(scene, declaration)
+    if declared(scene.model) is not None:           # a model that declares its sizing (not the winch)
+        return _size_declared(scene, method)
     problem = SizingProblem(scene)
     design = Design(problem.scene, False, method=method, units=dict(problem.units))
     sol = solve_best(problem)
