@@ -17,7 +17,7 @@ from _dynamic_scene import write_scene
 
 from optimisation.dynamic.design import DynamicDesign
 from optimisation.dynamic.manoeuvres import CHECK, CHECKS, sides
-from optimisation.dynamic.transient import transient_scene
+from optimisation.dynamic.transient import reads, transient_scene
 from optimisation.problem import SizingProblem, load_sizing
 from ropemodel.cli import main
 from ropemodel.cli._size_dynamic import design_text, ramp_text
@@ -123,7 +123,7 @@ def test_each_row_states_value_limit_margin_instant_and_place_with_units(design)
     rows = {m["check"]: m for m in map(row.match, start)}
     assert None not in rows, start
     force = rows["rope force F_S <= F_min/n_rope"]        # 299.8 / 280.1 - 1 = 7.033 %
-    assert (force["value"], force["limit"], force["margin"], force["t"]) == ("280.1 kN", "299.8 kN", "+7.03 %", "0.5")
+    assert (force["value"], force["limit"], force["margin"], force["t"]) == ("280.1 kN", "299.8 kN", "+7.033 %", "0.5")
     assert force["where"] == "x_m = 0 m (at the drive, on the route)"
     grip = rows["drum grip F_S >= F_C/rho"]                 # 42.05 - 42.04357 kN = 6.43 N
     assert (grip["value"], grip["limit"], grip["margin"]) == ("42.05 kN", "42.04 kN", "+0.00643 kN")
@@ -152,6 +152,18 @@ def test_a_dynamic_slip_factor_shows_when_the_design_carries_it():
     scene = SimpleNamespace(parameters={"n_rope": 4.5, "n_slip": 1.25, "n_slip_dynamic": 1.1},
                             check_basis=lambda name: basis.get(name, "-"))
     assert factors(scene)[-1] == "n_slip_dynamic = 1.1 (drum grip in the manoeuvres): practice X"
+
+
+def test_no_design_says_its_conflicting_checks_in_words(scene):
+    """A "no design" answer's message names the conflicting checks in words, each with its manoeuvre, place
+    and instant (the message as dynamic sizing words it, internal names and all; --json keeps those)."""
+    message = ("no design meets every check through the manoeuvres: these checks conflict: slip_margin_fwd @ upward "
+               "start, x_m = 575 m, t = 1.969 s, tension_margin[3] @ upward stop, x_m = 0 m, t = 2 s, stroke_margin_up"
+               "\n  slip_margin_fwd @ upward start, x_m = 575 m, t = 1.969 s: relaxing it alone is not enough")
+    text = design_text(DynamicDesign(scene, False, message=message))
+    assert INTERNAL.search(text) is None, text
+    assert ("these checks conflict: drum grip F_S >= F_C/rho @ upward start, x_m = 575 m, t = 1.969 s, every rope "
+            "element T >= 0 @ upward stop, x_m = 0 m, t = 2 s, take-up dF <= stroke (steady upward travel)") in text
 
 
 def test_readable_names():
@@ -215,11 +227,13 @@ def test_a_static_command_lists_no_transient_default(command, capsys):
 
 
 def test_an_inextensible_rope_lists_no_carriage_mass(tmp_path):
-    """Dynamic sizing with a rigid rope: the tensioner's carriage does not move, its mass is no default used;
-    with an elastic rope it is."""
+    """Dynamic sizing with a rigid rope: the tensioner's carriage does not move, its mass is no default used
+    and not read; with an elastic rope it is both."""
     elastic = write_scene(tmp_path).read_text().replace('m_t = "1000 kg"\n', "")
     rigid = elastic.replace('rope_elasticity = "segments"', 'rope_elasticity = "rigid"')
     for text, listed in ((elastic, True), (rigid, False)):
         path = tmp_path / "s.toml"
         path.write_text(text)
-        assert ("m_t" in transient_scene(load_sizing(path, emit=False)).defaults) is listed
+        sc = transient_scene(load_sizing(path, emit=False))
+        assert ("m_t" in sc.defaults) is listed
+        assert ("m_t" in reads(sc)[0]) is listed        # a --set m_t=... warns that it changes nothing

@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 
 from ropemodel.progress import status
-from ropemodel.views.checks import check_groups, factors, manoeuvre_rows, readable
+from ropemodel.views.checks import check_groups, factors, in_words, manoeuvre_rows, readable
 
 #: what ``--find`` can ask for with ``--dynamic``
 FINDS = ("t_ramp",)
@@ -81,7 +81,7 @@ def design_text(design) -> str:
         lines += checks_lines(check_groups(design), design.manoeuvres, places)
         lines += _factor_lines(design.scene)
     lines += _transient_lines(design)
-    lines += ["", design.message]
+    lines += ["", in_words(design.message)]
     return "\n".join(lines)
 
 

@@ -55,6 +55,7 @@ STATIC_WORDS = {
 STEADY = "steady travel (static forces, both directions)"
 _DIRECTION = {"up": "upward", "down": "downward"}
 _STATIC = re.compile(r"^(?P<base>[a-z_]+?)(?:_(?P<dir>up|down))?(?: @ (?P<place>.+))?$")
+_NAME = re.compile(r"\b[a-z]+(?:_[a-z]+)*_margin(?:_(?:S|fwd|back|up|down))?(?:\[\d+\])?(?![\w\[])")
 _DYNAMIC = re.compile(r"^(?P<base>[a-zA-Z_]+)(?:\[\d+\])? @ (?P<rest>.+)$")
 
 
@@ -74,18 +75,20 @@ class Row:
     names: tuple[str, ...]
 
 
-def _number(x: float) -> str:
-    return f"{x:.4g}"
+def _number(x: float, signed: bool = False) -> str:
+    """Four significant digits, never an exponent for a number of 1 or more (12345 mm, not 1.234e+04)."""
+    text = f"{x:+.4g}" if signed else f"{x:.4g}"
+    return (f"{x:+.0f}" if signed else f"{x:.0f}") if "e+" in text else text
 
 
 def _margin(kind: str, margin: float) -> str:
     if abs(margin) < 1e-9:          # an active check prints as 0, not -8.9e-13
         margin = 0.0
     if kind == "ratio":
-        return f"{100 * margin:+.3g} %"
+        return f"{_number(100 * margin, signed=True)} %"
     if kind == "length":
-        return f"{1e3 * margin:+.4g} mm"
-    return f"{1e-3 * margin:+.4g} kN"
+        return f"{_number(1e3 * margin, signed=True)} mm"
+    return f"{_number(1e-3 * margin, signed=True)} kN"
 
 
 def _quantity(kind: str, si: float) -> str:
@@ -164,6 +167,18 @@ def readable(name: str) -> str:
                                       m["place"]) if w)
         return f"{STATIC_WORDS[m['base']].text} ({where})"
     return name
+
+
+def in_words(text: str) -> str:
+    """``text`` (a message) with every check's internal name in it put in words (:func:`readable` of the name
+    alone: ``slip_margin_fwd @ upward start`` → ``drum grip F_S >= F_C/rho @ upward start``)."""
+    def words(m) -> str:
+        base = m[0].split("[")[0]
+        if base in MANOEUVRE_WORDS:
+            return MANOEUVRE_WORDS[base].text
+        return readable(base).replace(" (steady travel)", "")
+
+    return _NAME.sub(words, text)
 
 
 def factors(scene) -> list[str]:
