@@ -123,7 +123,7 @@ class Result(ResultViews):
         (:meth:`reads`), not one only a transient reads (``v_eps``, ``rope_damping``, ``m_t`` of the ramps a
         ``t_ramp`` brings into a static command)."""
         reads = self.reads()
-        return {k: why for k, why in self.scene.defaults.items() if k in reads and k in self.values}
+        return {k: why for k, why in self.scene.defaults.items() if k in reads}
 
     def reads(self) -> set[str]:
         """The parameters the outputs are computed from (through the equations)."""

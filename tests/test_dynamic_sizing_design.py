@@ -168,3 +168,16 @@ def test_human_output_is_a_checks_table_in_words(design):
                 assert limit - value == pytest.approx(margin, rel=1e-9, abs=1e-12)
             else:                                  # F_S - F_C/rho, F - F_S_min, T - 0, z - 0
                 assert value - limit == pytest.approx(margin, rel=1e-9, abs=1e-6)
+
+
+def test_the_docs_show_what_size_dynamic_prints(design):
+    """docs/machines/winch.md prints the output of ``size --dynamic`` on this scene: it is what the code prints
+    (a change to the sizing or to its output changes the page; the message below is the text to put there)."""
+    from _docs_text import section
+
+    from ropemodel.cli._size_dynamic import design_text
+
+    page = section("Dynamic sizing: `ropemodel size --dynamic`")
+    shown = page.split("```text\n", 1)[1].split("\n```", 1)[0]
+    printed = design_text(design)
+    assert shown == printed, f"the page shows another output; size --dynamic prints now:\n{printed}"

@@ -9,12 +9,15 @@ both directions; :mod:`optimisation.dynamic`), each design verified by the hybri
 from __future__ import annotations
 
 import json
+import textwrap
 
 from ropemodel.progress import status
 from ropemodel.views.checks import check_groups, factors, in_words, manoeuvre_rows, readable
 
 #: what ``--find`` can ask for with ``--dynamic``
 FINDS = ("t_ramp",)
+#: the longest line of prose (the transient, the defaults) on a terminal
+WIDTH = 100
 
 
 def _row(name, values, q) -> str:
@@ -40,8 +43,8 @@ def checks_lines(groups, manoeuvres, places: int) -> list[str]:
              f"  {'check':<{width}}{'value':>11}{'limit':>12}{'margin':>14}{'at t':>10}  load at"]
     for title, rows in groups:
         lines.append(titles.get(title, title))
-        lines += [f"  {r.check:<{width}}{r.value:>11}{r.limit:>12}{r.margin:>14}{r.t:>10}  {r.where}"
-                  + ("" if r.ok else "  FAILS") for r in rows]
+        lines += [(f"  {r.check:<{width}}{r.value:>11}{r.limit:>12}{r.margin:>14}{r.t:>10}  {r.where}"
+                   + ("" if r.ok else "  FAILS")).rstrip() for r in rows]
     return lines
 
 
@@ -58,9 +61,11 @@ def _transient_lines(design) -> list[str]:
     effects = ", ".join(f"{e} = {v}" + ("" if chosen else " (default)") for e, (v, chosen) in design.transient.items())
     if design.transient.get("rope_elasticity", ("",))[0] == "segments":
         effects += f" with [numerics] segments = {design.scene.numerics['segments']} per span"
-    lines = ["", f"transient: {effects}"]
+    lines = ["", *textwrap.wrap(f"transient: {effects}", WIDTH, subsequent_indent="  ")]
     if design.defaults:
-        lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in design.defaults.items()]
+        lines += ["", "defaults used"] + [ln for k, why in design.defaults.items()
+                                          for ln in textwrap.wrap(f"{k}: {why}", WIDTH, initial_indent="  ",
+                                                                  subsequent_indent="    ")]
     return lines
 
 

@@ -94,13 +94,9 @@ class EnvelopeResult(Result):
         return super().to_json(worst_case=self.worst_case(), **extra)
 
     def reads(self) -> set[str]:
-        """The equations' inputs and what the worst case spans (:func:`ropemodel.envelope.cases.reads`)."""
+        """The equations' inputs and what the worst case spans (:func:`ropemodel.envelope.cases.reads`: the open
+        case inputs and what their manoeuvres' accelerations come from)."""
         return super().reads() | cases_reads(self.scene)
-
-    def defaults_used(self) -> dict[str, str]:
-        """As :meth:`Result.defaults_used`, with the case inputs the worst case spans (they have no value)."""
-        reads = self.reads()
-        return {k: why for k, why in self.scene.defaults.items() if k in reads and (k in self.values or k in self.free)}
 
     def table(self) -> str:
         """Inputs, the outputs the same everywhere, then each output's worst and where, the design checks
