@@ -145,6 +145,20 @@ def test_active_checks_and_factors_in_words(design):
     assert "drum grip in the manoeuvres: no slip factor" in text
 
 
+def test_the_report_section_says_the_same_in_words(design):
+    """The report's "dynamic sizing" section: every check of every manoeuvre (one row each), in the same words,
+    with its value, limit, margin, instant and place; no internal name."""
+    from ropemodel.reports.sections.dynamic_sizing import dynamic_sizing
+
+    html = str(dynamic_sizing(SimpleNamespace(design=design, scene=design.scene, sizing=True)))
+    text = re.sub(r"<[^>]+>", " ", html).replace("&gt;", ">").replace("&lt;", "<")
+    assert INTERNAL.search(text) is None, INTERNAL.search(text)
+    checks = text[text.index("Checks through the manoeuvres"):]
+    assert checks.count("pass") == len(MANOEUVRES) * len(CHECKS)
+    assert re.search(r"upward start\s+rope force F_S <= F_min/n_rope\s+280.1 kN\s+299.8 kN\s+\+7.033 %\s+0.5 s", checks)
+    assert "n_rope = 4.5 (rope force, every manoeuvre and steady travel)" in checks
+
+
 def test_a_dynamic_slip_factor_shows_when_the_design_carries_it():
     """The slot for ``n_slip_dynamic``: a scene that has it names it (and its rule) for the manoeuvres' grip."""
     basis = {"safety_margin": "n_rope: rule", "slip_margin": "n_slip: rule",
