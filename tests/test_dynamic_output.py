@@ -21,7 +21,7 @@ from optimisation.dynamic.transient import reads, transient_scene
 from optimisation.problem import SizingProblem, load_sizing
 from ropemodel.cli import main
 from ropemodel.cli._size_dynamic import design_text, ramp_text
-from ropemodel.views.checks import MANOEUVRE_WORDS, STATIC_WORDS, factors, readable
+from ropemodel.views.checks import MANOEUVRE_WORDS, STATIC_WORDS, factors, manoeuvre_rows, readable
 
 KN, MM = 1e3, 1e-3
 
@@ -160,12 +160,15 @@ def test_the_report_section_says_the_same_in_words(design):
 
 
 def test_a_dynamic_slip_factor_shows_when_the_design_carries_it():
-    """The slot for ``n_slip_dynamic``: a scene that has it names it (and its rule) for the manoeuvres' grip."""
+    """The slot for ``n_slip_dynamic``: a scene that has it names it (and its rule) for the manoeuvres' grip, and
+    the grip rows say that they apply it."""
     basis = {"safety_margin": "n_rope: rule", "slip_margin": "n_slip: rule",
              "slip_margin_fwd": "n_slip_dynamic: practice X"}
     scene = SimpleNamespace(parameters={"n_rope": 4.5, "n_slip": 1.25, "n_slip_dynamic": 1.1},
                             check_basis=lambda name: basis.get(name, "-"))
     assert factors(scene)[-1] == "n_slip_dynamic = 1.1 (drum grip in the manoeuvres): practice X"
+    rows = manoeuvre_rows(_manoeuvre("upward start", 1.0), parameters=scene.parameters)
+    assert "drum grip F_S >= n_slip_dynamic F_C/rho" in [r.check for r in rows]
 
 
 def test_no_design_says_its_conflicting_checks_in_words(scene):

@@ -100,7 +100,7 @@ def ramp_text(scene, answer) -> str:
              "design: " + ", ".join(f"{k} = {scene.built.quantities[k].to_display(v):.6g} "
                                     f"{scene.built.quantities[k].display_unit}" for k, v in answer.design.items()),
              "", f"t_ramp = {answer.t_ramp:.6g} s  (verified by simulation: it holds; a shorter ramp fails {fails})"]
-    groups = [(m["manoeuvre"], manoeuvre_rows(m)) for m in manoeuvres]
+    groups = [(m["manoeuvre"], manoeuvre_rows(m, parameters=scene.parameters)) for m in manoeuvres]
     return "\n".join(lines + checks_lines(groups, manoeuvres, places) + _factor_lines(scene))
 
 

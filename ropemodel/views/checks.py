@@ -41,6 +41,9 @@ MANOEUVRE_WORDS = {
     "stroke_margin": Words("take-up z <= stroke", "stroke", "length"),
     "stroke_start_margin": Words("take-up z >= 0 (start stop)", "stroke", "length"),
 }
+#: the manoeuvres' grip checks in words where the design carries a dynamic slip factor ``n_slip_dynamic``
+WITH_DYNAMIC_SLIP = {"slip_margin_fwd": "drum grip F_S >= n_slip_dynamic F_C/rho",
+                     "slip_margin_back": "drum grip F_C >= n_slip_dynamic F_S/rho"}
 #: the static checks of steady travel (each per direction, ``_up``/``_down``; on a route ``@ place``)
 STATIC_WORDS = {
     "safety_margin": Words("rope force F_C <= F_min/n_rope", "rope force", "ratio"),
@@ -108,12 +111,16 @@ def _least(rows: list[tuple[float, str, Row]], merged: bool) -> list[Row]:
             for members in groups.values()]
 
 
-def manoeuvre_rows(manoeuvre: dict, merged: bool = True) -> list[Row]:
+def manoeuvre_rows(manoeuvre: dict, merged: bool = True, parameters=None) -> list[Row]:
     """The rows of one manoeuvre (an entry of ``DynamicDesign.manoeuvres``): each check's least margin over
-    every place of the load, at its instant and place, with the value and limit it compares there."""
+    every place of the load, at its instant and place, with the value and limit it compares there
+    (``parameters``: the scene's; with ``n_slip_dynamic`` the grip checks say so, :data:`WITH_DYNAMIC_SLIP`)."""
+    dynamic_slip = "n_slip_dynamic" in (parameters or {})
     rows = []
     for name, least in manoeuvre["least_margins"].items():
         words = MANOEUVRE_WORDS[name]
+        if dynamic_slip and name in WITH_DYNAMIC_SLIP:
+            words = words._replace(text=WITH_DYNAMIC_SLIP[name])
         kind = "length" if words.kind == "length" else "force"
         value = _quantity(kind, least["value"]) if "value" in least else ""
         limit = _quantity(kind, least["limit"]) if "limit" in least else ""
@@ -147,7 +154,7 @@ def check_groups(design, merged: bool = True) -> list[tuple[str, list[Row]]]:
     """The checks table of a dynamic design: (title, rows) for each manoeuvre in the order the design holds
     them, then steady travel's static checks.  ``merged``: one row per group of checks (the short table of
     the terminal), else one per check (the report)."""
-    out = [(m["manoeuvre"], manoeuvre_rows(m, merged)) for m in design.manoeuvres]
+    out = [(m["manoeuvre"], manoeuvre_rows(m, merged, design.scene.parameters)) for m in design.manoeuvres]
     static = {k: v for k, v in design.margins.items() if is_static(k)}
     if static:
         out.append((STEADY, static_rows(static, merged)))

@@ -57,7 +57,7 @@ def _least_margins(manoeuvres, scene) -> str:
     take-up it judges and its limit there, the margin, the instant and the load's place
     (:mod:`ropemodel.views.checks`, as ``size --dynamic`` prints them), and the factors with their rules."""
     rows = [[m["manoeuvre"], r.check, r.value, r.limit, r.margin, r.t, r.where, "pass" if r.ok else "FAIL"]
-            for m in manoeuvres for r in manoeuvre_rows(m, merged=False)]
+            for m in manoeuvres for r in manoeuvre_rows(m, merged=False, parameters=scene.parameters)]
     return page.fragment("<h3>Checks through the manoeuvres</h3>") + page.table(
         ["manoeuvre", "check", "value", "limit", "margin", "at t", "with the load at", "verdict"], rows,
         kinds=["name", "", "num", "num", "num", "num", "", ""], cls="manoeuvre-checks") + page.fragment(
