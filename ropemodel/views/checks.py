@@ -8,7 +8,9 @@ design's attributes (``manoeuvres``, ``margins``, ``scene``): one group per mano
 stop, downward start, downward stop, as :mod:`optimisation.dynamic.manoeuvres` names them) and one for the
 static checks of steady travel, each row the value the check judges and its limit with their units, the margin,
 the instant (s) and where the load is.  :func:`readable` turns any one name into words (the active
-constraints).  The layer sits low: it reads only the attributes and dictionaries it is given.
+constraints), :func:`in_words` every name in a message (no design), and :func:`factors` says which factor
+each check applies and its rule.  The layer sits low: it reads only the attributes and dictionaries it is
+given.
 """
 
 from __future__ import annotations
