@@ -48,7 +48,7 @@ class EnvelopeResult(Result):
 
     def cases_text(self) -> str:
         """``4 places of the load x 3 manoeuvres (steady, start, stop)``; on a long route, with the places that
-        can govern evaluated (:mod:`ropemodel.envelope.prune`): ``… (evaluated at the 12 that can govern)``."""
+        can govern evaluated (:mod:`ropemodel.envelope.prune`): ``… (evaluated at the 36 places that can govern)``."""
         env = self.envelope
         text = describe(env.spanned or env.cases, env.params)
         if env.spanned and len(env.spanned) != len(env.cases):
