@@ -29,6 +29,8 @@ from dataclasses import dataclass
 from typing import NamedTuple
 from collections.abc import Callable
 
+import numpy as np
+
 from optimisation.dynamic.positions import Position, candidates
 
 ORDER = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
@@ -90,7 +92,7 @@ class Check(NamedTuple):
     """A check through a manoeuvre: ``nlp(o, a)`` the constraint (≥ 0, in ``unit`` — N or m — before
     scaling), ``margin(o, a)`` the margin shown (its own ``shown`` unit); ``o`` the smooth mode's
     outputs at the samples, ``a`` the design's and scene's values (F_min, n_rope, n_slip_dynamic, F_S_min,
-    stroke); ``factor``: the scene's safety factor it applies ("" for none)."""
+    stroke)."""
 
     name: str
     text: str
@@ -99,7 +101,6 @@ class Check(NamedTuple):
     needs: str
     nlp: Callable
     margin: Callable
-    factor: str = ""
 
 
 def _ratio(force):
@@ -114,13 +115,13 @@ def _slip(switch: str, slack: str):
 
 CHECKS = (
     Check("safety_margin", "rope safety F_min/F_C(t) >= n_rope", "N", "1", "F_C",
-          lambda o, a: a["F_min"] - a["n_rope"] * o["F_C"], _ratio("F_C"), "n_rope"),
+          lambda o, a: a["F_min"] - a["n_rope"] * o["F_C"], _ratio("F_C")),
     Check("safety_margin_S", "rope safety F_min/F_S(t) >= n_rope", "N", "1", "F_S",
-          lambda o, a: a["F_min"] - a["n_rope"] * o["F_S"], _ratio("F_S"), "n_rope"),
+          lambda o, a: a["F_min"] - a["n_rope"] * o["F_S"], _ratio("F_S")),
     Check("slip_margin_fwd", "no slip, drum ahead: rho F_S(t) >= n_slip_dynamic F_C(t)", "N", "N", "slip_fwd",
-          _slip("slip_fwd", "F_S"), _slip("slip_fwd", "F_S"), "n_slip_dynamic"),
+          _slip("slip_fwd", "F_S"), _slip("slip_fwd", "F_S")),
     Check("slip_margin_back", "no slip, rope overruns: rho F_C(t) >= n_slip_dynamic F_S(t)", "N", "N", "slip_back",
-          _slip("slip_back", "F_C"), _slip("slip_back", "F_C"), "n_slip_dynamic"),
+          _slip("slip_back", "F_C"), _slip("slip_back", "F_C")),
     Check("slack_margin", "unwinding rope taut F_S(t) >= F_S_min", "N", "N", "F_S",
           lambda o, a: o["F_S"] - a["F_S_min"], lambda o, a: o["F_S"] - a["F_S_min"]),
     Check("taut_margin", "winding rope taut F_C(t) >= F_S_min", "N", "N", "F_C",
@@ -134,13 +135,28 @@ CHECKS = (
 )
 CHECK = {c.name: c for c in CHECKS}
 
+#: what each check compares at an instant, (the force or take-up judged, its limit) in SI, from the same
+#: series ``o`` and values ``a`` as its margin: the value and limit columns of the output
+#: (:mod:`ropemodel.views.checks`); a slip check's limit is n_slip_dynamic times the switching function's
+#: (n_slip_dynamic F_C/rho, n_slip_dynamic F_S/rho), so that value - limit is the margin :func:`_slip` gives
+SIDES = {
+    "safety_margin": (lambda o, a: o["F_C"], lambda o, a: a["F_min"] / a["n_rope"]),
+    "safety_margin_S": (lambda o, a: o["F_S"], lambda o, a: a["F_min"] / a["n_rope"]),
+    "slip_margin_fwd": (lambda o, a: o["F_S"], lambda o, a: a["n_slip_dynamic"] * (o["F_S"] - o["slip_fwd"])),
+    "slip_margin_back": (lambda o, a: o["F_C"], lambda o, a: a["n_slip_dynamic"] * (o["F_C"] - o["slip_back"])),
+    "slack_margin": (lambda o, a: o["F_S"], lambda o, a: a["F_S_min"]),
+    "taut_margin": (lambda o, a: o["F_C"], lambda o, a: a["F_S_min"]),
+    "tension_margin": (lambda o, a: o["T"], lambda o, a: 0.0),
+    "stroke_margin": (lambda o, a: o["take_up"], lambda o, a: a["stroke"]),
+    "stroke_start_margin": (lambda o, a: o["take_up"], lambda o, a: 0.0),
+}
 
-def basis_of(scene, name: str) -> str:
-    """The rule a check applies (``name``: a check through a manoeuvre or a static margin): the scene's rule for
-    it (e.g. ``n_rope: ...``), else the factor it applies itself and where that value comes from (the dynamic
-    slip factor, ``n_slip_dynamic: default: ...``), else "-"."""
-    text = scene.check_basis(name)
-    factor = CHECK[name].factor if name in CHECK else ""
-    if text == "-" and factor in scene.parameters:
-        return f"{factor}: {scene.basis(factor)}"
-    return text
+
+def sides(name: str, o: dict, a: dict, i: int) -> dict:
+    """``{"value", "limit"}`` of check ``name`` at sample ``i`` of the series ``o`` (SI; {} for a check
+    without them)."""
+    if name not in SIDES:
+        return {}
+    at = {k: float(np.asarray(v, float).ravel()[i]) for k, v in o.items()}
+    value, limit = SIDES[name]
+    return {"value": float(value(at, a)), "limit": float(limit(at, a))}

@@ -34,11 +34,13 @@ def direction_of(name: str) -> str | None:
     return tail if tail in ("up", "down") and "_" in name else None
 
 
-def where_text(where: dict | None, direction: bool = False) -> str:
+def where_text(where: dict | str | None, direction: bool = False) -> str:
     """A :meth:`Extreme.where` dict as text: ``segment 2, x_m = 1300 m, start`` (``up, ...`` with
     ``direction``); ``the same in every case`` for None, ``anywhere`` when nothing in it matters."""
     if where is None:
         return "the same in every case"
+    if isinstance(where, str):     # a model that says where in words (a Koepe hoist's end state)
+        return where
     parts = [where.get("direction") if direction else None,
              f"segment {where['segment']}" if where.get("segment") is not None else None,
              f"x_m = {where['x_m']:g} m" if where.get("x_m") is not None else None, where.get("manoeuvre")]
@@ -84,6 +86,8 @@ class Envelope:
     extremes: output → its extremes (one per sense its quantity declares), for outputs that vary.
     constant: outputs that are the same in every case.
     no_worst: outputs that vary with the case and declare no worst.
+    spanned: every case the worst is taken over, when ``cases`` are those of them that can govern
+        (:func:`ropemodel.envelope.prune.prune`); None when every case was evaluated.
     """
 
     cases: list[LoadCase]
@@ -92,6 +96,7 @@ class Envelope:
     extremes: dict[str, tuple[Extreme, ...]] = field(default_factory=dict)
     constant: list[str] = field(default_factory=list)
     no_worst: list[str] = field(default_factory=list)
+    spanned: list[LoadCase] | None = None
 
     def worst(self, name: str) -> Extreme:
         """The governing extreme of ``name``: its only one, or of two the one of larger magnitude."""

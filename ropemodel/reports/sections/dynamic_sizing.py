@@ -8,6 +8,7 @@ from __future__ import annotations
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
 from ropemodel.reports.sections.transient import every_parameter
+from ropemodel.views.checks import factors, manoeuvre_rows, mesh_text, readable
 
 INTRO = """<p>Every design check holds through the start and stop of both directions of travel (four manoeuvres),
 with the load anywhere on the route (the ends and the middle of every segment), not only at the static forces
@@ -45,46 +46,22 @@ def dynamic_sizing(ctx):
     html += page.table(["manoeuvre", "governed with the load at", "F_C max [kN]", "F_S min [kN]", "take-up max [m]",
                         "dynamic factor [-]", "checks"], rows,
                        kinds=["name", "", "num", "num", "num", "num", ""], cls="manoeuvres")
-    html += _factors_and_mesh(design)
+    html += page.fragment("{% if m %}<p>{{ m }}.</p>{% endif %}",
+                          m=mesh_text(design.mesh, design.scene.parameters))
     html += page.fragment("<h3>What fixes the design</h3><p>Active at the continuous optimum (a check at an instant "
-                          "of a manoeuvre, or a static check):</p><ul>{% for a in active %}<li><code>{{ a }}</code>"
-                          "</li>{% endfor %}</ul>", active=design.active_continuous)
+                          "of a manoeuvre, or a static check):</p><ul>{% for a in active %}<li>{{ a }}</li>"
+                          "{% endfor %}</ul>",
+                          active=[readable(a, design.scene.parameters) for a in design.active_continuous])
     return html + _least_margins(design.manoeuvres, design.scene)
 
 
 def _least_margins(manoeuvres, scene) -> str:
-    """Each check's least margin through each manoeuvre (the simulator's history), in the check's own unit,
-    with the rule its factor comes from."""
-    from optimisation.dynamic.manoeuvres import CHECK, basis_of
-
-    rows = []
-    for m in manoeuvres:
-        for name, least in m["least_margins"].items():
-            unit = CHECK[name].shown
-            rows.append([name, m["manoeuvre"], least["where"], f"{least['margin']:.6g}", "-" if unit == "1" else unit,
-                         f"{least['t']:.3f}", "pass" if least["margin"] >= 0 else "FAIL", basis_of(scene, name)])
-    return page.fragment("<h3>Least margins through the manoeuvres</h3>") + page.table(
-        ["check", "manoeuvre", "with the load at", "least margin", "unit", "at t [s]", "verdict", "rule"], rows,
-        kinds=["name", "", "", "num", "", "num", "", ""], cls="manoeuvre-checks")
-
-
-def _factors_and_mesh(design) -> str:
-    """The static and the dynamic slip factor in words, and the rope's elements per span the sizing chose."""
-    text = ""
-    f = design.slip_factors
-    if f:
-        text += ("<p>Slip on the drum: the static checks ask ρ F_S ≥ n_slip F_C with n_slip = {{ s }} ({{ sb }}); "
-                 "through every manoeuvre, at every instant, ρ F_S(t) ≥ n_slip_dynamic F_C(t) with n_slip_dynamic = "
-                 "{{ d }} ({{ db }}).</p>")
-    mesh = design.mesh
-    if mesh.get("segments"):
-        text += ("<p>The rope in {{ n }} elements per span (the scene's {{ n0 }}, doubled until Richardson's "
-                 "estimate of every force check's discretisation error was within mesh_tol = {{ tol }} kN); each "
-                 "check through a manoeuvre is backed off by the part of its own estimate on the unsafe side, the "
-                 "largest back-off {{ worst }} N.</p>")
-    dyn = f.get("n_slip_dynamic", {})
-    forces = [b for c, b in mesh.get("backoffs", {}).items() if mesh["units"][c] == "N"]
-    return page.fragment(text, s=f"{f['n_slip']['value']:g}" if f else "", sb=f["n_slip"]["basis"] if f else "",
-                         d=f"{dyn.get('value', 1.0):g}", db=dyn.get("basis", ""), n=mesh.get("segments"),
-                         n0=mesh.get("segments_scene"), tol=f"{mesh.get('tolerance', 0.0) * 1e-3:g}",
-                         worst=f"{max(forces, default=0.0):.4g}")
+    """Each check's least margin through each manoeuvre (the simulator's history) in words: the force or
+    take-up it judges and its limit there, the margin, the instant and the load's place
+    (:mod:`ropemodel.views.checks`, as ``size --dynamic`` prints them), and the factors with their rules."""
+    rows = [[m["manoeuvre"], r.check, r.value, r.limit, r.margin, r.t, r.where, "pass" if r.ok else "FAIL"]
+            for m in manoeuvres for r in manoeuvre_rows(m, merged=False, parameters=scene.parameters)]
+    return page.fragment("<h3>Checks through the manoeuvres</h3>") + page.table(
+        ["manoeuvre", "check", "value", "limit", "margin", "at t", "with the load at", "verdict"], rows,
+        kinds=["name", "", "num", "num", "num", "num", "", ""], cls="manoeuvre-checks") + page.fragment(
+        "<p>Factors:</p><ul>{% for f in factors %}<li>{{ f }}</li>{% endfor %}</ul>", factors=factors(scene))
