@@ -85,6 +85,7 @@ class DrumContact(TransientSubmodel):
     column = "drum"
     smooth = "stick"
     quantities: ClassVar[tuple[Quantity, ...]] = (N_SLIP_DYNAMIC,)
+    sizing_only = ("n_slip_dynamic",)   # the simulator slips at the onset, rho F_slack = F_tight
 
     def bind(self, setup):
         super().bind(setup)

@@ -175,6 +175,7 @@ class RopeSegments(Rope):
 
     description = "lumped-mass rope, [numerics] segments Kelvin-Voigt elements per span"
     quantities: ClassVar[tuple[Quantity, ...]] = (V_EPS, ROPE_DAMPING, MESH_TOL)
+    sizing_only = ("mesh_tol",)          # the simulator takes [numerics] segments as given
     reads = ("q_lw",)                    # EA = L_u/q_lw, Krauze eq. (19)-(20) (the elongation effect's)
 
     def segments(self) -> int:
