@@ -174,6 +174,26 @@ def test_a_dynamic_slip_factor_shows_when_the_design_carries_it():
     assert "drum grip F_S >= n_slip_dynamic F_C/rho" in [r.check for r in rows]
 
 
+def test_the_mesh_in_words_and_kN(design):
+    """The mesh control's record (``DynamicDesign.mesh``, SI) in the text and the report: the elements per span,
+    the tolerance, the largest force estimate with its unsafe part and back-off in kN, its check in words."""
+    from ropemodel.reports.sections.dynamic_sizing import dynamic_sizing
+
+    mesh = {"segments": 8, "segments_scene": 4, "tolerance": 500.0, "units": {"safety_margin": "N",
+            "slip_margin_fwd": "N", "stroke_margin": "m"}, "errors": {"safety_margin": 320.0, "slip_margin_fwd": 410.0,
+            "stroke_margin": 0.02}, "unsafe": {"safety_margin": 320.0, "slip_margin_fwd": 0.0, "stroke_margin": 0.02},
+            "backoffs": {"safety_margin": 388.7, "slip_margin_fwd": 4.7, "stroke_margin": 0.024}}
+    with_mesh = DynamicDesign(**{**design.__dict__, "mesh": mesh})
+    text = " ".join(design_text(with_mesh).split())
+    assert ("rope mesh: 8 elements per span (from the scene's 4, doubled while Richardson's estimate of a force "
+            "check's discretisation error exceeded mesh_tol = 0.5 kN); the largest estimate 0.41 kN, drum grip F_S >= "
+            "n_slip_dynamic F_C/rho, 0 kN of it on the unsafe side, backed off by 0.0047 kN") in text
+    assert "with 8 elements per span" in text and INTERNAL.search(text) is None
+    html = str(dynamic_sizing(SimpleNamespace(design=with_mesh, scene=with_mesh.scene, sizing=True)))
+    assert "rope mesh: 8 elements per span" in html and "the largest estimate 0.41 kN" in html
+    assert "rope mesh" not in design_text(design)          # no mesh record (a rigid rope): no line
+
+
 def test_no_design_says_its_conflicting_checks_in_words(scene):
     """A "no design" answer's message names the conflicting checks in words, each with its manoeuvre, place
     and instant (the message as dynamic sizing words it, internal names and all; --json keeps those)."""

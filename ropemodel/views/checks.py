@@ -9,8 +9,10 @@ stop, downward start, downward stop, as :mod:`optimisation.dynamic.manoeuvres` n
 static checks of steady travel, each row the value the check judges and its limit with their units, the margin,
 the instant (s) and where the load is.  :func:`readable` turns any one name into words (the active
 constraints), :func:`in_words` every name in a message (no design), and :func:`factors` says which factor
-each check applies and its rule.  The layer sits low: it reads only the attributes and dictionaries it is
-given.
+each check applies and its rule; :func:`check_words` says what a check through a manoeuvre compares (the drum's
+grip with the dynamic slip factor ``n_slip_dynamic`` where the scene carries it) and :func:`mesh_text` what the
+mesh control did (the rope's elements per span, the largest error estimate and its back-off).  The layer sits
+low: it reads only the attributes and dictionaries it is given.
 """
 
 from __future__ import annotations
