@@ -1,5 +1,6 @@
 """The pieces of dynamic sizing's mesh control and dynamic slip factor that are cheap to check (the sizing
-itself under refinement: tests/test_dynamic_sizing_mesh.py, slow).
+itself under refinement: tests/_mesh_checks.py, run by the slow tests/test_dynamic_sizing_design.py and
+tests/test_dynamic_sizing_route.py).
 
 Truths: a quantity with a known error C h^p written out here (the Richardson estimate must give the error
 exactly when the three meshes are in the asymptotic range), and Euler–Eytelwein's slip reserve

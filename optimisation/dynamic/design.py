@@ -290,9 +290,9 @@ def mesh_record(problem, found, n_scene: int, seconds: float) -> dict:
     unit, N or m; the back-off adds the integration's), the observed orders, each mesh tried, the seconds."""
     if found is None:
         return {"segments_scene": None, "segments": None, "note": "the transient's rope has no elements to refine"}
-    scale = {c: problem.F_ref if CHECK[c].unit == "N" else 1.0 for c in found.errors}
-    return {**found.to_dict(), "segments_scene": n_scene, "at": "the continuous optimum",
-            "backoffs": {c: problem.backoff(c) * scale[c] for c in found.errors}, "seconds": seconds}
+    backed = set(found.errors) | set(problem.backoffs)      # every check the optimum's NLP backs off its own way
+    return {**found.to_dict(), "segments_scene": n_scene, "at": "the continuous optimum", "seconds": seconds,
+            "backoffs": {c: problem.backoff(c) * (problem.F_ref if CHECK[c].unit == "N" else 1.0) for c in backed}}
 
 
 def slip_factors(scene) -> dict:
