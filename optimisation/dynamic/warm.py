@@ -25,7 +25,7 @@ import time
 import casadi as ca
 import numpy as np
 
-from optimisation.ipopt import FEAS_TOL, Solution, _lexicographic_ok
+from optimisation.ipopt import FEAS_TOL, Solution, lexicographic_ok
 
 #: a dynamic check's instant may move this far [s] between two problems and still be the same peak
 NEAR = 0.1
@@ -117,7 +117,7 @@ def on_active_set(old, sol, new, p=None, fix_d: float | None = None) -> Solution
             out.active = [new.constraints[i] for i in rows]
             out.active_bounds = [(i, "lower") for i in fixed]
             out.polished = True
-            out.lexicographic_ok = _lexicographic_ok(new, out, p)
+            out.lexicographic_ok = lexicographic_ok(new, out, p)
             return out
     return None
 

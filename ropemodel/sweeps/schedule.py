@@ -8,10 +8,11 @@ from collections import deque
 from ropemodel.sweeps.chunk import run_chunk
 
 
-def results(job, pts, bounds, todo, executor, run=run_chunk):
+def results(job, pts, bounds, todo, executor, run=None):
     """(chunk index, table) in chunk order; with an executor, a bounded window of chunks in flight.  ``run(job,
     start, inputs)`` computes one chunk's table (default :func:`~ropemodel.sweeps.chunk.run_chunk`; it and
     ``job`` must pickle to travel to an executor)."""
+    run = run_chunk if run is None else run
     if executor is None:
         for k in todo:
             start, stop = bounds[k]
