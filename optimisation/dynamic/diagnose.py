@@ -22,8 +22,8 @@ import math
 import casadi as ca
 import numpy as np
 
-from optimisation.infeasibility import REMEDIES as STATIC_REMEDIES
 from optimisation.dynamic.scan import scan_box
+from optimisation.infeasibility import REMEDIES as STATIC_REMEDIES
 from optimisation.infeasibility import Diagnosis, remedy_text
 from ropemodel.papers import en12385 as ropes
 
