@@ -43,8 +43,8 @@ DOUBLINGS = 12
 @dataclass
 class Scan:
     """What a scan of the design box did: its axes (``d`` [m], ``F_nwl`` [N], ``stroke`` [m]), how many points
-    kept the static checks and were integrated, the designs it found (scaled, lightest first), the cases per
-    point, the time step [s] and the CPU seconds it took."""
+    kept the static checks and were integrated (``unintegrable``: where the integrator failed), the designs it
+    found (scaled, lightest first), the cases per point, the time step [s] and the CPU seconds it took."""
 
     d: list[float]
     F_nwl: list[float]
@@ -53,6 +53,7 @@ class Scan:
     dt: float
     static_ok: int = 0
     integrated: int = 0
+    unintegrable: int = 0
     designs: list = field(default_factory=list)
     seconds: float = 0.0
 
@@ -69,11 +70,15 @@ class Scan:
                 f"{self.d[0] * 1e3:g}-{self.d[-1] * 1e3:g} mm x {len(self.F_nwl)} pretensions 0-"
                 f"{self.F_nwl[-1] * 1e-3:.4g} kN (every {step * 1e-3:.4g} kN), stroke {self.stroke:g} m (every check "
                 f"grows with it), {self.cases} cases (each manoeuvre at each place of the load) on a {self.dt:g} s "
-                f"grid: {self.points} points, {self.static_ok} keep the static checks, {found}")
+                f"grid: {self.points} points, {self.static_ok} keep the static checks, {found}{self._failed()}")
+
+    def _failed(self) -> str:
+        return f" ({self.unintegrable} could not be integrated to the NLP's tolerance)" if self.unintegrable else ""
 
     def to_dict(self) -> dict:
         return {"d [m]": self.d, "F_nwl [N]": self.F_nwl, "stroke [m]": self.stroke, "points": self.points,
                 "cases": self.cases, "dt [s]": self.dt, "static_ok": self.static_ok, "integrated": self.integrated,
+                "unintegrable": self.unintegrable,
                 "designs_found": len(self.designs), "cpu_seconds": self.seconds}
 
 
@@ -99,11 +104,16 @@ def _axes(problem, p):
     return d, [float(f) for f in np.linspace(0.0, top, F_POINTS)]
 
 
-def _keeps(problem, xs, p, a_of, order) -> bool:
-    """Whether scaled design ``xs`` keeps every check through every case (stops at the first that fails)."""
+def _keeps(problem, xs, p, a_of, order) -> bool | None:
+    """Whether scaled design ``xs`` keeps every check through every case (stops at the first that fails); None
+    when the integrator fails there (cvodes cannot meet its tolerance: no design the NLP could solve from)."""
     a = a_of(xs)
     for i in order:
-        if min(least_margins(problem, problem.all_paths[i], xs, p, a).values()) < 0.0:
+        try:
+            least = min(least_margins(problem, problem.all_paths[i], xs, p, a).values())
+        except RuntimeError:
+            return None
+        if least < 0.0:
             return False
     return True
 
@@ -125,7 +135,9 @@ def scan_box(problem, p=None) -> Scan:
 
     for j in np.flatnonzero(ok):
         scan.integrated += 1
-        if _keeps(problem, X[:, j], p, a_of, order):
+        keeps = _keeps(problem, X[:, j], p, a_of, order)
+        scan.unintegrable += keeps is None
+        if keeps:
             scan.designs.append(X[:, j].copy())
     scan.seconds = time.process_time() - t0
     return scan
