@@ -52,6 +52,7 @@ from functools import cached_property
 import casadi as ca
 import numpy as np
 
+from ropemodel.effects.sizing import declared
 from ropemodel.effects.winch_checks import margin_names
 from ropemodel.envelope import RAMPS, Envelope, LoadCase, envelope, free, load_cases
 from ropemodel.envelope.cases import depends_on, distinct
@@ -126,6 +127,9 @@ def prepare(scene) -> Scene:
     drum without a compliant lining, D (:data:`D_OPTIONAL_LININGS`).  Load it with
     ``load(path, optional=SIZED + ("D",))`` (what ``ropemodel size`` does) or pass it loaded.
     """
+    declaration = declared(scene.model)          # a model that declares its sizing (not the winch)
+    if declaration is not None:
+        return declaration.prepare(scene)
     if scene.model != "winch":
         raise InputError(f"sizing needs model = \"winch\", the scene has model = {scene.model!r}")
     effects = {"checks": "design"}
@@ -173,6 +177,9 @@ def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
     """What the sizing of the (prepared) ``scene`` is computed from (every check, the rope mass, the drive
     power, the load cases' places and accelerations: :func:`ropemodel.envelope.reads`), and what it sets itself
     (name → how): the design variables."""
+    declaration = declared(scene.model)
+    if declaration is not None:
+        return declaration.reads(scene)
     chosen = {k: "the sizing chooses it (a value given only starts the search)" for k in VARIABLES}
     return scene.built.inputs_of() | case_reads(scene), chosen
 

@@ -116,10 +116,10 @@ def test_cli_bad_input_exits_2(scene_file, capsys):
 
 
 def test_cli_no_design_exits_1(scene_file, capsys):
-    """n_rope so high that no catalogue rope carries even the static forces: exit 1, the check named."""
+    """n_rope so high that no catalogue rope carries even the static forces: exit 1, the check named in words."""
     assert main(["size", str(scene_file), "--dynamic", "--set", "n_rope=60"]) == 1
     out = capsys.readouterr()
-    assert "Traceback" not in out.err and "safety" in out.out
+    assert "Traceback" not in out.err and "rope force F_C <= F_min/n_rope" in out.out and "safety_margin" not in out.out
     assert main(["size", str(scene_file), "--dynamic", "--find", "t_ramp", "--json",
                  "--set", "d=40mm", "--set", "F_nwl=40kN", "--set", "stroke=2m"]) == 1
     out = capsys.readouterr()

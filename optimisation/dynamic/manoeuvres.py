@@ -25,6 +25,8 @@ from dataclasses import dataclass
 from typing import NamedTuple
 from collections.abc import Callable
 
+import numpy as np
+
 from optimisation.dynamic.positions import Position, candidates
 
 ORDER = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
@@ -121,3 +123,28 @@ CHECKS = (
           lambda o, a: o["take_up"], lambda o, a: o["take_up"]),
 )
 CHECK = {c.name: c for c in CHECKS}
+
+#: what each check compares at an instant, (the force or take-up judged, its limit) in SI, from the same
+#: series ``o`` and values ``a`` as its margin: the value and limit columns of the output
+#: (:mod:`ropemodel.views.checks`); a slip check's limit is the judged force less its margin (F_C/rho, F_S/rho)
+SIDES = {
+    "safety_margin": (lambda o, a: o["F_C"], lambda o, a: a["F_min"] / a["n_rope"]),
+    "safety_margin_S": (lambda o, a: o["F_S"], lambda o, a: a["F_min"] / a["n_rope"]),
+    "slip_margin_fwd": (lambda o, a: o["F_S"], lambda o, a: o["F_S"] - o["slip_fwd"]),
+    "slip_margin_back": (lambda o, a: o["F_C"], lambda o, a: o["F_C"] - o["slip_back"]),
+    "slack_margin": (lambda o, a: o["F_S"], lambda o, a: a["F_S_min"]),
+    "taut_margin": (lambda o, a: o["F_C"], lambda o, a: a["F_S_min"]),
+    "tension_margin": (lambda o, a: o["T"], lambda o, a: 0.0),
+    "stroke_margin": (lambda o, a: o["take_up"], lambda o, a: a["stroke"]),
+    "stroke_start_margin": (lambda o, a: o["take_up"], lambda o, a: 0.0),
+}
+
+
+def sides(name: str, o: dict, a: dict, i: int) -> dict:
+    """``{"value", "limit"}`` of check ``name`` at sample ``i`` of the series ``o`` (SI; {} for a check
+    without them)."""
+    if name not in SIDES:
+        return {}
+    at = {k: float(np.asarray(v, float).ravel()[i]) for k, v in o.items()}
+    value, limit = SIDES[name]
+    return {"value": float(value(at, a)), "limit": float(limit(at, a))}

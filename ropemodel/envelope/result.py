@@ -7,6 +7,7 @@ import math
 from typing import Any
 
 from ropemodel.envelope.cases import OPEN, LoadCase, describe, free
+from ropemodel.envelope.cases import reads as cases_reads
 from ropemodel.envelope.worst import Envelope
 from ropemodel.result import Result, row, unit_cell, value_cell
 
@@ -92,6 +93,11 @@ class EnvelopeResult(Result):
     def to_json(self, **extra) -> str:
         return super().to_json(worst_case=self.worst_case(), **extra)
 
+    def reads(self) -> set[str]:
+        """The equations' inputs and what the worst case spans (:func:`ropemodel.envelope.cases.reads`: the open
+        case inputs and what their manoeuvres' accelerations come from)."""
+        return super().reads() | cases_reads(self.scene)
+
     def table(self) -> str:
         """Inputs, the outputs the same everywhere, then each output's worst and where, the design checks
         with where each governs, the defaults used and the references."""
@@ -122,9 +128,8 @@ class EnvelopeResult(Result):
                       + ", ".join(env.no_worst)]
         for title, frame in self.frames.items():
             lines += ["", title, frame.to_string(index=False)]
-        if self.scene.defaults:
-            lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in self.scene.defaults.items()
-                                              if k in self.values or k in self.free]
+        if self.defaults_used():
+            lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in self.defaults_used().items()]
         lines += ["", "references"] + [f"  {c}" for c in self.citations]
         return "\n".join(lines)
 

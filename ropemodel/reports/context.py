@@ -35,7 +35,13 @@ def once(fn):
 
 
 def sizes(scene: Scene) -> bool:
-    """True for a scene the report sizes: a winch with a catalogue rope (``rope`` not ``"given"``)."""
+    """True for a scene the report sizes: a winch with a catalogue rope (``rope`` not ``"given"``), or a model that
+    declares its sizing (:mod:`ropemodel.effects.sizing`) in a scene without a transient (sizing through one
+    simulates every trial design: ``ropemodel size`` does it)."""
+    from ropemodel.effects.sizing import declared
+
+    if declared(scene.model) is not None:
+        return scene.effects.get("dynamics", "none") == "none"
     return scene.model == "winch" and scene.effects.get("rope", "given") != "given"
 
 

@@ -13,8 +13,9 @@ HEAD = """<dl class="head">
 <dt>SHA-256 of the file</dt><dd><code>{{ scene.digest or "none (no file)" }}</code></dd>
 <dt>ropemodel version</dt><dd>{{ version }}</dd>
 <dt>date</dt><dd>{{ date }}</dd>
-{% if ctx.sizing %}<dt>sizing</dt><dd>yes: a winch with a catalogue rope (rope = "{{ scene.effects.rope }}"); design
-checks switched on</dd>{% endif %}
+{% if ctx.sizing %}<dt>sizing</dt><dd>yes: {% if scene.effects.get("rope") %}a winch with a catalogue rope (rope =
+"{{ scene.effects.rope }}"){% else %}the {{ scene.model }}'s declared sizing{% endif %}; design checks switched
+on</dd>{% endif %}
 </dl>"""
 
 
