@@ -70,11 +70,13 @@ def test_json_has_the_static_keys_and_each_manoeuvre(scene, design, capsys, tmp_
     assert all("F_C_max" in m["peaks"] and "x_m = " in m["where"] and len(m["positions"]) == 3
                for m in out["manoeuvres"])
     assert any("upward start, x_m = " in a and ", t = " in a for a in out["continuous"]["active"])
-    for name in ("G_m", "t_ramp"):     # as static sizing's JSON: the optimum's sensitivities, SI
-        assert out["sensitivities"][name] == pytest.approx(design.sensitivities[name], rel=1e-6)
+    # as static sizing's JSON: the optimum's sensitivities, SI; none for the ramp's timing (it moves the
+    # instant where the peak sits: optimisation/dynamic/sensitivity.py)
+    assert out["sensitivities"]["G_m"] == pytest.approx(design.sensitivities["G_m"], rel=1e-6)
+    assert "t_ramp" not in out["sensitivities"] and "t_ramp" not in design.sensitivities
 
 
-@pytest.mark.parametrize("name, rel_step", [("G_m", 1e-3), ("t_ramp", 1e-3)])
+@pytest.mark.parametrize("name, rel_step", [("G_m", 1e-3)])
 def test_sensitivities_match_central_differences(scene, design, name, rel_step):
     """∂x*/∂p from the active set against (x*(p + h) − x*(p − h)) / 2h of two re-solves."""
     problem = DynamicSizingProblem(scene)

@@ -48,8 +48,14 @@ class EnvelopeResult(Result):
         return list(self.envelope.no_worst)
 
     def cases_text(self) -> str:
-        """``4 places of the load x 3 manoeuvres (steady, start, stop)``."""
-        return describe(self.envelope.cases, self.envelope.params)
+        """``4 places of the load x 3 manoeuvres (steady, start, stop)``; on a long route, with the places that
+        can govern evaluated (:mod:`ropemodel.envelope.prune`): ``… (evaluated at the 36 places that can govern)``."""
+        env = self.envelope
+        text = describe(env.spanned or env.cases, env.params)
+        if env.spanned and len(env.spanned) != len(env.cases):
+            places = len({c.joint for c in env.cases})
+            text += f" (evaluated at the {places} places that can govern)"
+        return text
 
     def worst_case(self) -> dict:
         """The JSON of the worst cases: what was spanned, and for each output its sense, value and place."""
@@ -62,7 +68,8 @@ class EnvelopeResult(Result):
                 if other is not top:
                     entry[other.sense] = {"value": _finite(other.value), "where": other.where(params)}
             outputs[name] = entry
-        out = {"cases": len(env.cases), "spans": self.cases_text(), "free": list(self.free), "outputs": outputs,
+        out = {"cases": len(env.spanned or env.cases), "evaluated": len(env.cases), "spans": self.cases_text(),
+               "free": list(self.free), "outputs": outputs,
                "no_worst": self.no_worst}
         if self.governing is not None:
             c = self.governing
