@@ -23,7 +23,7 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pandas as pd
@@ -52,7 +52,8 @@ CHUNK = 8
 
 @dataclass(frozen=True)
 class DynamicChunk:
-    """One dynamic sizing sweep's job: the transient scene and the varied names (pickles)."""
+    """One dynamic sizing sweep's job: the transient scene (without its built model) and the varied names
+    (pickles)."""
 
     scene: object
     names: tuple
@@ -75,7 +76,8 @@ def dynamic_sizing_sweep(scene, vary=None, *, points=None, progress: bool | None
     if not 1 <= int(chunk_size) <= 10**6:
         raise InputError(f"chunk size {chunk_size}: points per chunk must be 1 to 1000000")
     bounds = [(s, min(s + int(chunk_size), pts.n)) for s in range(0, pts.n, int(chunk_size))]
-    job = DynamicChunk(problem.scene, tuple(pts.names))
+    # a fresh copy of the scene, without its built model (CasADi expressions do not pickle): a worker builds it
+    job = DynamicChunk(replace(problem.scene), tuple(pts.names))
     out = check_output(out) if out is not None else None
     with OutputLock(out) if out is not None else contextlib.nullcontext():
         signature = _signature(problem.scene, pts, chunk_size)
