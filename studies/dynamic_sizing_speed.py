@@ -76,9 +76,9 @@ def short_ramp():
 
 def route3():
     import ropemodel as rm
-    from optimisation.problem import VARIABLES, load_sizing
+    from optimisation.problem import D_OPTIONAL, SIZED, load_sizing
 
-    return load_sizing(rm.from_dict(ROUTE3, optional=VARIABLES, emit=False), emit=False)
+    return load_sizing(rm.from_dict(ROUTE3, optional=SIZED + D_OPTIONAL, emit=False), emit=False)
 
 
 def cpu(fn):
