@@ -167,7 +167,7 @@ def _slow(i: int, case) -> bool:
 
 
 def _exhaustive(case) -> bool:
-    """Dynamic sizing's valid inputs (one to four minutes each): ``-m exhaustive`` only, not CI's slow run."""
+    """Dynamic sizing's valid inputs (one to four minutes each): ``-m exhaustive``, not CI's slow run."""
     return "--dynamic" in case.argv and case.expect == "sound"
 
 
