@@ -45,6 +45,7 @@ def keeps_every_check(scene, design: dict) -> bool:
     return not simulated_failures(scene, design, manoeuvres=MANOEUVRES)
 
 
+@pytest.mark.exhaustive       # 390 points, most simulated: about 3 minutes
 def test_no_design_verdict_is_backed_by_a_brute_force_search(tmp_path):
     scene = scene_with_ramp(tmp_path, "2 s")
     scan = scan_box(DynamicSizingProblem(scene))

@@ -17,7 +17,8 @@ from _dynamic_scene import simulated_failures, write_scene
 from optimisation.dynamic.sweep import dynamic_sizing_sweep
 from optimisation.problem import load_sizing
 
-pytestmark = pytest.mark.slow
+#: four dynamic optima (two on the cluster, two through the killed and resumed command): minutes
+pytestmark = [pytest.mark.slow, pytest.mark.exhaustive]
 
 VARY = {"G_m": "440kN:480kN:2"}
 

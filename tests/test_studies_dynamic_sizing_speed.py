@@ -16,15 +16,16 @@ What it shows, and what is asserted:
 * each scene gets the answer it has (a design, or none), and every contender costs something (a ratio of
   nothing is no ratio).
 
-The CI tier (slow) runs the shipped scene (``fast``); the full study (the three-segment route and the "no
-design" answer, about 10 minutes) is exhaustive."""
+All exhaustive (CONTRIBUTING, test tiers): the shipped scene alone (``fast``) is two dynamic sizings, 2.5 CPU
+minutes; the full study (the three-segment route and the "no design" answer) more than 10."""
 
 from __future__ import annotations
 
 import pytest
 from _studies import load_study
 
-pytestmark = pytest.mark.slow
+#: two dynamic sizings of the shipped scene: minutes (CONTRIBUTING, test tiers)
+pytestmark = [pytest.mark.slow, pytest.mark.exhaustive]
 
 
 @pytest.fixture(scope="module")
@@ -42,7 +43,6 @@ def test_warm_resolves_are_cheaper_than_ipopt_resolves(shipped):
     assert shipped["ratio to IPOPT re-solves"].iloc[0] < 1.0
 
 
-@pytest.mark.exhaustive
 def test_each_scene_gets_its_answer(tmp_path):
     table = load_study("dynamic_sizing_speed").main(tmp_path, fast=False)
     assert list(table["answer"]) == ["design", "design", "no design"]
