@@ -246,7 +246,7 @@ def _catalogue(problem, sol, design: DynamicDesign, say) -> DynamicDesign:
     d_star = design.continuous["d"]
     for dk in [d for d in ropes.diameters() if d >= d_star - 1e-9]:
         x0 = np.array([dk / problem.x_scale[0], *sol.xs[1:]])
-        prob, dsol = solve_refined(problem, x0, fix_d=dk)
+        prob, dsol = solve_refined(problem, x0, fix_d=dk, warm=(problem, sol))
         if not dsol.feasible:
             continue
         xs = rounded_up(prob, dsol.xs)
