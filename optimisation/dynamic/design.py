@@ -130,6 +130,13 @@ def continuous_optimum(problem, static_xs, record: Refinement | None = None, say
                                  screen=False)
     if sol.feasible:
         return problem, sol, None
+    return decided(problem, sol, record, say)
+
+
+def decided(problem, sol, record: Refinement | None = None, say=None):
+    """The least-violation problem (:func:`diagnose_dynamic`) on ``problem`` whose NLP ended infeasible at
+    ``sol``: (problem, solution, the diagnosis) when no design exists, else the NLP solved again from the
+    design it found: (problem, solution, None)."""
     diagnosis, x_least = diagnose_dynamic(problem, sol.xs, say)
     if not diagnosis.feasible:
         return problem, sol, diagnosis
@@ -215,8 +222,8 @@ def _size(scene: Scene, with_sensitivities: bool, say: Callable[[str], None]) ->
         n_scene, t1 = segments_of(problem.scene), time.perf_counter()
         problem, sol, found = converge(problem, sol, record, say)
         design.mesh = mesh_record(problem, found, n_scene, time.perf_counter() - t1)
-        if not sol.feasible:
-            diagnosis, _ = diagnose_dynamic(problem, sol.xs, say)
+        if not sol.feasible:        # none on the finer mesh with the back-offs, or one the NLP missed
+            problem, sol, diagnosis = decided(problem, sol, record, say)
     design.refinement = record.to_dict()
     if diagnosis is not None:
         design.diagnosis = diagnosis
