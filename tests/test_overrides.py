@@ -132,6 +132,10 @@ def independent(scene, command: str, name: str) -> str | None:
     * λ, ω of a Voigt lining enter through e^(−α/(λω)) (Hajduk 1992, eq. (19)); at α/(λω) > 40 that is
       below 1e-17 of 1, so the answer equals the elastic limit to the last bit.
     * n_slip is the factor of the static slip check; a transient integrates the slip itself.
+    * n_slip_dynamic is the factor of dynamic sizing's slip checks through a manoeuvre, and mesh_tol its
+      tolerance on the rope's discretisation: a simulation slips at the onset and takes ``[numerics] segments``
+      as given.  In dynamic sizing mesh_tol only chooses the elements per span (each back-off is the estimate
+      itself), so 10 % more tolerance can leave the mesh, and the answer, as they are.
     * η turns the drum's power into the drive's; a transient gives the drum's forces and work only.
     * An inextensible rope (``rope_elasticity = "rigid"``) has no elongation rate to damp (rope_damping),
       and the carriage of its tensioner never moves (m_t).
@@ -177,6 +181,10 @@ def independent(scene, command: str, name: str) -> str | None:
         return "it smooths the shaft resistance, 0 here"
     if command == "simulate" and name == "n_slip":
         return "the static slip check's factor"
+    if command == "simulate" and name in ("n_slip_dynamic", "mesh_tol"):
+        return "dynamic sizing's: the simulator slips at the onset and takes [numerics] segments as given"
+    if command == "size --dynamic" and name == "mesh_tol":
+        return "a tolerance only chooses the mesh: the back-offs are the estimates, the same 10 % either side"
     if command == "simulate" and name == "eta":
         return "the drive's efficiency: a transient gives the drum's forces"
     if command == "simulate" and name in ("rope_damping", "m_t") and e.get("rope_elasticity") == "rigid":

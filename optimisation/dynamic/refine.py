@@ -6,7 +6,8 @@ a dense grid (:data:`DT_DENSE`, the NLP's own integrator), every local minimum b
 :data:`ADD_TOL` is located exactly (bounded Brent on the check integrated from the sample before,
 to 1e-10 s), and the times whose margin is below half the back-off are added to the grid; the
 problem is solved again from the previous optimum.  It stops when every exact local minimum of
-every check keeps at least half the back-off (:data:`~optimisation.dynamic.problem.BACKOFF`): the
+every check keeps its back-off less half the integration's (:data:`~optimisation.dynamic.problem.BACKOFF`;
+a check's back-off adds its mesh error estimate, :mod:`optimisation.dynamic.mesh`): the
 optimum holds between the grid points, the other half of the back-off is left for the difference
 between the NLP's integrator and the hybrid simulator's (:mod:`optimisation.dynamic.verify`).  Then
 the cases the NLP leaves out (:mod:`optimisation.dynamic.screen`) are screened at the optimum: one where
@@ -175,9 +176,9 @@ def _refined(problem, x0, p, fix_d, record, others, warm=None):
     for _ in range(MAX_ROUNDS):
         if not sol.feasible:
             return problem, sol
-        found = minima(problem, sol.xs, p)
-        low = [m for m in found if m.value < 0.5 * BACKOFF]
-        more = [] if low else uncovered(problem, sol.xs, p, BACKOFF)
+        found = minima(problem, sol.xs, p, ADD_TOL + max(problem.backoffs.values(), default=0.0))
+        low = [m for m in found if m.value < problem.backoff(m.check) - 0.5 * BACKOFF]
+        more = [] if low else uncovered(problem, sol.xs, p, max(problem.backoffs.values(), default=BACKOFF))
         if record is not None:
             record.rounds.append((float(min((m.value for m in found), default=np.inf)), len(low),
                                   [problem.cases[i].tag for i in more]))
