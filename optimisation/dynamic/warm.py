@@ -25,7 +25,7 @@ import time
 import casadi as ca
 import numpy as np
 
-from optimisation.ipopt import FEAS_TOL, Solution, lexicographic_ok
+from optimisation.ipopt import FEAS_TOL, Solution, jacobian_at, lexicographic_ok
 
 #: a dynamic check's instant may move this far [s] between two problems and still be the same peak
 NEAR = 0.1
@@ -34,13 +34,21 @@ NEWTON_STEPS = 8
 LAM_TOL = 1e-9
 
 
-def _jacobian(problem) -> ca.Function:
-    """(x, p) → (g, ∂g/∂x, ∇f, f) of ``problem``, built once per problem."""
-    if "_warm_jac" not in problem.__dict__:
-        problem.__dict__["_warm_jac"] = ca.Function(
-            "warm_jac", [problem.xs, problem.p],
-            [problem.g, ca.jacobian(problem.g, problem.xs), ca.gradient(problem.f, problem.xs), problem.f])
-    return problem.__dict__["_warm_jac"]
+def _jacobian(problem):
+    """(x, p) → (g, ∂g/∂x, ∇f, f) of ``problem`` (numpy): g and its Jacobian those the IPOPT path evaluates and
+    keeps (:func:`~optimisation.ipopt.jacobian_at`: the active set, the polish and the lexicographic test ask
+    the same points again), the objective's gradient from its own Function, built once per problem."""
+    if "_warm_objective" not in problem.__dict__:
+        problem.__dict__["_warm_objective"] = ca.Function(
+            "warm_objective", [problem.xs, problem.p], [ca.gradient(problem.f, problem.xs), problem.f])
+    objective = problem.__dict__["_warm_objective"]
+
+    def jac(x, p):
+        g, J = jacobian_at(problem, x, p)
+        grad, f = objective(x, p)
+        return g, J, np.asarray(grad), np.asarray(f)
+
+    return jac
 
 
 def _instant(name: str) -> tuple[str, float | None]:
@@ -128,7 +136,7 @@ def _kkt(jac, new, x0, p, rows, fixed, lbx, ubx):
     if x is None or np.any(x < lbx - 1e-12) or np.any(x > ubx + 1e-12):
         return None
     g, J, grad, f = (np.asarray(a) for a in jac(x, p))
-    g = g.ravel()
+    g = g.ravel().copy()        # the kept evaluation is read-only; the solution's own g is not
     if np.any(g < -FEAS_TOL):
         return None
     # ∇f = Σ λ_i ∇g_i + Σ ν_j e_j: λ_i >= 0 for the checks; ν of a bound: its multiplier (sign as IPOPT's lam_x)
