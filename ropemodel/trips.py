@@ -44,6 +44,7 @@ import numpy as np
 
 from ropemodel.effects.winch_route import segment_lengths
 from ropemodel.errors import InputError
+from ropemodel.machines import MACHINES, machine_of
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
 from ropemodel.scene import Scene, SceneLike, as_scene
@@ -159,8 +160,10 @@ TRIP_EFFECTS = {"dynamics": "trip", "inertia": "rigid", "power": "drive"}
 def prepare(scene: Scene) -> Scene:
     """The scene as a trip needs it (:data:`TRIP_EFFECTS`; a scene that says nothing of them works): read
     again with those effects, every value it was given kept (:meth:`~ropemodel.scene.Scene.with_effects`)."""
-    if scene.model != "winch":
-        raise InputError(f"a trip is for winch scenes; this scene's model is {scene.model!r}")
+    machine = machine_of(scene)
+    if machine is None or not machine.trips:
+        able = " or ".join(f'"{m}"' for m, d in MACHINES.items() if d.trips)
+        raise InputError(f"a trip needs model = {able}; this scene's model is {scene.model!r}")
     if all(scene.effects.get(k) == v for k, v in TRIP_EFFECTS.items()):
         return scene
     return scene.with_effects(TRIP_EFFECTS)

@@ -30,7 +30,7 @@ from optimisation.dynamic.start import factored_start, fallback_starts
 from optimisation.dynamic.transient import transient_effects_of
 from optimisation.dynamic.verify import by_manoeuvre, verify
 from optimisation.infeasibility import diagnose
-from optimisation.problem import VARIABLES, SizingProblem, load_sizing
+from optimisation.problem import SizingProblem, load_sizing
 from ropemodel.errors import SolveError
 from ropemodel.numerics.held import held_solver_output
 from ropemodel.papers import en12385 as ropes
@@ -92,7 +92,7 @@ def _margins(problem, xs, manoeuvres) -> dict:
 
 
 def _active(sol, problem, catalogue: bool) -> list[str]:
-    bounds = [f"{VARIABLES[i]} {side} bound" for i, side in sol.active_bounds if not (catalogue and i == 0)]
+    bounds = [f"{problem.variables[i]} {side} bound" for i, side in sol.active_bounds if not (catalogue and i == 0)]
     return list(sol.active) + bounds + (["d (catalogue size)"] if catalogue else [])
 
 

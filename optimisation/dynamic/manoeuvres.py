@@ -1,33 +1,21 @@
-"""The four manoeuvres of dynamic sizing, where the load is in each, and the checks made through them.
+"""The manoeuvres of dynamic sizing, where the load is in each, and the checks made through them.
 
-A winch starts and stops in both directions: upward start, upward stop, downward start, downward
-stop.  Each manoeuvre is the scene's transient (its ramp, rope model, tensioner, drum friction) with
-``dynamics`` = ``"start"`` or ``"stop"`` and ``travel`` = ``"up"`` or ``"down"``, and it can happen
-with the load anywhere on the route: a *case* (:class:`Manoeuvre`) is one manoeuvre with the load at
-one candidate position (:mod:`.positions`: each segment's ends and middle, or the scene's ``x_m``).
-
-The checks through a manoeuvre (:data:`CHECKS`, each ≥ 0 at every instant; docs/physics.md §2, §6):
-
-* rope safety: the rope force at the drum's tangent points against the static check's rope safety,
-  F_min − n_rope·F_C(t) ≥ 0 and the same for F_S(t) (the margin shown as F_min/(n_rope F) − 1);
-* no slip on the drum: the switching functions of the hybrid simulator, slip_fwd = F_S − F_C/ρ(F_S)
-  and slip_back = F_C − F_S/ρ(F_C) ≥ 0 [N] (the transient is the force history itself: no n_slip);
-* unwinding rope taut, F_S(t) − F_S_min ≥ 0, and winding rope taut, F_C(t) − F_S_min ≥ 0 [N], as in
-  static sizing; every element of the rope loop in tension, T_e(t) ≥ 0 [N] (the lumped rope model's
-  validity; the simulator's terminal ``slack`` event);
-* the tensioner within its stroke: stroke − z(t) ≥ 0 and z(t) ≥ 0 [m] (z the take-up, the paper's
-  measure of stroke ΔF, eq. (23)).
+The scene's machine declares its manoeuvres (``Machine.manoeuvres``: a winch's
+:mod:`ropemodel.machines.winch.manoeuvres`): ``ORDER``, the (``dynamics``, ``travel``) of each, and
+``CHECKS``, the checks through them (each ≥ 0 at every instant).  Each manoeuvre is the scene's transient with
+those two effects set, and it can happen with the load anywhere on the route: a *case* (:class:`Manoeuvre`) is
+one manoeuvre with the load at one candidate position (:mod:`.positions`: each segment's ends and middle, or the
+scene's ``x_m``).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import NamedTuple
-from collections.abc import Callable
 
 from optimisation.dynamic.positions import Position, candidates
+from ropemodel.machines.base import ManoeuvreCheck as Check
+from ropemodel.machines.base import needing
 
-ORDER = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
 WORDS = {"up": "upward", "down": "downward"}
 
 
@@ -63,11 +51,16 @@ class Manoeuvre:
         return {"dynamics": self.dynamics, "travel": self.travel, "x_m": self.x_m, "where": self.position.text}
 
 
+def declared(scene):
+    """The manoeuvres ``scene``'s machine declares (``ORDER``, ``CHECKS``, ``CHECK``, ``EVENTS``, ``values``)."""
+    return needing("manoeuvres", scene, "dynamic sizing")
+
+
 def cases(scene) -> list[Manoeuvre]:
-    """Every case of ``scene``: the four manoeuvres in :data:`ORDER`, each with the load at every candidate
+    """Every case of ``scene``: its machine's manoeuvres in their order, each with the load at every candidate
     position (:func:`~optimisation.dynamic.positions.candidates`)."""
     places = candidates(scene)
-    return [Manoeuvre(dynamics, travel, at) for dynamics, travel in ORDER for at in places]
+    return [Manoeuvre(dynamics, travel, at) for dynamics, travel in declared(scene).ORDER for at in places]
 
 
 def manoeuvre_scene(scene, manoeuvre: Manoeuvre, design: dict, optional=()):
@@ -82,42 +75,4 @@ def manoeuvre_scene(scene, manoeuvre: Manoeuvre, design: dict, optional=()):
     return sc.with_values(values)
 
 
-class Check(NamedTuple):
-    """A check through a manoeuvre: ``nlp(o, a)`` the constraint (≥ 0, in ``unit`` — N or m — before
-    scaling), ``margin(o, a)`` the margin shown (its own ``shown`` unit); ``o`` the smooth mode's
-    outputs at the samples, ``a`` the design's and scene's values (F_min, n_rope, F_S_min, stroke)."""
-
-    name: str
-    text: str
-    unit: str
-    shown: str
-    needs: str
-    nlp: Callable
-    margin: Callable
-
-
-def _ratio(force):
-    return lambda o, a: a["F_min"] / (a["n_rope"] * o[force]) - 1
-
-
-CHECKS = (
-    Check("safety_margin", "rope safety F_min/F_C(t) >= n_rope", "N", "1", "F_C",
-          lambda o, a: a["F_min"] - a["n_rope"] * o["F_C"], _ratio("F_C")),
-    Check("safety_margin_S", "rope safety F_min/F_S(t) >= n_rope", "N", "1", "F_S",
-          lambda o, a: a["F_min"] - a["n_rope"] * o["F_S"], _ratio("F_S")),
-    Check("slip_margin_fwd", "no slip, drum ahead: F_S(t) >= F_C(t)/rho", "N", "N", "slip_fwd",
-          lambda o, a: o["slip_fwd"], lambda o, a: o["slip_fwd"]),
-    Check("slip_margin_back", "no slip, rope overruns: F_C(t) >= F_S(t)/rho", "N", "N", "slip_back",
-          lambda o, a: o["slip_back"], lambda o, a: o["slip_back"]),
-    Check("slack_margin", "unwinding rope taut F_S(t) >= F_S_min", "N", "N", "F_S",
-          lambda o, a: o["F_S"] - a["F_S_min"], lambda o, a: o["F_S"] - a["F_S_min"]),
-    Check("taut_margin", "winding rope taut F_C(t) >= F_S_min", "N", "N", "F_C",
-          lambda o, a: o["F_C"] - a["F_S_min"], lambda o, a: o["F_C"] - a["F_S_min"]),
-    Check("tension_margin", "every rope element in tension T(t) >= 0", "N", "N", "T",
-          lambda o, a: o["T"], lambda o, a: o["T"]),
-    Check("stroke_margin", "take-up within the stroke z(t) <= stroke", "m", "m", "take_up",
-          lambda o, a: a["stroke"] - o["take_up"], lambda o, a: a["stroke"] - o["take_up"]),
-    Check("stroke_start_margin", "carriage off its start stop z(t) >= 0", "m", "m", "take_up",
-          lambda o, a: o["take_up"], lambda o, a: o["take_up"]),
-)
-CHECK = {c.name: c for c in CHECKS}
+__all__ = ["Check", "Manoeuvre", "WORDS", "cases", "declared", "manoeuvre_scene"]

@@ -24,7 +24,7 @@ from optimisation.dynamic.manoeuvres import cases, manoeuvre_scene
 from optimisation.dynamic.screen import governing
 from optimisation.dynamic.shooting import Path
 from optimisation.dynamic.transient import transient_scene
-from optimisation.problem import D_OPTIONAL, SIZED, VARIABLES, SizingProblem
+from optimisation.problem import SizingProblem
 from ropemodel.dynamics.assemble import chosen, structural
 
 #: largest step [s] of the first time grid (refinement adds the exact local minima of the checks)
@@ -73,15 +73,15 @@ class DynamicSizingProblem(SizingProblem):
         self._add_paths()
 
     def _path(self, manoeuvre, design, scene=None) -> Path:
-        optional = SIZED + D_OPTIONAL
+        optional = self.variables + self.sizing.D_OPTIONAL
         sc = manoeuvre_scene(scene or self.scene, manoeuvre, design, optional)
         fixed = structural(chosen(sc))
         shared = [k for k in self.params if k in sc.parameters and k not in fixed and k not in FIXED]
-        return Path(manoeuvre, sc, VARIABLES + tuple(shared))
+        return Path(manoeuvre, sc, self.variables + tuple(shared))
 
     def pp_of(self, path, x_si, p):
         """The smooth mode's parameter vector of ``path`` from the design (SI) and the NLP's p."""
-        idx = [self.params.index(k) for k in path.names[len(VARIABLES):]]
+        idx = [self.params.index(k) for k in path.names[len(self.variables):]]
         return ca.vertcat(x_si, *[p[i] for i in idx])
 
     def pp0(self, path, xs=None, p=None) -> np.ndarray:
@@ -94,7 +94,7 @@ class DynamicSizingProblem(SizingProblem):
     def _static_at(self) -> ca.Function:
         x_m = ca.MX.sym("x_m")
         args = {k: self.p[i] for i, k in enumerate(self.params)}
-        args.update({k: self.xs[i] * self.x_scale[i] for i, k in enumerate(VARIABLES)})
+        args.update({k: self.xs[i] * self.x_scale[i] for i, k in enumerate(self.variables)})
         args.update({k: 0.0 for k in self.problem.given})
         out = self.problem.function.call({**args, "x_m": x_m})
         names = [f"{f}_{w}" for f in ("F_C", "F_S") for w in ("up", "down")]
@@ -105,10 +105,8 @@ class DynamicSizingProblem(SizingProblem):
         return {k: float(v) for k, v in self._static_at(x=xs, p=p, x_m=x_m).items()}
 
     def values(self, x_si, p) -> dict:
-        """What the checks read besides the transient: F_min (the catalogue rope's), n_rope, F_S_min, stroke."""
-        xs = x_si / ca.DM(self.x_scale)
-        return {"F_min": self.outputs(x=xs, p=p)["F_min"], "n_rope": p[self.params.index("n_rope")],
-                "F_S_min": p[self.params.index("F_S_min")], "stroke": x_si[2]}
+        """What the checks through the manoeuvres read besides the transient (the machine's ``values``)."""
+        return self.machine.manoeuvres.values(self, x_si, p)
 
     def _add_paths(self) -> None:
         x_si = self.xs * ca.DM(self.x_scale)

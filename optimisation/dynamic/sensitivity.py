@@ -24,7 +24,6 @@ import casadi as ca
 import numpy as np
 
 from optimisation.ipopt import Solution
-from optimisation.problem import VARIABLES
 
 
 def symbolic_params(problem) -> list[str]:
@@ -39,7 +38,7 @@ def sensitivities(problem, sol: Solution, p=None) -> dict[str, dict[str, float]]
     names = symbolic_params(problem)
     idx = [problem.constraints.index(c) for c in sol.active]
     fixed = [i for i, _ in sol.active_bounds]
-    if len(idx) + len(fixed) != len(VARIABLES):
+    if len(idx) + len(fixed) != len(problem.variables):
         from optimisation.sensitivity import sensitivities as kkt
 
         full = kkt(problem, sol, p)      # {} where the optimum is not regular: no number made up
@@ -50,8 +49,8 @@ def sensitivities(problem, sol: Solution, p=None) -> dict[str, dict[str, float]]
     jac = ca.Function("jac_active", [problem.xs, problem.p],
                       [ca.jacobian(active, problem.xs), ca.jacobian(active, problem.p)])
     Jx, Jp = (np.asarray(a) for a in jac(sol.xs, p))
-    E = np.eye(len(VARIABLES))[fixed, :]
+    E = np.eye(len(problem.variables))[fixed, :]
     A = np.vstack([Jx, E]) if fixed else Jx
     rhs = -np.vstack([Jp[:, cols], np.zeros((len(fixed), len(cols)))])
     dx = np.linalg.solve(A, rhs) * problem.x_scale[:, None]
-    return {name: {v: float(dx[i, j]) for i, v in enumerate(VARIABLES)} for j, name in enumerate(names)}
+    return {name: {v: float(dx[i, j]) for i, v in enumerate(problem.variables)} for j, name in enumerate(names)}

@@ -20,15 +20,13 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
-from optimisation.dynamic.manoeuvres import CHECK, manoeuvre_scene
+from optimisation.dynamic.manoeuvres import declared, manoeuvre_scene
 from optimisation.problem import D_OPTIONAL, SIZED
 from ropemodel.dynamics import simulate
 from ropemodel.effects.transient.contact import traction_of
 
 SIM_RTOL = 1e-10
 SIM_DT = 1e-3
-#: events that leave the smooth mode
-EVENTS = ("slip_fwd", "slip_back", "stroke_end", "stroke_start", "slack", "torque_limit")
 
 
 @dataclass
@@ -81,7 +79,7 @@ def verdict(sim, manoeuvre, a: dict, F_ref: float, in_nlp: bool = True) -> Verdi
     h = sim.history
     out = Verdict(manoeuvre.label, manoeuvre.x_m, manoeuvre.where, in_nlp, True)
     for ev in sim.events:
-        if ev.name in EVENTS:
+        if ev.name in declared(sim.scene).EVENTS:     # an event that leaves the smooth mode
             out.failures.append(f"{ev.name} at t = {ev.t:.4f} s")
     smooth = sim.system.smooth_mode()
     for part in sim.system.parts:
@@ -89,7 +87,7 @@ def verdict(sim, manoeuvre, a: dict, F_ref: float, in_nlp: bool = True) -> Verdi
             out.failures.append(f"{part.column} leaves the {smooth[part.effect]} mode")
     t = h["t [s]"].to_numpy()
     o = _series(sim)
-    for c in (c for c in CHECK.values() if c.needs in o):
+    for c in (c for c in declared(sim.scene).CHECKS if c.needs in o):
         name, series = c.name, np.asarray(c.margin(o, a), float).ravel()
         i = int(np.argmin(series))
         out.least[name] = (float(series[i]), float(t[i]))

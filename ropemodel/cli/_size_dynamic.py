@@ -54,8 +54,9 @@ def _transient_lines(design) -> list[str]:
 
 def design_text(design) -> str:
     """The human output of a :class:`~optimisation.dynamic.DynamicDesign` (units stated)."""
-    from optimisation.dynamic.manoeuvres import CHECK
+    from optimisation.dynamic.manoeuvres import declared
 
+    CHECK = declared(design.scene).CHECK
     q = design.scene.built.quantities
     lines = [f"{design.scene.name}: dynamic sizing (start and stop in both directions, verified by simulation)"]
     if design.continuous:

@@ -16,6 +16,7 @@ import math
 
 from ropemodel.cli._common import add_scene_arguments, sizing_scene_from_args
 from ropemodel.errors import InputError
+from ropemodel.machines.base import declared_machine
 from ropemodel.progress import status
 
 NAME = "size"
@@ -63,7 +64,7 @@ def _text(design) -> str:
     if design.continuous:
         lines.append("")
         lines.append(f"{'':<12}{'catalogue':>14}{'continuous':>14}")
-        for k in ("d", "F_nwl", "stroke"):
+        for k in declared_machine(design.scene).sizing.VARIABLES:
             cat = f"{q[k].to_display(design.design[k]):>14.6g}" if design.design else f"{'-':>14}"
             lines.append(f"{k:<12}{cat}{q[k].to_display(design.continuous[k]):>14.6g}  {q[k].display_unit}")
     if design.feasible:
@@ -104,7 +105,7 @@ def main(args) -> int:
         return _size_dynamic.main(scene, args, _num)
     if args.find is not None:
         raise InputError("--find needs --dynamic (size --dynamic --find t_ramp)")
-    with status(f"sizing {scene.name}: rope, pretension and stroke"):
+    with status(f"sizing {scene.name}: {declared_machine(scene).sizing.CHOOSES}"):
         design = size(scene, method=args.discrete or DEFAULT_DISCRETE)
     if args.json:
         print(json.dumps(_num(design.to_dict()), indent=2, allow_nan=False))

@@ -104,7 +104,7 @@ def verdicts(ctx: Context) -> list[str]:
     out = []
     try:
         values = ctx.result.values
-        names = margins_of(ctx.result.outputs)
+        names = margins_of(ctx.result.outputs, ctx.scene)
     except RopeModelError:
         names = []
     if names:

@@ -12,6 +12,7 @@ from datetime import datetime, UTC
 
 from ropemodel.errors import RopeModelError, SolveError
 from ropemodel.scene import Scene, SceneLike
+from ropemodel.machines import machine_of
 
 
 def once(fn):
@@ -35,8 +36,10 @@ def once(fn):
 
 
 def sizes(scene: Scene) -> bool:
-    """True for a scene the report sizes: a winch with a catalogue rope (``rope`` not ``"given"``)."""
-    return scene.model == "winch" and scene.effects.get("rope", "given") != "given"
+    """True for a scene the report sizes: its machine declares a sizing, and the sizing can choose the scene's
+    rope (a winch: a catalogue rope, ``rope`` not ``"given"``)."""
+    sizing = getattr(machine_of(scene), "sizing", None)
+    return sizing is not None and sizing.rope_problem(scene) is None
 
 
 class Context:

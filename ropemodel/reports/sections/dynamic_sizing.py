@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
+from ropemodel.reports.sections.sizing import variables
 from ropemodel.reports.sections.transient import every_parameter
 
 INTRO = """<p>Every design check holds through the start and stop of both directions of travel (four manoeuvres),
@@ -31,7 +32,7 @@ def dynamic_sizing(ctx):
     html = page.fragment(INTRO)
     if design.continuous and design.static:
         rows = [[k, page.show(q[k], design.continuous[k]), page.show(q[k], design.static[k]),
-                 f"{100 * (design.continuous[k] / design.static[k] - 1):+.1f} %"] for k in ("d", "F_nwl", "stroke")]
+                 f"{100 * (design.continuous[k] / design.static[k] - 1):+.1f} %"] for k in variables(design.scene)]
         html += page.table(["design variable", "dynamic optimum", "static optimum", "dynamic vs static"], rows,
                            kinds=["name", "num", "num", "num"], cls="dynamic-design")
     if not design.feasible:
@@ -54,8 +55,9 @@ def dynamic_sizing(ctx):
 def _least_margins(manoeuvres, scene) -> str:
     """Each check's least margin through each manoeuvre (the simulator's history), in the check's own unit,
     with the rule its factor comes from."""
-    from optimisation.dynamic.manoeuvres import CHECK
+    from optimisation.dynamic.manoeuvres import declared
 
+    CHECK = declared(scene).CHECK
     rows = []
     for m in manoeuvres:
         for name, least in m["least_margins"].items():

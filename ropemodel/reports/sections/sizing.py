@@ -7,15 +7,20 @@ from ropemodel.envelope import where_text
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
 from ropemodel.reports.sections.results import checks_html
+from ropemodel.machines.base import declared_machine
 
-INTRO = """<p>The lightest catalogue rope, then the least pretension, then the least stroke, with every design check
-met in both directions of travel (<code>ropemodel size</code>; catalogue diameter by {{ method }}).</p>"""
+INTRO = """<p>{{ objective }} (<code>ropemodel size</code>; catalogue diameter by {{ method }}).</p>"""
 
 
 def design_text(design) -> str:
-    """``d = 38 mm, F_nwl = 43.6 kN, stroke = 4763 mm`` of a feasible design."""
+    """``d = 38 mm, F_nwl = 43.6 kN, stroke = 4763 mm`` of a feasible design (its machine's design variables)."""
     q = design.scene.built.quantities
-    return ", ".join(f"{k} = {q[k].show(design.design[k])}" for k in ("d", "F_nwl", "stroke"))
+    return ", ".join(f"{k} = {q[k].show(design.design[k])}" for k in variables(design.scene))
+
+
+def variables(scene) -> tuple[str, ...]:
+    """The design variables of ``scene``'s machine, in its order."""
+    return declared_machine(scene).sizing.VARIABLES
 
 
 def reads(ctx) -> set[str]:
@@ -29,18 +34,18 @@ def reads(ctx) -> set[str]:
 def sizing(ctx):
     design = ctx.design
     q = design.scene.built.quantities
-    html = page.fragment(INTRO, method=design.method)
+    html = page.fragment(INTRO, method=design.method, objective=declared_machine(ctx.scene).sizing.INTRO)
     if design.continuous:
         rows = [[k, page.show(q[k], design.design[k]) if design.design else "-",
-                 page.show(q[k], design.continuous[k]), q[k].description] for k in ("d", "F_nwl", "stroke")]
+                 page.show(q[k], design.continuous[k]), q[k].description] for k in variables(design.scene)]
         html += page.table(["design variable", "recommended (catalogue)", "continuous optimum", "meaning"], rows,
                            kinds=["name", "num", "num", ""], cls="design")
     if not design.feasible:
         html += page.verdict(False, "No design meets every check.")
         return html + page.fragment("<pre>{{ m }}</pre>", m=design.message)
     html += page.verdict(True, f"Design found: {design_text(design)}.")
-    html += page.fragment("<p>Rounded up to practical steps (F_nwl to 0.1 kN, the stroke to 1 mm where the checks "
-                          "allow); every check holds at the printed values.</p>")
+    html += page.fragment("<p>{{ r }}; every check holds at the printed values.</p>",
+                          r=declared_machine(ctx.scene).sizing.ROUNDED)
     html += page.fragment("<h3>Active constraints</h3><p>What fixes the design (at the recommended design):</p>"
                           "<ul>{% for a in active %}<li><code>{{ a }}</code></li>{% endfor %}</ul>",
                           active=design.active)

@@ -11,6 +11,7 @@ import math
 
 from ropemodel.reports import figures, page
 from ropemodel.reports.registry import section
+from ropemodel.machines import machine_of
 
 #: summary key → (label, unit shown, factor from SI); the braking energy's label comes from the scene's
 #: ``braking`` variant (returned to the supply or dissipated)
@@ -29,9 +30,11 @@ UNITS = ("m/s", "N", "W")
 
 
 def has_trip(ctx) -> bool:
-    """A winch scene about trips that gives the speed and the ramp time (used by its effects or not)."""
+    """A scene of a machine that makes trips (:attr:`ropemodel.machines.Machine.trips`), about trips, that
+    gives the speed and the ramp time (used by its effects or not)."""
     e, given = ctx.scene.effects, {**ctx.scene.parameters, **ctx.scene.unused_values}   # a trip uses v_pj, t_ramp
-    return (ctx.scene.model == "winch" and (e.get("dynamics") == "trip" or e.get("route") == "segments")
+    trips = getattr(machine_of(ctx.scene), "trips", False)
+    return (trips and (e.get("dynamics") == "trip" or e.get("route") == "segments")
             and "v_pj" in given and "t_ramp" in given)
 
 

@@ -1,0 +1,41 @@
+"""The rope haulage winch (``model = "winch"``, Krauze et al. 2025): its declaration for the generic drivers.
+
+Its physics is in :mod:`ropemodel.effects` (``winch*`` modules, the transient's :mod:`ropemodel.effects.transient`).
+Declared here: its checks in report order (:mod:`ropemodel.effects.winch_checks`), its sizing
+(:mod:`.sizing`: d, F_nwl and stroke, least rope mass first), the four manoeuvres of dynamic sizing
+(:mod:`.manoeuvres`), its transient (start-up, braking or a whole trip), that it makes trips
+(:mod:`ropemodel.trips`) and its report sections.  :mod:`.scenes` makes random sizing scenes for the studies.
+"""
+
+from __future__ import annotations
+
+from ropemodel.effects.transient.base import MODEL
+from ropemodel.effects.transient.profile import Profile
+from ropemodel.effects.winch_checks import CHECKS, margin_names
+from ropemodel.machines.base import Machine, Transient, register
+from ropemodel.machines.winch import manoeuvres, sizing
+
+
+def _scale(setup) -> tuple[float, float]:
+    """The switching functions' scales: the drive's speed [m/s] and the winding rope's static force of the
+    transient's direction [N]."""
+    return max(float(setup.numbers["v_pj"]), 1e-6), max(abs(float(setup.numbers[f"F_C_{setup.travel}"])), 1.0)
+
+
+def _length(system) -> float:
+    """The rope's static stretch over the route, L_u q_lw f_scale [m]: the length the states are measured in."""
+    nums = system.setup.numbers
+    return nums["L_u"] * nums["q_lw"] * system.setup.f_scale
+
+
+MACHINE = register(Machine(
+    model=MODEL,
+    title="rope haulage winch",
+    checks=margin_names,
+    sizing=sizing,
+    manoeuvres=manoeuvres,
+    transient=Transient(profile=Profile, result=None, scale=_scale, length=_length),
+    trips=True,
+    sections=("sizing", "transient", "trip", "dynamic_sizing"),
+    check_text={base: text for base, text, _ in CHECKS},
+))

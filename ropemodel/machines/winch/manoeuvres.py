@@ -1,0 +1,66 @@
+"""The four manoeuvres a winch is sized through, and the checks made through them.
+
+A winch starts and stops in both directions: upward start, upward stop, downward start, downward
+stop.  Each manoeuvre is the scene's transient (its ramp, rope model, tensioner, drum friction) with
+``dynamics`` = ``"start"`` or ``"stop"`` and ``travel`` = ``"up"`` or ``"down"``, with the load at every
+candidate position (:mod:`optimisation.dynamic.positions`).
+
+The checks through a manoeuvre (:data:`CHECKS`, each ≥ 0 at every instant; docs/physics.md §2, §6):
+
+* rope safety: the rope force at the drum's tangent points against the static check's rope safety,
+  F_min − n_rope·F_C(t) ≥ 0 and the same for F_S(t) (the margin shown as F_min/(n_rope F) − 1);
+* no slip on the drum: the switching functions of the hybrid simulator, slip_fwd = F_S − F_C/ρ(F_S)
+  and slip_back = F_C − F_S/ρ(F_C) ≥ 0 [N] (the transient is the force history itself: no n_slip);
+* unwinding rope taut, F_S(t) − F_S_min ≥ 0, and winding rope taut, F_C(t) − F_S_min ≥ 0 [N], as in
+  static sizing; every element of the rope loop in tension, T_e(t) ≥ 0 [N] (the lumped rope model's
+  validity; the simulator's terminal ``slack`` event);
+* the tensioner within its stroke: stroke − z(t) ≥ 0 and z(t) ≥ 0 [m] (z the take-up, the paper's
+  measure of stroke ΔF, eq. (23)).
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+
+from ropemodel.machines.base import ManoeuvreCheck as Check
+
+#: (dynamics, travel) of each manoeuvre, in the order they are reported
+ORDER = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
+#: the simulator's events that leave the smooth mode
+EVENTS = ("slip_fwd", "slip_back", "stroke_end", "stroke_start", "slack", "torque_limit")
+#: what ``size --dynamic`` does, in words
+OBJECTIVE = "rope, pretension and stroke through four manoeuvres"
+
+
+def _ratio(force):
+    return lambda o, a: a["F_min"] / (a["n_rope"] * o[force]) - 1
+
+
+CHECKS = (
+    Check("safety_margin", "rope safety F_min/F_C(t) >= n_rope", "N", "1", "F_C",
+          lambda o, a: a["F_min"] - a["n_rope"] * o["F_C"], _ratio("F_C")),
+    Check("safety_margin_S", "rope safety F_min/F_S(t) >= n_rope", "N", "1", "F_S",
+          lambda o, a: a["F_min"] - a["n_rope"] * o["F_S"], _ratio("F_S")),
+    Check("slip_margin_fwd", "no slip, drum ahead: F_S(t) >= F_C(t)/rho", "N", "N", "slip_fwd",
+          lambda o, a: o["slip_fwd"], lambda o, a: o["slip_fwd"]),
+    Check("slip_margin_back", "no slip, rope overruns: F_C(t) >= F_S(t)/rho", "N", "N", "slip_back",
+          lambda o, a: o["slip_back"], lambda o, a: o["slip_back"]),
+    Check("slack_margin", "unwinding rope taut F_S(t) >= F_S_min", "N", "N", "F_S",
+          lambda o, a: o["F_S"] - a["F_S_min"], lambda o, a: o["F_S"] - a["F_S_min"]),
+    Check("taut_margin", "winding rope taut F_C(t) >= F_S_min", "N", "N", "F_C",
+          lambda o, a: o["F_C"] - a["F_S_min"], lambda o, a: o["F_C"] - a["F_S_min"]),
+    Check("tension_margin", "every rope element in tension T(t) >= 0", "N", "N", "T",
+          lambda o, a: o["T"], lambda o, a: o["T"]),
+    Check("stroke_margin", "take-up within the stroke z(t) <= stroke", "m", "m", "take_up",
+          lambda o, a: a["stroke"] - o["take_up"], lambda o, a: a["stroke"] - o["take_up"]),
+    Check("stroke_start_margin", "carriage off its start stop z(t) >= 0", "m", "m", "take_up",
+          lambda o, a: o["take_up"], lambda o, a: o["take_up"]),
+)
+CHECK = {c.name: c for c in CHECKS}
+
+
+def values(problem, x_si, p) -> dict:
+    """What the checks read besides the transient: F_min (the catalogue rope's), n_rope, F_S_min, stroke."""
+    xs = x_si / ca.DM(problem.x_scale)
+    return {"F_min": problem.outputs(x=xs, p=p)["F_min"], "n_rope": p[problem.params.index("n_rope")],
+            "F_S_min": p[problem.params.index("F_S_min")], "stroke": x_si[2]}
