@@ -10,33 +10,11 @@ becomes a constraint ``margin >= 0`` (in the form the declaration gives, ``nlp_f
 in every load case the scene leaves open: every place of the load on a route, and with the ramps' inertia
 every manoeuvre (steady motion, a start and a stop anywhere, an emergency stop; :mod:`ropemodel.envelope`).
 
-The winch's objective, for instance (:mod:`ropemodel.machines.winch.sizing`) — the lexicographic order
-"least rope mass per metre, then least
-pretension, then least stroke" encoded as a weighted sum with scale separation::
-
-    J = m_l / m_ref  +  w_F · F_nwl / F_ref  +  w_s · stroke / s_ref,   w_F = w_s = 1e-3
-
-Why a weighted sum gives the lexicographic optimum exactly (not approximately):
-
-1. ``stroke`` appears only in its own constraints ``stroke >= ΔF_d``, so for any
-   w_s > 0 the optimum has stroke = max_d ΔF_d(d, F_nwl): the third objective
-   is met exactly at every (d, F_nwl).
-2. In (d, F_nwl) the least-mass design is a vertex: the least F_nwl for traction
-   and slack rises (or falls slowly) with d, the most F_nwl the safety check
-   allows rises fast with d; the least feasible d is where they meet (or a bound
-   of d).  A vertex stays optimal for every objective whose gradient lies in the
-   cone of the active constraint normals; the primary gradient ∂m_l/∂d lies
-   strictly inside it, and the secondary terms tilt the gradient by w_F·F_ref⁻¹·
-   ∂F_lo/∂d and w_s·∂ΔF/∂d relative to ∂(m_l/m_ref)/∂d.  For haulage ropes these
-   ratios are <= ~1 (∂F_lo/∂d ≈ −4 L_u sin α_u g W d; ∂ΔF/∂d ≈ −2ΔF/d with ΔF of
-   order 1 m), so weights of 1e-3 leave a margin of ~1000 before the order
-   could flip.  At the vertex the optimum is then fixed by the active
-   constraints alone: the weights change the multipliers, not the design.
-   The tests check this against an independent one-dimensional search, and
-   :func:`optimisation.ipopt.solve_continuous` verifies it on every solve (the
-   multipliers of the primary objective alone stay >= 0, see ``lexicographic_ok``).
-3. When d sits at a bound, F_nwl is pushed to its least feasible value by w_F > 0,
-   again exactly (a bound, active constraints).
+Objective: the declaration's primary output (``PRIMARY``) over its value at x = 1, plus the other variables
+(scaled) weighted far below it (``WEIGHTS``): a lexicographic order encoded as a weighted sum with scale
+separation (a winch's: least rope mass per metre, then least pretension, then least stroke; why that weighted
+sum gives the lexicographic optimum exactly, :mod:`ropemodel.machines.winch.sizing`).
+:func:`optimisation.ipopt.solve_continuous` verifies the order on every solve (``lexicographic_ok``).
 
 Scaling: x is solved in the units the declaration gives (``x_scale``), with F_ref its force scale; margins
 in N are divided by F_ref, margins in m are taken in m, ratio margins as they are.
@@ -192,7 +170,9 @@ class SizingProblem:
         m_at = ca.Function("m", [xs, p], [out[sizing.PRIMARY]])
         self.m_ref = float(m_at(ca.DM.ones(n), self.p0))
         self.f_primary = out[sizing.PRIMARY] / self.m_ref
-        self.f = self.f_primary + sum(w * xs[1 + i] for i, w in enumerate(sizing.WEIGHTS))
+        self.f = self.f_primary
+        for i, w in enumerate(sizing.WEIGHTS):       # the others in order, far below the primary
+            self.f = self.f + w * xs[1 + i]
         self.output_names = list(self.problem.unknowns)
         self.outputs = ca.Function("outputs", [xs, p], [out[n] for n in self.output_names],
                                    ["x", "p"], self.output_names)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 
+from ropemodel.machines.base import declared_machine
 from ropemodel.progress import status
 
 #: what ``--find`` can ask for with ``--dynamic``
@@ -61,7 +62,7 @@ def design_text(design) -> str:
     lines = [f"{design.scene.name}: dynamic sizing (start and stop in both directions, verified by simulation)"]
     if design.continuous:
         lines += ["", f"{'':<12}{'catalogue':>14}{'continuous':>14}{'static':>14}"]
-        for k in ("d", "F_nwl", "stroke"):
+        for k in declared_machine(design.scene).sizing.VARIABLES:
             lines.append(_row(k, [design.design[k] if design.design else None, design.continuous[k],
                                   (design.static or {}).get(k)], q))
     if design.feasible:
@@ -101,6 +102,7 @@ def ramp_text(scene, answer) -> str:
 def main(scene, args, to_json) -> int:
     """Run ``size --dynamic`` on the prepared ``scene``; ``to_json`` turns a dict into JSON-safe numbers."""
     from optimisation.dynamic import size_dynamic
+    from optimisation.dynamic.manoeuvres import declared
     from optimisation.dynamic.ramp import shortest_ramp
     from ropemodel.errors import InputError
 
@@ -115,7 +117,7 @@ def main(scene, args, to_json) -> int:
         print(json.dumps(to_json(answer.to_dict()), indent=2, allow_nan=False) if args.json
               else ramp_text(scene, answer))
         return 0
-    with status(f"dynamic sizing {scene.name}: rope, pretension and stroke through four manoeuvres") as line:
+    with status(f"dynamic sizing {scene.name}: {declared(scene).OBJECTIVE}") as line:
         design = size_dynamic(scene, with_sensitivities=True,
                               progress=lambda step: line.update(f"dynamic sizing {scene.name}: {step}"))
     print(json.dumps(to_json(design.to_dict()), indent=2, allow_nan=False) if args.json else design_text(design))

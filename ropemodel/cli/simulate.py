@@ -4,11 +4,10 @@ from __future__ import annotations
 
 from ropemodel.cli._common import add_scene_arguments, scene_from_args
 from ropemodel.errors import InputError
+from ropemodel.machines.base import machines
 
 NAME = "simulate"
-HELP = ("simulate the start-up or braking of a winch scene, or a whole trip (dynamics = \"start\", \"stop\" "
-        "or \"trip\"); the braking or start of a Koepe hoist with elastic ropes (dynamics = \"braking\" or "
-        "\"start\")")
+HELP = "simulate " + "; ".join(m.transient.text for m in machines() if m.transient)
 
 
 def add_arguments(parser) -> None:

@@ -16,11 +16,11 @@ import math
 
 from ropemodel.cli._common import add_scene_arguments, sizing_scene_from_args
 from ropemodel.errors import InputError
-from ropemodel.machines.base import declared_machine
+from ropemodel.machines.base import declared_machine, machines
 from ropemodel.progress import status
 
 NAME = "size"
-HELP = "size the winch: least rope d, then least pretension F_nwl, then least stroke, every check met"
+HELP = "size the machine: " + "; ".join(f"{m.title}: {m.sizing.OBJECTIVE}" for m in machines() if m.sizing)
 
 
 def add_arguments(parser) -> None:
@@ -52,7 +52,7 @@ def _rope_lines(design, q) -> list[str]:
     variant = design.scene.effects.get("elongation")
     if variant:
         spec = REGISTRY[design.scene.built.name]["elongation"].variants[variant]
-        lines.append(f"stroke from elongation = \"{variant}\": {spec.description}")
+        lines.append(f"{declared_machine(design.scene).sizing.ELONGATION} = \"{variant}\": {spec.description}")
     return lines
 
 

@@ -34,6 +34,11 @@ class Transient:
     #: set the scales before the variants bind to the setup (they read them), not after (they set what
     #: the scales are taken from)
     before_bind: bool = False
+    #: what it simulates, in words (``ropemodel simulate``'s help)
+    text: str = ""
+    #: the report's note on a transient with an inextensible rope (a Jinja2 template of ``r``, the rope's
+    #: variant, and ``trip``, where else the report shows the rope's stretch)
+    rigid_note: str = ""
 
 
 @dataclass(frozen=True)
@@ -45,7 +50,7 @@ class Machine:
     ``sizing``: its sizing declaration (what :mod:`optimisation` chooses, minimises and keeps), or None;
     ``manoeuvres``: what dynamic sizing takes it through (:mod:`optimisation.dynamic`), or None;
     ``transient``: how its transient is simulated (:class:`Transient`), or None;
-    ``trips``: whether it makes trips along a route (:mod:`ropemodel.trips`);
+    ``trips``: what its trips along a route take from it (:mod:`ropemodel.trips`), or None;
     ``sections``: the report sections its scenes may show (names of :mod:`ropemodel.reports` sections);
     ``check_text``: each check in words.
     """
@@ -56,8 +61,10 @@ class Machine:
     sizing: Any = None
     manoeuvres: Any = None
     transient: Transient | None = None
-    trips: bool = False
+    trips: Any = None
     sections: tuple[str, ...] = ()
+    #: the submodel classes of a rope chosen from a catalogue (what the report derives from it, its designation)
+    ropes: tuple[type, ...] = ()
     #: check (a margin's base name) → what it checks, in words (the report's table of checks)
     check_text: dict[str, str] = field(default_factory=dict)
 
@@ -89,6 +96,18 @@ def declared_machine(scene) -> Machine:
     if machine is None:
         raise InputError(f"model {scene.model!r} is not a machine: one of " + ", ".join(map(repr, MACHINES)))
     return machine
+
+
+def machines() -> list[Machine]:
+    """Every machine, the default first, then by model name (the order help texts list them in)."""
+    first = MACHINES[DEFAULT_MODEL]
+    return [first, *(MACHINES[m] for m in sorted(MACHINES) if m != DEFAULT_MODEL)]
+
+
+def design_words() -> str:
+    """The design sizing chooses, machine by machine, in words (``"d, F_nwl, stroke for a rope haulage
+    winch"``): what a help text names where no scene is read yet."""
+    return "; ".join(f"{', '.join(m.sizing.VARIABLES)} for a {m.title}" for m in machines() if m.sizing)
 
 
 def default() -> Machine:

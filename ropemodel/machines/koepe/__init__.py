@@ -34,6 +34,8 @@ MACHINE = register(Machine(
     title="Koepe friction hoist",
     checks=model_order,
     transient=Transient(profile=KoepeProfile, result=KoepeSimulation, scale=_scale, length=_length,
-                        numbers=_numbers, before_bind=True),
-    sections=("transient",),
+                        numbers=_numbers, before_bind=True,
+                        text='the braking or start of a Koepe hoist with elastic ropes (dynamics = "braking" or '
+                             '"start")'),
+    sections=("koepe_transient",),
 ))

@@ -3,8 +3,8 @@
 Its physics is in :mod:`ropemodel.effects` (``winch*`` modules, the transient's :mod:`ropemodel.effects.transient`).
 Declared here: its checks in report order (:mod:`ropemodel.effects.winch_checks`), its sizing
 (:mod:`.sizing`: d, F_nwl and stroke, least rope mass first), the four manoeuvres of dynamic sizing
-(:mod:`.manoeuvres`), its transient (start-up, braking or a whole trip), that it makes trips
-(:mod:`ropemodel.trips`) and its report sections.  :mod:`.scenes` makes random sizing scenes for the studies.
+(:mod:`.manoeuvres`), its transient (start-up, braking or a whole trip), what its trips take from it
+(:mod:`.trips`) and its report sections.  :mod:`.scenes` makes random sizing scenes for the studies.
 """
 
 from __future__ import annotations
@@ -12,8 +12,9 @@ from __future__ import annotations
 from ropemodel.effects.transient.base import MODEL
 from ropemodel.effects.transient.profile import Profile
 from ropemodel.effects.winch_checks import CHECKS, margin_names
+from ropemodel.effects.winch_rope import RopeCatalogue
 from ropemodel.machines.base import Machine, Transient, register
-from ropemodel.machines.winch import manoeuvres, sizing
+from ropemodel.machines.winch import manoeuvres, sizing, trips
 
 
 def _scale(setup) -> tuple[float, float]:
@@ -28,14 +29,25 @@ def _length(system) -> float:
     return nums["L_u"] * nums["q_lw"] * system.setup.f_scale
 
 
+#: the report's note on a transient with an inextensible rope (``rope_elasticity = "rigid"``)
+RIGID = ('<p class="note">rope_elasticity = "{{ r }}": an inextensible rope has no elongation, so the tensioner '
+         "does not move in this transient and the take-up is not shown; the stroke the rope needs is eq. (23)'s "
+         '(under "Results"{{ trip }}). The dynamic factor is the rigid-body inertia of the ramp alone (no rope '
+         "oscillation).</p>")
+
+
 MACHINE = register(Machine(
     model=MODEL,
     title="rope haulage winch",
     checks=margin_names,
     sizing=sizing,
     manoeuvres=manoeuvres,
-    transient=Transient(profile=Profile, result=None, scale=_scale, length=_length),
-    trips=True,
+    transient=Transient(profile=Profile, result=None, scale=_scale, length=_length,
+                        text='the start-up or braking of a winch scene, or a whole trip (dynamics = "start", "stop" '
+                             'or "trip")',
+                        rigid_note=RIGID),
+    trips=trips,
     sections=("sizing", "transient", "trip", "dynamic_sizing"),
+    ropes=(RopeCatalogue,),
     check_text={base: text for base, text, _ in CHECKS},
 ))

@@ -1,10 +1,34 @@
 """What sizing chooses for a winch, what it minimises and how it keeps every check (Krauze et al. 2025).
 
 Decision variables (SI): the rope diameter ``d`` [m], the tensioner pretension ``F_nwl`` [N] and the installed
-stroke ``stroke`` [m].  The generic driver (:class:`optimisation.problem.SizingProblem`) reads this declaration;
-its docstring gives why the weighted objective below is the lexicographic optimum exactly::
+stroke ``stroke`` [m].  The generic driver (:class:`optimisation.problem.SizingProblem`) reads this declaration.
+
+Objective — the lexicographic order "least rope mass per metre, then least pretension, then least stroke"
+encoded as a weighted sum with scale separation::
 
     J = m_l / m_ref  +  w_F · F_nwl / F_ref  +  w_s · stroke / s_ref,   w_F = w_s = 1e-3
+
+Why a weighted sum gives the lexicographic optimum exactly (not approximately):
+
+1. ``stroke`` appears only in its own constraints ``stroke >= ΔF_d``, so for any
+   w_s > 0 the optimum has stroke = max_d ΔF_d(d, F_nwl): the third objective
+   is met exactly at every (d, F_nwl).
+2. In (d, F_nwl) the least-mass design is a vertex: the least F_nwl for traction
+   and slack rises (or falls slowly) with d, the most F_nwl the safety check
+   allows rises fast with d; the least feasible d is where they meet (or a bound
+   of d).  A vertex stays optimal for every objective whose gradient lies in the
+   cone of the active constraint normals; the primary gradient ∂m_l/∂d lies
+   strictly inside it, and the secondary terms tilt the gradient by w_F·F_ref⁻¹·
+   ∂F_lo/∂d and w_s·∂ΔF/∂d relative to ∂(m_l/m_ref)/∂d.  For haulage ropes these
+   ratios are <= ~1 (∂F_lo/∂d ≈ −4 L_u sin α_u g W d; ∂ΔF/∂d ≈ −2ΔF/d with ΔF of
+   order 1 m), so weights of 1e-3 leave a margin of ~1000 before the order
+   could flip.  At the vertex the optimum is then fixed by the active
+   constraints alone: the weights change the multipliers, not the design.
+   The tests check this against an independent one-dimensional search, and
+   :func:`optimisation.ipopt.solve_continuous` verifies it on every solve (the
+   multipliers of the primary objective alone stay >= 0, see ``lexicographic_ok``).
+3. When d sits at a bound, F_nwl is pushed to its least feasible value by w_F > 0,
+   again exactly (a bound, active constraints).
 
 Scaling: x is solved in units of (10 mm, F_ref, 1 m) with F_ref = 0.1·G_m; margins in N are divided by F_ref,
 margins in m are taken in m, ratio margins as they are.
@@ -46,6 +70,10 @@ CHOOSES = "rope, pretension and stroke"
 OBJECTIVE = "least rope d, then least pretension F_nwl, then least stroke, every check met"
 INTRO = ("The lightest catalogue rope, then the least pretension, then the least stroke, with every design check\n"
          "met in both directions of travel")
+#: what the rope's elongation variant sets (``ropemodel size``'s line on it)
+ELONGATION = "stroke from elongation"
+#: what a scene the report sizes is (a Jinja2 template of ``scene``)
+SCENE_TEXT = 'a winch with a catalogue rope (rope = "{{ scene.effects.rope }}")'
 ROUNDED = "Rounded up to practical steps (F_nwl to 0.1 kN, the stroke to 1 mm where the checks allow)"
 
 
