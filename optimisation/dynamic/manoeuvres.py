@@ -13,7 +13,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from optimisation.dynamic.positions import Position, candidates
-from ropemodel.machines.base import ManoeuvreCheck as Check
 from ropemodel.machines.base import needing
 
 WORDS = {"up": "upward", "down": "downward"}
@@ -64,15 +63,12 @@ def cases(scene) -> list[Manoeuvre]:
 
 
 def manoeuvre_scene(scene, manoeuvre: Manoeuvre, design: dict, optional=()):
-    """The scene of one case at the SI ``design`` (d, F_nwl, stroke: numbers for the transient's
-    structure and scales; the NLP makes them symbols)."""
+    """The scene of one case at the SI ``design`` (numbers for the transient's structure and scales; the NLP
+    makes them symbols), with what the machine fills in where the scene leaves a dimension out
+    (its manoeuvres' ``completed``)."""
     # t_end: when dynamic sizing chose it, it is an override of the file, set again by with_effects
     sc = scene.with_effects({"dynamics": manoeuvre.dynamics, "travel": manoeuvre.travel},
                             optional=(*optional, "t_end"))
     values = {"x_m": manoeuvre.x_m, **design}
-    if "D" in sc.absent:        # a rigid drum without a diameter: the traction does not depend on it
-        values["D"] = 40.0 * design["d"]
+    values.update(declared(sc).completed(sc, design))
     return sc.with_values(values)
-
-
-__all__ = ["Check", "Manoeuvre", "WORDS", "cases", "declared", "manoeuvre_scene"]

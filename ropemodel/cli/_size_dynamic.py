@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 
-from ropemodel.machines.base import declared_machine
 from ropemodel.progress import status
 
 #: what ``--find`` can ask for with ``--dynamic``
@@ -56,6 +55,7 @@ def _transient_lines(design) -> list[str]:
 def design_text(design) -> str:
     """The human output of a :class:`~optimisation.dynamic.DynamicDesign` (units stated)."""
     from optimisation.dynamic.manoeuvres import declared
+    from ropemodel.machines.base import declared_machine
 
     CHECK = declared(design.scene).CHECK
     q = design.scene.built.quantities

@@ -16,7 +16,6 @@ from ropemodel.cli._common import (add_at_argument, add_scene_arguments, name_li
                                    sizing_scene_from_args, warn_unread, worst_case_scene)
 from ropemodel.errors import InputError
 from ropemodel.progress import status
-from ropemodel.machines.base import design_words
 
 NAME = "sensitivity"
 HELP = "which inputs matter: elasticities d ln y / d ln p (AD), or Sobol indices over ranges"
@@ -36,7 +35,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--seed", type=int, default=None, help="seed of the Sobol sequence scrambling, 0 to 2**32 - 1")
     add_at_argument(parser)
     parser.add_argument("--sizing", action="store_true",
-                        help=f"Sobol indices of the sizing optimum ({design_words()}) instead of the outputs")
+                        help="Sobol indices of the sizing optimum (the design the scene's machine declares) instead "
+                             "of the outputs")
 
 
 def _num(v):
@@ -59,6 +59,8 @@ def main(args) -> int:
             raise InputError("--parameters chooses the inputs of elasticities; with --sobol the inputs are the "
                              "--sobol ranges: leave --parameters out")
         if args.sizing and outputs:
+            from ropemodel.machines.base import design_words
+
             raise InputError(f"--sizing analyses the design ({design_words()}); it takes no --outputs")
         args.samples = 1024 if args.samples is None else args.samples
         args.seed = 0 if args.seed is None else args.seed

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from ropemodel.cli._common import add_scene_arguments, scene_from_args
 from ropemodel.errors import InputError
-from ropemodel.machines.base import machines
 
 NAME = "simulate"
-HELP = "simulate " + "; ".join(m.transient.text for m in machines() if m.transient)
+HELP = ("simulate the transient the scene's dynamics effect chooses: a start-up, a stop or a braking (with elastic "
+        "ropes where the scene's machine has them), or a whole trip")
 
 
 def add_arguments(parser) -> None:

@@ -16,11 +16,11 @@ import math
 
 from ropemodel.cli._common import add_scene_arguments, sizing_scene_from_args
 from ropemodel.errors import InputError
-from ropemodel.machines.base import declared_machine, machines
 from ropemodel.progress import status
 
 NAME = "size"
-HELP = "size the machine: " + "; ".join(f"{m.title}: {m.sizing.OBJECTIVE}" for m in machines() if m.sizing)
+HELP = ("size the scene's machine: the lightest rope, then the rest of the design its machine declares, every check "
+        "met")
 
 
 def add_arguments(parser) -> None:
@@ -47,6 +47,7 @@ def _num(v):
 def _rope_lines(design, q) -> list[str]:
     """The rope's EA and q_lw at the design and the elongation method the stroke comes from."""
     from ropemodel.effects import REGISTRY
+    from ropemodel.machines.base import declared_machine
 
     lines = [f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}" for k, v in design.rope.items()]
     variant = design.scene.effects.get("elongation")
@@ -58,6 +59,7 @@ def _rope_lines(design, q) -> list[str]:
 
 def _text(design) -> str:
     from ropemodel.envelope import where_text
+    from ropemodel.machines.base import declared_machine
 
     q = design.scene.built.quantities
     lines = [f"{design.scene.name}: sizing"]
@@ -97,6 +99,7 @@ def _text(design) -> str:
 
 def main(args) -> int:
     from optimisation.design import DEFAULT_DISCRETE, size
+    from ropemodel.machines.base import declared_machine
 
     scene = sizing_scene_from_args(args, dynamic=None)
     if args.dynamic or scene.numerics.get("sizing") == "dynamic":

@@ -18,7 +18,6 @@ from typing import cast
 from ropemodel.cli._common import (add_scene_arguments, assignments, name_list, named, refuse_without, scene_from_args,
                                    sizing_scene_from_args, warn_unread)
 from ropemodel.errors import InputError, Problems
-from ropemodel.machines.base import design_words
 
 NAME = "sweep"
 HELP = "evaluate a scene over grids or a table of points; write CSV or Parquet (resumable)"
@@ -48,7 +47,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--restart", action="store_true",
                         help="discard an unfinished sweep instead of resuming, or recompute a finished one")
     parser.add_argument("--sizing", action="store_true",
-                        help=f"at every point, the sizing optimum ({design_words()}) instead of the outputs; "
+                        help="at every point, the sizing optimum (the design the scene's machine declares) instead of "
+                             "the outputs; "
                              "each optimisation warm-starts from its neighbour (not resumable)")
     parser.add_argument("--cold", action="store_true", help="with --sizing: no warm start")
     parser.add_argument("--dynamic", action="store_true",
@@ -145,6 +145,8 @@ def _sizing(vary, points, args) -> int:
     from ropemodel.sweeps.files import OutputLock, check_output, write_frame
 
     if args.given or args.find or args.outputs:
+        from ropemodel.machines.base import design_words
+
         raise InputError(f"--sizing computes the design ({design_words()}); it takes no --given, --find or "
                          "--outputs")
     for flag in ("chunk_size", "threads", "backend", "si", "mark_failures", "restart"):

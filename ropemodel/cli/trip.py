@@ -4,12 +4,11 @@ from __future__ import annotations
 
 from ropemodel.cli._common import add_scene_arguments, scene_from_args, warn, warn_unread
 from ropemodel.errors import InputError
-from ropemodel.machines.base import machines
 
 NAME = "trip"
 HELP = ("a whole trip along the route: forces, drive power (> 0 motoring, < 0 braking), energy drawn while "
-        "motoring and returned (or dissipated) while braking, RMS power"
-        + "".join(f", {m.trips.TEXT}" for m in machines() if m.trips))
+        "motoring and returned (or dissipated) while braking, RMS power, and what the scene's machine adds (the "
+        "tensioner's travel needed)")
 
 
 def add_arguments(parser) -> None:

@@ -34,8 +34,6 @@ class Transient:
     #: set the scales before the variants bind to the setup (they read them), not after (they set what
     #: the scales are taken from)
     before_bind: bool = False
-    #: what it simulates, in words (``ropemodel simulate``'s help)
-    text: str = ""
     #: the report's note on a transient with an inextensible rope (a Jinja2 template of ``r``, the rope's
     #: variant, and ``trip``, where else the report shows the rope's stretch)
     rigid_note: str = ""

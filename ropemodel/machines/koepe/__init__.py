@@ -34,8 +34,6 @@ MACHINE = register(Machine(
     title="Koepe friction hoist",
     checks=model_order,
     transient=Transient(profile=KoepeProfile, result=KoepeSimulation, scale=_scale, length=_length,
-                        numbers=_numbers, before_bind=True,
-                        text='the braking or start of a Koepe hoist with elastic ropes (dynamics = "braking" or '
-                             '"start")'),
+                        numbers=_numbers, before_bind=True),
     sections=("koepe_transient",),
 ))

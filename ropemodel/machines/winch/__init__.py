@@ -42,10 +42,7 @@ MACHINE = register(Machine(
     checks=margin_names,
     sizing=sizing,
     manoeuvres=manoeuvres,
-    transient=Transient(profile=Profile, result=None, scale=_scale, length=_length,
-                        text='the start-up or braking of a winch scene, or a whole trip (dynamics = "start", "stop" '
-                             'or "trip")',
-                        rigid_note=RIGID),
+    transient=Transient(profile=Profile, result=None, scale=_scale, length=_length, rigid_note=RIGID),
     trips=trips,
     sections=("sizing", "transient", "trip", "dynamic_sizing"),
     ropes=(RopeCatalogue,),

@@ -59,6 +59,12 @@ CHECKS = (
 CHECK = {c.name: c for c in CHECKS}
 
 
+def completed(scene, design: dict) -> dict:
+    """What a manoeuvre's scene needs that the scene leaves out: a rigid drum without a diameter, 40 d (its
+    traction does not depend on it)."""
+    return {"D": 40.0 * design["d"]} if "D" in scene.absent else {}
+
+
 def values(problem, x_si, p) -> dict:
     """What the checks read besides the transient: F_min (the catalogue rope's), n_rope, F_S_min, stroke."""
     xs = x_si / ca.DM(problem.x_scale)

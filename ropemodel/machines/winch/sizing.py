@@ -66,8 +66,7 @@ NOT_LEXICOGRAPHIC = ("; warning: the rope mass alone is not optimal at this desi
                      "weight outweighed it): check the lexicographic order")
 #: what sizing chooses, in words (``ropemodel size``'s status line)
 CHOOSES = "rope, pretension and stroke"
-#: what sizing does, in words (``ropemodel size``'s help; the report's sizing section, and its rounding)
-OBJECTIVE = "least rope d, then least pretension F_nwl, then least stroke, every check met"
+#: what sizing does, in words (the report's sizing section, and its rounding)
 INTRO = ("The lightest catalogue rope, then the least pretension, then the least stroke, with every design check\n"
          "met in both directions of travel")
 #: what the rope's elongation variant sets (``ropemodel size``'s line on it)

@@ -13,8 +13,6 @@ import numpy as np
 
 from ropemodel.effects.winch_route import segment_lengths
 
-#: what a winch's trip adds, in words (``ropemodel trip``'s help)
-TEXT = "stroke needed"
 #: summary keys a winch's trip adds → unit (the largest take-up over the trip: the stroke needed)
 SUMMARY = {"stroke_needed": "m"}
 #: the same keys as the report shows them: (label, unit shown, factor from SI)
