@@ -1,8 +1,9 @@
 """A machine's declaration (:class:`Machine`) and the registry the generic drivers read it from.
 
-Each part of a declaration is optional: a machine without ``sizing`` cannot be sized (``ropemodel size`` says
-so), one without ``transient`` has no transient.  The drivers never ask
-which machine a scene is; they ask its declaration (:func:`machine_of`).
+Each part of a declaration but its checks is optional: a machine without ``sizing`` cannot be sized
+(``ropemodel size`` says so, naming the machines that can), one without ``transient`` has no transient, one
+without ``trips`` makes no trips.  The drivers never ask which machine a scene is; they ask its declaration
+(:func:`machine_of`, :func:`needing`).
 """
 
 from __future__ import annotations
@@ -92,19 +93,20 @@ def declared_machine(scene) -> Machine:
     """The declaration of ``scene``'s machine; :class:`InputError` for a model that declares none."""
     machine = machine_of(scene)
     if machine is None:
-        raise InputError(f"model {scene.model!r} is not a machine: one of " + ", ".join(map(repr, MACHINES)))
+        raise InputError(f"model {scene.model!r} is not a machine: one of "
+                         + ", ".join(repr(m.model) for m in machines()))
     return machine
 
 
 def machines() -> list[Machine]:
-    """Every machine, the default first, then by model name (the order help texts list them in)."""
+    """Every machine, the default first, then by model name (the order messages list them in)."""
     first = MACHINES[DEFAULT_MODEL]
     return [first, *(MACHINES[m] for m in sorted(MACHINES) if m != DEFAULT_MODEL)]
 
 
 def design_words() -> str:
     """The design sizing chooses, machine by machine, in words (``"d, F_nwl, stroke for a rope haulage
-    winch"``): what a help text names where no scene is read yet."""
+    winch"``): what a message names where no scene is read yet."""
     return "; ".join(f"{', '.join(m.sizing.VARIABLES)} for a {m.title}" for m in machines() if m.sizing)
 
 
@@ -119,7 +121,7 @@ def needing(part: str, scene, what: str):
     machine = machine_of(scene)
     found = getattr(machine, part, None) if machine else None
     if found is None:
-        able = [m for m, d in MACHINES.items() if getattr(d, part) is not None]
+        able = [m.model for m in machines() if getattr(m, part) is not None]
         raise InputError(f"{what} needs model = " + " or ".join(f'"{m}"' for m in able)
                          + f", the scene has model = {scene.model!r}")
     return found
