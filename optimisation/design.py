@@ -4,7 +4,7 @@ sensitivities — or, when no design exists, which checks conflict and by how mu
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -14,6 +14,9 @@ from optimisation.infeasibility import Diagnosis, diagnose
 from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
+from ropemodel.errors import InputError
+from ropemodel.machines.base import design_words
+from ropemodel.machines.sizing import Declaration, declared
 from ropemodel.papers import en12385 as ropes
 from ropemodel.rules.apply import with_rule_terms
 from ropemodel.rules.describe import summary as rules_summary
@@ -43,7 +46,7 @@ class Design(DesignViews):
     margins_continuous: dict[str, float] = field(default_factory=dict)
     #: check → where its worst margin is at the recommended design (segment, x_m, direction, manoeuvre; None:
     #: the same in every case)
-    governing: dict[str, dict | None] = field(default_factory=dict)
+    governing: dict[str, dict | str | None] = field(default_factory=dict)
     #: N_p_up, N_p_down at the recommended design: each at its worst over the load cases (larger magnitude)
     power: dict[str, float] = field(default_factory=dict)
     #: the drive's largest motoring and largest braking power over every case and direction, and where
@@ -57,6 +60,12 @@ class Design(DesignViews):
     lexicographic_ok: bool | None = None
     #: the rope's stiffness at the recommended design: EA [N], q_lw [m/N] (what the stroke rests on)
     rope: dict[str, float] = field(default_factory=dict)
+    #: a declared sizing's objective: its value at the design (SI), per value of the integer enumerated, in words
+    objective: dict[str, Any] = field(default_factory=dict)
+    #: the transients a declared sizing simulated at the design: what each is, whether it holds, its margins
+    verified: list[dict] = field(default_factory=list)
+    #: the model solved at a declared sizing's design
+    result: Any = None
 
     def to_dict(self) -> dict:
         """The JSON contract of ``ropemodel size --json`` (SI numbers)."""
@@ -82,6 +91,10 @@ class Design(DesignViews):
                                  "where": self.diagnosis.where.strip(), "needs": self.diagnosis.needs}
         out["message"] = self.message
         out.update(self.rope)
+        if self.objective:
+            out["objective"] = self.objective
+        if self.verified:
+            out["verified"] = self.verified
         out["elongation"] = self.scene.effects.get("elongation")
         rules = rules_summary(self.scene)
         if rules:
@@ -148,6 +161,16 @@ def solve_best(problem: SizingProblem, p=None, x0=None) -> Solution:
     return sol
 
 
+def _size_declared(scene: Scene, method: str) -> Design:
+    """The sizing of a model that declares it (:mod:`optimisation.declared`)."""
+    from optimisation.declared import size_declared
+
+    if method != DEFAULT_DISCRETE:
+        raise InputError(f"the {scene.model}'s catalogue size is chosen next size up: --discrete {method} sizes "
+                         f"only a machine sized in one NLP ({design_words()})")
+    return size_declared(scene, cast(Declaration, declared(scene.model)))
+
+
 def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: bool = True) -> Design:
     """Size the winch of ``scene``: the lightest catalogue rope, then the least pretension, then the least stroke
     (Krauze et al. 2025: every design check of eq. (12)-(23) as a constraint; ``ropemodel size``).
@@ -193,6 +216,8 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     ['slip_margin_up', 'stroke_margin_up', 'd (catalogue size)']
     """
     scene = load_sizing(scene, emit=False)
+    if declared(scene.model) is not None:           # a model that declares its sizing (not the winch)
+        return _size_declared(scene, method)
     problem = SizingProblem(scene)
     design = Design(problem.scene, False, method=method, units=dict(problem.units))
     sol = solve_best(problem)

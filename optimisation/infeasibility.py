@@ -149,13 +149,14 @@ def remedies(problem: SizingProblem, conflicting, p, lbx, ubx, x0) -> list[str]:
     over the catalogue is named."""
     q = problem.scene.built.quantities
     gfun = ca.Function("g", [problem.xs, problem.p], [problem.g])
-    out = []
+    out, done = [], set()
     checks = [c.split(" @ ")[0] for c in conflicting]
     bases = list(dict.fromkeys(c.rsplit("_", 1)[0] if c.endswith(("_up", "_down")) else c for c in checks))
     for base in bases:
-        for name, sense in REMEDIES.get(base, ()):
-            if name not in problem.params:
+        for name, sense in getattr(problem, "remedies", REMEDIES).get(base, ()):
+            if name not in problem.params or (name, sense) in done:     # a parameter two checks share: once
                 continue
+            done.add((name, sense))
             found = []
             for d in _diameters(lbx, ubx, problem):
                 lo, hi = lbx.copy(), ubx.copy()

@@ -141,8 +141,9 @@ def test_the_report_carries_the_koepes_checks():
     from ropemodel.reports.registry import sections
 
     assert {"scene", "inputs", "rules", "equations", "results", "checks", "sensitivity"} <= set(r.shown)
-    winch_only = {"sizing", "dynamic_sizing", "trip", "transient"}
+    winch_only = {"dynamic_sizing", "trip", "transient"}
     assert winch_only <= {s.name for s in sections()} and not winch_only & set(r.shown)
+    assert "sizing" in r.shown and "sizing: design n_head = 2, d_head = 58 mm" in " ".join(r.verdicts)
     for name in ("head_safety_margin", "tail_safety_margin", "wheel_margin", "brake_margin_hoist", "pull_margin"):
         assert name in r.html
     assert "us-30cfr-57 § 57.19021(b)" in r.html and "loaded at the bottom, the loaded side high" in r.html

@@ -142,16 +142,27 @@ def worst_case_scene(args):
     return pinned(scene, getattr(args, "at", []))
 
 
-def sizing_scene_from_args(args, dynamic: bool | None = False):
+def sizing_scene_from_args(args, dynamic: bool | None = False, declared_ok: bool = False):
     """The scene of a sizing command (``size``, ``sweep --sizing``, ``sensitivity --sizing``) as sizing reads it:
     no starting design needed (d, F_nwl, stroke, and D on a rigid drum), design checks on; its warnings on
     stderr.  ``dynamic``: sized through its transients, with the transient dynamic sizing builds (None: when
-    ``--dynamic`` is given or the scene says ``[numerics] sizing = "dynamic"``, as ``size`` decides)."""
+    ``--dynamic`` is given or the scene says ``[numerics] sizing = "dynamic"``, as ``size`` decides).
+    ``declared_ok``: a machine whose sizing is a :class:`~ropemodel.machines.sizing.Declaration` (an integer
+    enumerated, one NLP each) is accepted (``size``); else refused."""
     from optimisation.problem import D_OPTIONAL, SIZED, prepare, reads
+    from ropemodel.machines import machine_of
+    from ropemodel.machines.sizing import declared
 
     given = scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False)
     if dynamic is None:
         dynamic = bool(getattr(args, "dynamic", False)) or given.numerics.get("sizing") == "dynamic"
+    if not declared_ok and declared(given) is not None:
+        raise InputError(f"--sizing sizes at every point a machine sized in one NLP; a {given.model} is sized by "
+                         f"`ropemodel size` (its sizing at many points is not built yet)")
+    if dynamic and declared(given) is not None and getattr(machine_of(given), "manoeuvres", None) is None:
+        raise InputError(f"--dynamic sizes a machine through the manoeuvres it declares, and a {given.model} declares "
+                         f"none; `ropemodel size` without --dynamic sizes it through the transients its sizing "
+                         f"simulates (a scene with dynamics = \"braking\")")
     try:
         scene = prepare(given)
     except InputError as exc:             # a dynamic sizing names what its transient lacks in the same error

@@ -57,18 +57,40 @@ def _rope_lines(design, q) -> list[str]:
     return lines
 
 
+def _held_lines(design) -> list[str]:
+    """The transients a declared sizing simulated at the design, and the allowances they took."""
+    if not design.verified:
+        return []
+    raised = {k: v for k, v in design.objective.items() if k.endswith("allowance") or "_allowance_" in k}
+    lines = ["", "held in simulation (every trial design simulated; where one slipped, the rigid check's allowance "
+                 "was raised: " + ", ".join(f"{k} = {v:.3g}" for k, v in raised.items()) + "):"]
+    for r in design.verified:
+        least = {k: v for k, v in r.items() if k.endswith("_min")}
+        lines.append(f"  {r['transient']}: {'holds' if r['holds'] else 'SLIPS'}"
+                     + "".join(f", {k} = {v / 1e3:.4g} kN" for k, v in least.items()))
+    return lines
+
+
 def _text(design) -> str:
     from ropemodel.envelope import where_text
-    from ropemodel.machines.base import declared_machine
 
     q = design.scene.built.quantities
     lines = [f"{design.scene.name}: sizing"]
     if design.continuous:
         lines.append("")
         lines.append(f"{'':<12}{'catalogue':>14}{'continuous':>14}")
-        for k in declared_machine(design.scene).sizing.VARIABLES:
+        for k in design.continuous:     # the design variables
             cat = f"{q[k].to_display(design.design[k]):>14.6g}" if design.design else f"{'-':>14}"
-            lines.append(f"{k:<12}{cat}{q[k].to_display(design.continuous[k]):>14.6g}  {q[k].display_unit}")
+            lines.append(f"{k:<12}{cat}{q[k].to_display(design.continuous[k]):>14.6g}  "
+                         f"{'-' if q[k].display_unit == '1' else q[k].display_unit}")
+        lines += [f"{k:<12}{q[k].to_display(v):>14.6g}{'':>14}  {q[k].display_unit}  (follows from the design)"
+                  for k, v in (design.design or {}).items() if k not in design.continuous]
+        if design.objective:
+            o = design.objective
+            lines += ["", f"minimised: {o['text']}", f"  {o['value']:.6g} kg at the design; per {o['integer']} "
+                      f"enumerated (one continuous NLP each; those with a design): "
+                      + ", ".join(f"{n}: {m:.6g} kg" for n, m in o["by_count"].items())]
+        lines += _held_lines(design)
     if design.feasible:
         lines.append("")
         lines.append("active constraints:")
@@ -101,7 +123,7 @@ def main(args) -> int:
     from optimisation.design import DEFAULT_DISCRETE, size
     from ropemodel.machines.base import declared_machine
 
-    scene = sizing_scene_from_args(args, dynamic=None)
+    scene = sizing_scene_from_args(args, dynamic=None, declared_ok=True)
     if args.dynamic or scene.numerics.get("sizing") == "dynamic":
         from ropemodel.cli import _size_dynamic
 

@@ -34,11 +34,13 @@ def direction_of(name: str) -> str | None:
     return tail if tail in ("up", "down") and "_" in name else None
 
 
-def where_text(where: dict | None, direction: bool = False) -> str:
+def where_text(where: dict | str | None, direction: bool = False) -> str:
     """A :meth:`Extreme.where` dict as text: ``segment 2, x_m = 1300 m, start`` (``up, ...`` with
     ``direction``); ``the same in every case`` for None, ``anywhere`` when nothing in it matters."""
     if where is None:
         return "the same in every case"
+    if isinstance(where, str):     # a model that says where in words (a Koepe hoist's end state)
+        return where
     parts = [where.get("direction") if direction else None,
              f"segment {where['segment']}" if where.get("segment") is not None else None,
              f"x_m = {where['x_m']:g} m" if where.get("x_m") is not None else None, where.get("manoeuvre")]

@@ -36,10 +36,11 @@ def once(fn):
 
 
 def sizes(scene: Scene) -> bool:
-    """True for a scene the report sizes: its machine declares a sizing, and the sizing can choose the scene's
-    rope (a winch: a catalogue rope, ``rope`` not ``"given"``)."""
+    """True for a scene the report sizes: its machine declares a sizing, and the sizing says the report sizes the
+    scene (its ``reported``: a winch with a catalogue rope, ``rope`` not ``"given"``; a Koepe without a transient,
+    since sizing through one simulates every trial design: ``ropemodel size`` does it)."""
     sizing = getattr(machine_of(scene), "sizing", None)
-    return sizing is not None and sizing.rope_problem(scene) is None
+    return sizing is not None and sizing.reported(scene)
 
 
 class Context:

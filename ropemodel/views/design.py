@@ -32,7 +32,9 @@ class DesignViews:
     def _values(self) -> list[tuple[str, float | None, float | None]]:
         """(name, at the catalogue design, at the continuous optimum), SI."""
         design, cont = self.design or {}, self.continuous or {}
-        rows = [(k, design.get(k), cont.get(k)) for k in VARIABLES if k in design or k in cont]
+        names = list(cont) or [k for k in VARIABLES if k in design]    # the design variables (a winch's by default)
+        rows = [(k, design.get(k), cont.get(k)) for k in names]
+        rows += [(k, v, None) for k, v in design.items() if k not in names]     # what follows from them
         rows += [(k, v, None) for k, v in self.power.items()]
         if self.least_drum is not None:
             rows.append(("D", self.least_drum, None))
@@ -53,7 +55,8 @@ class DesignViews:
             x = q[name]
             conv = (lambda v: v) if si else x.to_display
             data.append((name, None if at is None else conv(at), None if cont is None else conv(cont),
-                         html.unit_text(x.unit if si else x.display_unit), name in self.active))
+                         html.unit_text(x.unit if si else x.display_unit),
+                         name in {a.split(" @ ")[0] for a in self.active}))
         return pd.DataFrame(data, columns=["name", "design", "continuous", "unit", "active"]).set_index("name")
 
     def _repr_html_(self) -> str:

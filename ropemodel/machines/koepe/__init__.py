@@ -2,8 +2,10 @@
 
 Its physics is in :mod:`ropemodel.effects.koepe` and the modules beside it (static states, wheel and braking
 window, ropes, lining, checks, rules) and in :mod:`ropemodel.effects.koepe_transient` (the elastic transient).
-Declared here: its checks in the model's order, its transient (braking or start with elastic head ropes:
-:class:`~ropemodel.machines.koepe.simulation.KoepeSimulation`) and its report sections.
+Declared here: its checks in the model's order, its sizing (:mod:`.sizing`: the number and diameter of the head
+ropes, the tail ropes' mass and the wheel, least suspended rope mass first), its transient (braking or start
+with elastic head ropes: :class:`~ropemodel.machines.koepe.simulation.KoepeSimulation`) and its report
+sections.
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ from ropemodel.effects.koepe import MODEL
 from ropemodel.effects.koepe_transient.profile import KoepeProfile
 from ropemodel.machines.base import Machine, Transient, model_order, register
 from ropemodel.machines.koepe.simulation import KoepeSimulation
+from ropemodel.machines.koepe.sizing import KoepeSizing
 
 
 def _scale(setup) -> tuple[float, float]:
@@ -33,7 +36,8 @@ MACHINE = register(Machine(
     model=MODEL,
     title="Koepe friction hoist",
     checks=model_order,
+    sizing=KoepeSizing(),
     transient=Transient(profile=KoepeProfile, result=KoepeSimulation, scale=_scale, length=_length,
                         numbers=_numbers, before_bind=True),
-    sections=("koepe_transient",),
+    sections=("sizing", "koepe_transient"),
 ))

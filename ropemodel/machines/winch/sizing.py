@@ -122,6 +122,11 @@ def rope_problem(scene) -> str | None:
     return None
 
 
+def reported(scene) -> bool:
+    """Whether the report sizes ``scene``: a scene whose rope sizing can choose (a catalogue rope)."""
+    return rope_problem(scene) is None
+
+
 def frees(scene) -> tuple[dict[str, float], list[str]]:
     """Checks that become results when the scene leaves a dimension out: no drum diameter, the drum check
     is held at zero and D is solved for (the least drum, D_ratio_min·d)."""

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
-from ropemodel.reports.sections.sizing import variables
 from ropemodel.reports.sections.transient import every_parameter
 
 INTRO = """<p>Every design check holds through the start and stop of both directions of travel (four manoeuvres),
@@ -32,7 +31,7 @@ def dynamic_sizing(ctx):
     html = page.fragment(INTRO)
     if design.continuous and design.static:
         rows = [[k, page.show(q[k], design.continuous[k]), page.show(q[k], design.static[k]),
-                 f"{100 * (design.continuous[k] / design.static[k] - 1):+.1f} %"] for k in variables(design.scene)]
+                 f"{100 * (design.continuous[k] / design.static[k] - 1):+.1f} %"] for k in design.continuous]
         html += page.table(["design variable", "dynamic optimum", "static optimum", "dynamic vs static"], rows,
                            kinds=["name", "num", "num", "num"], cls="dynamic-design")
     if not design.feasible:

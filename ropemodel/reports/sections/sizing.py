@@ -10,17 +10,16 @@ from ropemodel.reports.sections.results import checks_html
 from ropemodel.machines.base import declared_machine
 
 INTRO = """<p>{{ objective }} (<code>ropemodel size</code>; catalogue diameter by {{ method }}).</p>"""
+#: a declared sizing's introduction: what it minimises and what it enumerates
+DECLARED = """<p>Minimised: {{ o.text }}, with every design check met (<code>ropemodel size</code>; catalogue size by
+{{ method }}; {{ o.integer }} enumerated over {{ o.enumerated[0] }} to {{ o.enumerated[-1] }}, one continuous NLP
+each, the lightest feasible kept): {{ "%.6g" % o.value }} kg at the design.</p>"""
 
 
 def design_text(design) -> str:
-    """``d = 38 mm, F_nwl = 43.6 kN, stroke = 4763 mm`` of a feasible design (its machine's design variables)."""
+    """``d = 38 mm, F_nwl = 43.6 kN, stroke = 4763 mm`` of a feasible design (its design variables)."""
     q = design.scene.built.quantities
-    return ", ".join(f"{k} = {q[k].show(design.design[k])}" for k in variables(design.scene))
-
-
-def variables(scene) -> tuple[str, ...]:
-    """The design variables of ``scene``'s machine, in its order."""
-    return declared_machine(scene).sizing.VARIABLES
+    return ", ".join(f"{k} = {q[k].show(design.design[k])}" for k in design.continuous or design.design)
 
 
 def reads(ctx) -> set[str]:
@@ -34,18 +33,23 @@ def reads(ctx) -> set[str]:
 def sizing(ctx):
     design = ctx.design
     q = design.scene.built.quantities
-    html = page.fragment(INTRO, method=design.method, objective=declared_machine(ctx.scene).sizing.INTRO)
+    o = getattr(design, "objective", None)
+    html = (page.fragment(DECLARED, method=design.method, o=o) if o else
+            page.fragment(INTRO, method=design.method, objective=declared_machine(ctx.scene).sizing.INTRO))
     if design.continuous:
         rows = [[k, page.show(q[k], design.design[k]) if design.design else "-",
-                 page.show(q[k], design.continuous[k]), q[k].description] for k in variables(design.scene)]
+                 page.show(q[k], design.continuous[k]), q[k].description] for k in design.continuous]
+        rows += [[k, page.show(q[k], x), "-", f"{q[k].description} (follows from the design)"]
+                 for k, x in (design.design or {}).items() if k not in design.continuous]
         html += page.table(["design variable", "recommended (catalogue)", "continuous optimum", "meaning"], rows,
                            kinds=["name", "num", "num", ""], cls="design")
     if not design.feasible:
         html += page.verdict(False, "No design meets every check.")
         return html + page.fragment("<pre>{{ m }}</pre>", m=design.message)
     html += page.verdict(True, f"Design found: {design_text(design)}.")
-    html += page.fragment("<p>{{ r }}; every check holds at the printed values.</p>",
-                          r=declared_machine(ctx.scene).sizing.ROUNDED)
+    if not o:
+        html += page.fragment("<p>{{ r }}; every check holds at the printed values.</p>",
+                              r=declared_machine(ctx.scene).sizing.ROUNDED)
     html += page.fragment("<h3>Active constraints</h3><p>What fixes the design (at the recommended design):</p>"
                           "<ul>{% for a in active %}<li><code>{{ a }}</code></li>{% endfor %}</ul>",
                           active=design.active)
