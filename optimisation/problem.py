@@ -32,7 +32,6 @@ import numpy as np
 from ropemodel.envelope import Envelope, LoadCase, envelope, free, load_cases
 from ropemodel.envelope.cases import depends_on, distinct
 from ropemodel.envelope.prune import prune
-from ropemodel.envelope.cases import reads as case_reads
 from ropemodel.machines import default
 from ropemodel.machines.base import declared_machine, needing
 from ropemodel.problem import Problem
@@ -105,11 +104,10 @@ def _check_work(scene, where: list) -> None:
 
 
 def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
-    """What the sizing of the (prepared) ``scene`` is computed from (every check, the rope mass, the drive
-    power, the load cases' places and accelerations: :func:`ropemodel.envelope.reads`), and what it sets itself
-    (name → how): the design variables."""
-    chosen = {k: "the sizing chooses it (a value given only starts the search)" for k in declaration(scene).VARIABLES}
-    return scene.built.inputs_of() | case_reads(scene), chosen
+    """What the sizing of the (prepared) ``scene`` is computed from, and what it sets itself (name → how): its
+    machine's sizing's ``reads`` (a winch: every check, the rope mass, the drive power, the load cases' places and
+    accelerations; the design variables set)."""
+    return declaration(scene).reads(scene)
 
 
 def rope_problem(scene) -> str | None:

@@ -41,6 +41,7 @@ import math
 import numpy as np
 
 from ropemodel.envelope import RAMPS
+from ropemodel.envelope.cases import reads as case_reads
 from ropemodel.errors import Problems
 
 #: the design variables, in the order of x
@@ -111,6 +112,14 @@ def _refuse_given_rope(scene, effects: dict, wanted) -> None:
     with found.collect():
         scene.with_effects({**effects, "rope": usual}, optional=wanted)
     found.raise_if_any()
+
+
+def reads(scene) -> tuple[set[str], dict[str, str]]:
+    """What the sizing of the (prepared) ``scene`` is computed from (every check, the rope mass, the drive
+    power, the load cases' places and accelerations: :func:`ropemodel.envelope.reads`), and what it sets itself
+    (name → how): the design variables."""
+    chosen = {k: "the sizing chooses it (a value given only starts the search)" for k in VARIABLES}
+    return scene.built.inputs_of() | case_reads(scene), chosen
 
 
 def rope_problem(scene) -> str | None:
