@@ -91,14 +91,16 @@ def prepare(scene) -> Scene:
     return declaration(scene).prepare(scene)
 
 
-def _check_work(scene, where: list) -> None:
-    """The NLP's size on a route, every check at every state through every segment, against its budget."""
+def _check_work(scene, where: list, spanned: int) -> None:
+    """The NLP's size on a route, every check at every load case it is built at (the places that can govern, of
+    ``spanned`` cases) through every segment, against its budget."""
     from ropemodel import budget
 
     segments = len(scene.route)
     if segments:
+        kept = "" if len(where) == spanned else f" (the cases that can govern of {spanned})"
         budget.check("route sizing", len(where) * segments,
-                     f"sizing on a route of {segments} segments checks every check at {len(where)} load positions, "
+                     f"sizing on a route of {segments} segments checks every check at {len(where)} load cases{kept}, "
                      f"each through the {segments} segments: an NLP of {len(where)} x {segments}",
                      "join neighbouring segments of nearly the same inclination")
 
@@ -138,15 +140,15 @@ class SizingProblem:
         #: a dimension left out: its check becomes a result (a winch without D: the least drum D_ratio_min * d)
         held, freed = sizing.frees(scene)
         self.least_drum = bool(freed)
-        self.problem = Problem(scene, held, freed) if freed else Problem(scene)
-        fun = self.problem.function
         #: every place of the load and every manoeuvre the scene leaves open (:func:`ropemodel.envelope.load_cases`),
         #: their inputs (x_m, a_h) set by each case: where :meth:`envelope` evaluates a design
         self.all_cases, self.free = load_cases(scene), free(scene)
         #: where the NLP makes the checks: the places that can govern (:func:`ropemodel.envelope.prune.prune`,
         #: for every rope and pretension; ``prune_places=False`` for a sweep varying the route or the load)
-        self.cases = prune(self.all_cases, scene.parameters) if prune_places else self.all_cases
-        _check_work(scene, self.all_cases)    # the model, its compilation and sensitivities grow with every place
+        self.cases = prune(self.all_cases, scene.parameters, scene.built) if prune_places else self.all_cases
+        _check_work(scene, self.cases, len(self.all_cases))    # before the model is compiled
+        self.problem = Problem(scene, held, freed) if freed else Problem(scene)
+        fun = self.problem.function
         self.params = [k for k in self.problem.knowns
                        if k not in self.variables and k not in self.problem.given and k not in self.free]
         self.p0 = np.array([scene.parameters[k] for k in self.params], dtype=float)

@@ -2,9 +2,9 @@
 
 Three jobs can grow without bound from a few characters of input: the steps of a transient (its history
 rows, t_end/sim_dt), the evaluations of a Sobol study (N(D+2) for N base samples and D ranges) and the
-size of a sizing NLP on a route of segments (every check at the load on every segment, each through the
-whole route).  Each is counted before any work; above its budget the command refuses with the count,
-the budget, why the budget is what it is and the fix, and runs anyway with ``ropemodel --no-limit``
+size of a sizing NLP on a route of segments (every check with the load at every place that can govern,
+each through the whole route).  Each is counted before any work; above its budget the command refuses with
+the count, the budget, why the budget is what it is and the fix, and runs anyway with ``ropemodel --no-limit``
 (:func:`lift`; in Python ``with ropemodel.budget.lifted(): ...``).  A job that cannot fit in memory is
 refused either way (:func:`ropemodel.sweeps.files.check_size`).  The README ("Work budgets") states the
 budgets and why; progress shows on a terminal (:mod:`ropemodel.progress`).
@@ -34,9 +34,10 @@ BUDGETS = {
     "sobol": Budget(2**18, "evaluations", "the samples, their outputs and SALib's bootstrap resamples of them are "
                                           "held in memory: memory and time grow with the evaluations"),
     "route sizing": Budget(2500, "segment evaluations",
-                           "sizing checks every check with the load on every segment, each through the whole "
-                           "route, so the NLP grows as the square of the segments and its solve faster still: "
-                           "2500 is a route of 50 segments"),
+                           "sizing checks every check with the load at each place that can govern, each through "
+                           "the whole route, so the NLP grows as those places times the segments and its solve "
+                           "faster still: 2500 is a route of 625 segments at 4 places, or of 49 where every "
+                           "place is checked (sweep --sizing)"),
 }
 
 _LIFTED = False

@@ -70,7 +70,7 @@ class Result(ResultViews):
         where = {k: w for k, w in self.where.items() if k in self.outputs}
         if where:
             out["where"] = where
-        out["defaults"] = {k: self.scene.defaults[k] for k in self.scene.defaults if k in self.values}
+        out["defaults"] = self.defaults_used()
         out["unused"] = dict(self.scene.unused)
         out["unlimited"] = [k for k in self.outputs if self.values[k] == math.inf]
         out["warnings"] = list(self.scene.warnings)
@@ -113,11 +113,21 @@ class Result(ResultViews):
         where = [k for k in self.outputs if k in self.where]
         if where:
             lines += ["", "where each worst case is"] + [f"  {k}: {self.where[k]}" for k in where]
-        if self.scene.defaults:
-            lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in self.scene.defaults.items()
-                                              if k in self.values]
+        if self.defaults_used():
+            lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in self.defaults_used().items()]
         lines += ["", "references"] + [f"  {c}" for c in self.citations]
         return "\n".join(lines)
+
+    def defaults_used(self) -> dict[str, str]:
+        """Each default the answer rests on, with why: a parameter the outputs are computed from
+        (:meth:`reads`), not one only a transient reads (``v_eps``, ``rope_damping``, ``m_t`` of the ramps a
+        ``t_ramp`` brings into a static command)."""
+        reads = self.reads()
+        return {k: why for k, why in self.scene.defaults.items() if k in reads}
+
+    def reads(self) -> set[str]:
+        """The parameters the outputs are computed from (through the equations)."""
+        return self.model.inputs_of()
 
     def _pairs(self) -> list[str]:
         q = self.model.quantities

@@ -8,7 +8,8 @@ at every joint of the route, both directions (docs/physics.md §4, the closed fo
 written out here), whose worst ``F_C_up`` each ``run`` must equal to 1e-12.
 
 Printed: time and memory per command and n, the time relative to the smallest n (growth) and to the numpy
-peer.  ``--fast``: n = 10, 30, 100 (what the test runs); full: n = 10, 30, 100, 300, 1000 (``size`` up to 100).
+peer.  ``--fast``: n = 10, 30, 100 (what the test runs); full: n = 10, 30, 100, 300, 1000, 3000, 10 000
+(``size`` up to 100).
 """
 
 from __future__ import annotations
@@ -139,7 +140,7 @@ def measure(n: int, folder: Path, size_up_to: int) -> list[dict]:
 
 def main(out_dir=None, fast: bool = False) -> pd.DataFrame:
     out = output_dir(__file__, out_dir)
-    sizes = (10, 30, 100) if fast else (10, 30, 100, 300, 1000)
+    sizes = (10, 30, 100) if fast else (10, 30, 100, 300, 1000, 3000, 10000)
     table = pd.DataFrame([r for n in sizes for r in measure(n, out / f"n{n}", SIZE_UP_TO)])
     first = table.groupby("command")["seconds"].transform("first")
     table["growth"] = table["seconds"] / first

@@ -100,7 +100,7 @@ def budget_cases() -> list[Case]:
             Case("sensitivity", "budget", "--samples 2^20",
                  *base_case("sensitivity", argv=["--sobol", "G_m=400kN:467kN", "--samples", str(2**20)]),
                  words=("evaluations", "--no-limit")),
-            Case("size", "budget", "a route of 60 segments of 1 m", *base_case("size", route_scene(60, "1 m")),
+            Case("size", "budget", "a route of 1000 segments of 1 m", *base_case("size", route_scene(1000, "1 m")),
                  words=("segment evaluations", "--no-limit"))]
     return rows
 

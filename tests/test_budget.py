@@ -1,7 +1,7 @@
 """Work budgets: a job's size counted before it starts, refused above its budget, run with --no-limit.
 
 Truths: the counts written out here from their definitions (history rows t_end/sim_dt + 1, Sobol
-evaluations N(D + 2), route sizing load positions x segments), and the documentation's table of budgets.
+evaluations N(D + 2), route sizing load cases built x segments), and the documentation's table of budgets.
 """
 
 from __future__ import annotations
@@ -14,6 +14,9 @@ from _docs_text import section
 from _fuzz_classes import route_scene
 from ropemodel import budget
 from ropemodel.cli import main
+from ropemodel.envelope import load_cases
+from ropemodel.envelope.prune import prune
+from ropemodel.errors import InputError
 
 
 def _error(capsys) -> str:
@@ -50,19 +53,39 @@ def test_a_large_sobol_study_is_refused_with_its_evaluations(capsys):
 
 
 @pytest.mark.parametrize("n, refused", [(49, False), (50, True)])
-def test_sizing_on_a_route_is_counted_by_its_segments(n, refused, tmp_path, capsys):
-    """n segments: the load at each of the n + 1 places that bound them (the drive, the joints, the return
-    sheave), each through the n segments: (n + 1) n segment evaluations; 49 segments (2450) are within the
-    budget's 2500, 50 (2550) are not."""
+def test_sizing_at_every_place_is_counted_by_its_segments(n, refused, tmp_path):
+    """n segments, every place checked (a sizing sweep, which may move the governing place): the load at each of
+    the n + 1 places that bound them (the drive, the joints, the return sheave), each through the n segments:
+    (n + 1) n segment evaluations; 49 segments (2450) are within the budget's 2500, 50 (2550) are not."""
+    from optimisation.problem import SizingProblem, load_sizing
+
     scene = tmp_path / "route.toml"
     scene.write_text(route_scene(n, "1 m"))
     if not refused:   # the NLP is built (not solved): at the budget it is not refused
-        from optimisation.problem import SizingProblem, load_sizing
-
-        assert len(SizingProblem(load_sizing(scene, emit=False)).all_cases) == n + 1
+        assert len(SizingProblem(load_sizing(scene, emit=False), prune_places=False).cases) == n + 1
         return
+    with pytest.raises(InputError, match=f"{(n + 1) * n:,} segment evaluations"):
+        SizingProblem(load_sizing(scene, emit=False), prune_places=False)
+
+
+def test_size_counts_the_places_it_builds(tmp_path, capsys):
+    """``size`` checks only the places that can govern (ropemodel.envelope.prune, tested against a brute-force
+    search in test_route_prune.py): 50 segments, refused when every place counted, now fit; 1000 segments
+    are refused with the count of the cases the NLP would hold (at least the route's two ends, far fewer
+    than its 1001 places) times the segments."""
+    from optimisation.problem import load_sizing, prepare
+
+    scene = tmp_path / "route.toml"
+    scene.write_text(route_scene(50, "1 m"))
+    assert main(["size", str(scene), "--json"]) == 0
+    capsys.readouterr()
+    n = 1000
+    scene.write_text(route_scene(n, "1 m"))
+    sized = prepare(load_sizing(scene, emit=False))
+    kept = len(prune(load_cases(sized), sized.parameters, sized.built))
+    assert 2 <= kept < n + 1
     assert main(["size", str(scene)]) == 2
-    assert f"{(n + 1) * n:,} segment evaluations" in _error(capsys)
+    assert f"{kept * n:,} segment evaluations" in _error(capsys)
 
 
 def test_lifted_restores():

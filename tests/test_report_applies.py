@@ -43,6 +43,8 @@ def called_for(scene) -> set[str]:
         out.add("checks")
     if scene.model == "winch" and e.get("rope", "given") != "given":
         out.add("sizing")
+    if scene.model == "koepe" and e.get("dynamics", "none") == "none":     # sized (through a transient: by size)
+        out.add("sizing")
     if e.get("dynamics", "none") in ("start", "stop"):
         out.add("transient")
     if (e.get("dynamics") == "trip" or e.get("route") == "segments") and {"v_pj", "t_ramp"} <= set(given):

@@ -124,18 +124,43 @@ def test_a_profile_on_a_straight_route_is_refused(tmp_path, capsys):
     assert '[route_profile] is given but the route effect is "straight"' in capsys.readouterr().err
 
 
-def test_a_surveyed_profile_against_numpy(tmp_path):
-    """300 surveyed points (an undulating 2 km incline): run's worst forces over every place of the load equal
-    the forces written out in numpy at every joint (docs/physics.md §4, eq. (12)-(13) summed over segments)."""
-    x = np.linspace(0.0, 2000.0, 300)
+def _incline(n: int):
+    """The surveyed 2 km incline at n points (10 deg on average, a 700 m undulation of +-15 m): x, h [m], the
+    profile file's text and its segments' lengths [m] and inclinations [rad] written out in numpy."""
+    x = np.linspace(0.0, 2000.0, n)
     h = 500.0 - x * math.tan(math.radians(10.0)) - 15.0 * np.sin(2.0 * math.pi * x / 700.0)
     text = "distance [m],height [m]\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(x, h))
-    r = rm.run(rm.load_scene(str(_scene_file(tmp_path, text, x_m=None))))
-    L, a = np.hypot(np.diff(x), np.diff(h)), np.arctan2(-np.diff(h), np.diff(x))
+    return text, np.hypot(np.diff(x), np.diff(h)), np.arctan2(-np.diff(h), np.diff(x))
+
+
+def _assert_numpy_forces(values, L, a):
+    """The worst drum forces over every joint, eq. (12)-(13) summed over the segments in numpy (§4)."""
     q, G_m, mu, F_end = 80.0, 467e3, 0.05, 15e3
     rise, drag = q * np.sum(L * np.sin(a)), mu * q * np.sum(L * np.cos(a))
     for way, s in (("up", 1.0), ("down", -1.0)):
         F_C = F_end + rise + s * drag + G_m * (np.sin(a) + s * mu * np.cos(a))
-        assert r.values[f"F_C_{way}"] == pytest.approx(np.max(F_C), rel=1e-12)
-        assert r.values[f"F_S_{way}"] == pytest.approx(F_end + rise - s * drag, rel=1e-12)
-    assert r.where["F_C_up"].startswith(f"segment {int(np.argmax(np.sin(a) + mu * np.cos(a))) + 1},")
+        assert values[f"F_C_{way}"] == pytest.approx(np.max(F_C), rel=1e-12)
+        assert values[f"F_S_{way}"] == pytest.approx(F_end + rise - s * drag, rel=1e-12)
+
+
+def test_a_surveyed_profile_against_numpy(tmp_path):
+    """300 surveyed points (an undulating 2 km incline): run's worst forces over every place of the load equal
+    the forces written out in numpy at every joint (docs/physics.md §4, eq. (12)-(13) summed over segments)."""
+    text, L, a = _incline(300)
+    r = rm.run(rm.load_scene(str(_scene_file(tmp_path, text, x_m=None))))
+    _assert_numpy_forces(r.values, L, a)
+    assert r.where["F_C_up"].startswith(f"segment {int(np.argmax(np.sin(a) + 0.05 * np.cos(a))) + 1},")
+
+
+def test_a_thousand_point_profile_equals_its_tables_and_numpy(tmp_path):
+    """A 1000-point surveyed profile (the route's sums built as vectors, the places that can govern evaluated):
+    every output of ``run`` equals the same route written as [[route]] tables to 1e-12, and its worst drum forces
+    the numpy sums over the segments with the load at every joint (docs/physics.md §4)."""
+    text, L, a = _incline(1000)
+    profile = rm.run(rm.load_scene(str(_scene_file(tmp_path, text, x_m=None))))
+    tables = rm.run(rm.from_dict({"effects": {"route": "segments"}, "parameters": PARAMETERS, "route": [
+        {"length": f"{float(length)!r} m", "inclination": f"{float(angle)!r} rad"} for length, angle in zip(L, a)]}))
+    assert set(profile.values) == set(tables.values)
+    for k, v in tables.values.items():
+        assert profile.values[k] == pytest.approx(v, rel=1e-12, abs=1e-9), k
+    _assert_numpy_forces(profile.values, L, a)

@@ -81,3 +81,35 @@ def test_sizing_on_the_pruned_places_equals_sizing_on_every_place():
     for k, v in b.margins.items():
         assert a.margins[k] == pytest.approx(v, rel=1e-9, abs=1e-9)
     assert a.governing == b.governing
+
+
+def test_run_on_the_kept_places_equals_run_on_every_place(tmp_path):
+    """``run`` evaluates only the places that can govern: on a 300-point surveyed profile with the ramps' starts
+    and stops, every output's worst and where it governs equal those of the envelope over every place (a second
+    method), and far fewer places are evaluated.  A scene whose elongation reads the place otherwise (as built:
+    the load's pull times x_m) is not pruned."""
+    from ropemodel.envelope import load_cases, with_ramps
+    from ropemodel.envelope.prune import prunable, prune
+    from ropemodel.core.model import Model
+    from ropemodel.envelope.worst import envelope
+    from ropemodel.problem import Problem
+
+    x = np.linspace(0.0, 2000.0, 300)
+    h = 500.0 - x * np.tan(np.radians(10.0)) - 15.0 * np.sin(2.0 * np.pi * x / 700.0)
+    L, a = np.hypot(np.diff(x), np.diff(h)), np.arctan2(-np.diff(h), np.diff(x))
+    scene = with_ramps(rm.from_dict({
+        "effects": {"route": "segments", "dynamics": "trip"},
+        "route": [{"length": f"{float(length)!r} m", "inclination": f"{float(angle)!r} rad"}
+                  for length, angle in zip(L, a)],
+        "parameters": {"G_m": "467 kN", "F_nwl": "40 kN", "q_l": "0.08 kN/m", "q_lw": "5.8 mm/kN", "mu_pm": 0.05,
+                       "mu_pl": 0.05, "v_pj": "2.5 m/s", "t_ramp": "5 s"}}))
+    result = rm.run(scene)
+    every = envelope(Problem(scene), load_cases(scene))
+    assert result.envelope.spanned == every.cases and len(result.envelope.cases) < len(every.cases) / 5
+    assert result.values.keys() >= every.values().keys()
+    for k, v in every.values().items():
+        assert result.values[k] == v, k
+    assert result.where == every.where()
+    asbuilt = Model("winch", {**scene.effects, "elongation": "asbuilt"}, scene.built.options)
+    assert prunable(scene.built) and not prunable(asbuilt)
+    assert prune(load_cases(scene), scene.parameters, asbuilt) == load_cases(scene)

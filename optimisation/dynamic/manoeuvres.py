@@ -2,7 +2,8 @@
 
 The scene's machine declares its manoeuvres (``Machine.manoeuvres``: a winch's
 :mod:`ropemodel.machines.winch.manoeuvres`): ``ORDER``, the (``dynamics``, ``travel``) of each, and
-``CHECKS``, the checks through them (each ≥ 0 at every instant).  Each manoeuvre is the scene's transient with
+``CHECKS``, the checks through them (each ≥ 0 at every instant), and ``SIDES``, what each check compares (the
+value and limit the output shows, :func:`sides`).  Each manoeuvre is the scene's transient with
 those two effects set, and it can happen with the load anywhere on the route: a *case* (:class:`Manoeuvre`) is
 one manoeuvre with the load at one candidate position (:mod:`.positions`: each segment's ends and middle, or the
 scene's ``x_m``).
@@ -11,6 +12,8 @@ scene's ``x_m``).
 from __future__ import annotations
 
 from dataclasses import dataclass
+
+import numpy as np
 
 from optimisation.dynamic.positions import Position, candidates
 from ropemodel.machines.base import needing
@@ -72,3 +75,14 @@ def manoeuvre_scene(scene, manoeuvre: Manoeuvre, design: dict, optional=()):
     values = {"x_m": manoeuvre.x_m, **design}
     values.update(declared(sc).completed(sc, design))
     return sc.with_values(values)
+
+
+def sides(declared_manoeuvres, name: str, o: dict, a: dict, i: int) -> dict:
+    """``{"value", "limit"}`` of check ``name`` at sample ``i`` of the series ``o`` (SI), from the ``SIDES`` the
+    machine's manoeuvres declare (what each check compares: the force or take-up judged and its limit, from the
+    same ``o`` and ``a`` as its margin); {} for a check that declares none."""
+    if name not in getattr(declared_manoeuvres, "SIDES", {}):
+        return {}
+    at = {k: float(np.asarray(v, float).ravel()[i]) for k, v in o.items()}
+    value, limit = declared_manoeuvres.SIDES[name]
+    return {"value": float(value(at, a)), "limit": float(limit(at, a))}

@@ -100,11 +100,15 @@ def transient_effects_of(scene) -> dict:
 def reads(scene) -> tuple[set[str], dict[str, str]]:
     """What dynamic sizing of the transient ``scene`` (:func:`transient_scene`) is computed from: what static
     sizing reads, and the parameters of the transient's chosen variants (the ramp, the rope model, the
-    tensioner, ...); and what it sets itself (name → how): the design variables and, unless the scene pins
-    it, where the load is."""
+    tensioner, ...; with an inextensible rope not what only an elastic loop uses); and what it sets itself
+    (name → how): the design variables and, unless the scene pins it, where the load is."""
     names, sets = static_reads(scene)
-    for part in transient_parts(scene, chosen(scene)):
+    parts = transient_parts(scene, chosen(scene))
+    elastic = all(getattr(part, "elastic", True) for part in parts)
+    for part in parts:
         names |= {q.name for q in part.quantities} | set(part.reads)
+        if not elastic:     # an inextensible rope: the carriage does not move, its mass is not read
+            names -= set(part.elastic_only)
     if scene.origin.get("x_m") == "default":
         sets["x_m"] = "dynamic sizing makes every manoeuvre with the load at every candidate position itself"
     else:

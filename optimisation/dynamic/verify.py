@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
-from optimisation.dynamic.manoeuvres import declared, manoeuvre_scene
+from optimisation.dynamic.manoeuvres import declared, manoeuvre_scene, sides
 from optimisation.problem import D_OPTIONAL, SIZED
 from ropemodel.dynamics import simulate
 from ropemodel.effects.transient.contact import traction_of
@@ -33,8 +33,9 @@ SIM_DT = 1e-3
 class Verdict:
     """One case simulated at a design: the ``manoeuvre`` ("upward start"), the load's place ``x_m`` [m] and
     ``where`` (readable), whether the NLP integrated it (``in_nlp``); ``ok``; ``failures`` (readable); ``least``
-    check → (least margin in the check's own unit, time [s]) and ``scaled`` check → its least margin in the NLP's
-    form and scale (comparable between checks); ``peaks`` (SI): F_C_max, F_S_min, take_up_max, dynamic_factor,
+    check → (least margin in the check's own unit, time [s]), ``sides`` check → the value and limit it compares
+    there (SI) and ``scaled`` check → its least margin in the NLP's form and scale (comparable between checks);
+    ``peaks`` (SI): F_C_max, F_S_min, take_up_max, dynamic_factor,
     t_F_C_max."""
 
     manoeuvre: str
@@ -46,11 +47,13 @@ class Verdict:
     least: dict = field(default_factory=dict)
     scaled: dict = field(default_factory=dict)
     peaks: dict = field(default_factory=dict)
+    sides: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         return {"manoeuvre": self.manoeuvre, "x_m": self.x_m, "where": self.where, "in_nlp": self.in_nlp,
                 "ok": self.ok, "failures": self.failures,
-                "least_margins": {k: {"margin": v, "t": t} for k, (v, t) in self.least.items()},
+                "least_margins": {k: {"margin": v, "t": t, **self.sides.get(k, {})}
+                                  for k, (v, t) in self.least.items()},
                 "peaks": self.peaks}
 
 
@@ -78,8 +81,9 @@ def verdict(sim, manoeuvre, a: dict, F_ref: float, in_nlp: bool = True) -> Verdi
     scale of a force)."""
     h = sim.history
     out = Verdict(manoeuvre.label, manoeuvre.x_m, manoeuvre.where, in_nlp, True)
+    machine = declared(sim.scene)
     for ev in sim.events:
-        if ev.name in declared(sim.scene).EVENTS:     # an event that leaves the smooth mode
+        if ev.name in machine.EVENTS:     # an event that leaves the smooth mode
             out.failures.append(f"{ev.name} at t = {ev.t:.4f} s")
     smooth = sim.system.smooth_mode()
     for part in sim.system.parts:
@@ -87,10 +91,11 @@ def verdict(sim, manoeuvre, a: dict, F_ref: float, in_nlp: bool = True) -> Verdi
             out.failures.append(f"{part.column} leaves the {smooth[part.effect]} mode")
     t = h["t [s]"].to_numpy()
     o = _series(sim)
-    for c in (c for c in declared(sim.scene).CHECKS if c.needs in o):
+    for c in (c for c in machine.CHECKS if c.needs in o):
         name, series = c.name, np.asarray(c.margin(o, a), float).ravel()
         i = int(np.argmin(series))
         out.least[name] = (float(series[i]), float(t[i]))
+        out.sides[name] = sides(machine, name, o, a, i)
         out.scaled[name] = float(np.min(np.asarray(c.nlp(o, a), float))) / (F_ref if c.unit == "N" else 1.0)
         if series[i] < 0:
             out.failures.append(f"{name} {series[i]:.6g} at t = {t[i]:.4f} s")
@@ -127,9 +132,10 @@ def all_ok(verdicts) -> bool:
 
 def by_manoeuvre(verdicts) -> list[dict]:
     """Each manoeuvre over every place of the load: ``ok``, where it is governed (``x_m`` [m], ``where``: the
-    place of the least scaled margin of any check), each check's least margin with its instant and place
-    (``least_margins``), the worst peaks (F_C_max, take_up_max and dynamic_factor the largest, F_S_min the
-    least, each with its ``x_m``), the ``failures`` (with their place) and every case (``positions``)."""
+    place of the least scaled margin of any check), each check's least margin with its instant and place and
+    the value and limit it compares there (``least_margins``), the worst peaks (F_C_max, take_up_max and
+    dynamic_factor the largest, F_S_min the least, each with its ``x_m``), the ``failures`` (with their place)
+    and every case (``positions``)."""
     out = []
     for label in dict.fromkeys(v.manoeuvre for v in verdicts):
         mine = [v for v in verdicts if v.manoeuvre == label]
@@ -137,7 +143,8 @@ def by_manoeuvre(verdicts) -> list[dict]:
         least = {}
         for name in dict.fromkeys(k for v in mine for k in v.least):
             v = min((v for v in mine if name in v.least), key=lambda v: v.least[name][0])
-            least[name] = {"margin": v.least[name][0], "t": v.least[name][1], "x_m": v.x_m, "where": v.where}
+            least[name] = {"margin": v.least[name][0], "t": v.least[name][1], "x_m": v.x_m, "where": v.where,
+                           **v.sides.get(name, {})}
         peaks = {}
         for key, pick in (("F_C_max", max), ("F_S_min", min), ("take_up_max", max), ("dynamic_factor", max)):
             v = pick(mine, key=lambda v: v.peaks[key])

@@ -9,11 +9,15 @@ both directions; :mod:`optimisation.dynamic`), each design verified by the hybri
 from __future__ import annotations
 
 import json
+import textwrap
 
 from ropemodel.progress import status
+from ropemodel.views.checks import check_groups, factors, in_words, manoeuvre_rows, readable
 
 #: what ``--find`` can ask for with ``--dynamic``
 FINDS = ("t_ramp",)
+#: the longest line of prose (the transient, the defaults) on a terminal
+WIDTH = 100
 
 
 def _row(name, values, q) -> str:
@@ -21,43 +25,56 @@ def _row(name, values, q) -> str:
     return f"{name:<12}{cells}  {q[name].display_unit}"
 
 
-def _manoeuvre_lines(manoeuvres, q) -> list[str]:
-    kN = 1e-3
-    places = len(manoeuvres[0]["positions"]) if manoeuvres else 0
-    lines = ["", f"each manoeuvre with the load at {places} place{'s' if places != 1 else ''} "
-                 f"(the worst peaks of them; governed where its least margin is)",
-             f"{'manoeuvre':<16}{'F_C max':>10}{'F_S min':>10}{'take-up max':>13}{'factor':>8}"
-             "  governed with the load at",
-             f"{'':<16}{'[kN]':>10}{'[kN]':>10}{'[m]':>13}{'[-]':>8}"]
-    for m in manoeuvres:
-        pk = m["peaks"]
-        lines.append(f"{m['manoeuvre']:<16}{pk['F_C_max'] * kN:>10.4g}{pk['F_S_min'] * kN:>10.4g}"
-                     f"{pk['take_up_max']:>13.4g}{pk['dynamic_factor']:>8.3g}  {m['where']}")
+def _header(m: dict) -> str:
+    """A manoeuvre's title line: its worst peaks over every place of the load."""
+    pk = m["peaks"]
+    return (f"{m['manoeuvre']}: peak F_C {pk['F_C_max'] * 1e-3:.4g} kN (dynamic factor {pk['dynamic_factor']:.3g}), "
+            f"least F_S {pk['F_S_min'] * 1e-3:.4g} kN, largest take-up {pk['take_up_max'] * 1e3:.4g} mm"
+            + ("" if m.get("ok", True) else "  FAILS"))
+
+
+def checks_lines(groups, manoeuvres, places: int) -> list[str]:
+    """The checks table (:func:`ropemodel.views.checks.check_groups`): a title line per manoeuvre (its peaks)
+    and steady travel, one row per check in words with value, limit, margin, instant and the load's place."""
+    width = max((len(r.check) for _, rows in groups for r in rows), default=0) + 2
+    titles = {m["manoeuvre"]: _header(m) for m in manoeuvres}
+    lines = ["", f"checks, each at its least over the load's {places} place{'s' if places != 1 else ''} and "
+                 "every instant of the manoeuvre",
+             f"  {'check':<{width}}{'value':>11}{'limit':>12}{'margin':>14}{'at t':>10}  load at"]
+    for title, rows in groups:
+        lines.append(titles.get(title, title))
+        lines += [(f"  {r.check:<{width}}{r.value:>11}{r.limit:>12}{r.margin:>14}{r.t:>10}  {r.where}"
+                   + ("" if r.ok else "  FAILS")).rstrip() for r in rows]
     return lines
 
 
-def _places(manoeuvres) -> dict:
-    """``"check @ manoeuvre"`` → where the load is at its least margin."""
-    return {f"{name} @ {m['manoeuvre']}": least["where"] for m in manoeuvres
-            for name, least in m["least_margins"].items()}
+def _active_lines(active) -> list[str]:
+    return ["", "what fixes the design (active):"] + [f"  {readable(a)}" for a in active]
+
+
+def _factor_lines(scene) -> list[str]:
+    lines = factors(scene)
+    return ["", "factors: " + lines[0]] + [f"         {x}" for x in lines[1:]]
 
 
 def _transient_lines(design) -> list[str]:
     effects = ", ".join(f"{e} = {v}" + ("" if chosen else " (default)") for e, (v, chosen) in design.transient.items())
     if design.transient.get("rope_elasticity", ("",))[0] == "segments":
         effects += f" with [numerics] segments = {design.scene.numerics['segments']} per span"
-    lines = ["", f"transient: {effects}"]
+    lines = ["", *textwrap.wrap(f"transient: {effects}", WIDTH, subsequent_indent="  ")]
     if design.defaults:
-        lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in design.defaults.items()]
+        lines += ["", "defaults used"] + [ln for k, why in design.defaults.items()
+                                          for ln in textwrap.wrap(f"{k}: {why}", WIDTH, initial_indent="  ",
+                                                                  subsequent_indent="    ")]
     return lines
 
 
 def design_text(design) -> str:
-    """The human output of a :class:`~optimisation.dynamic.DynamicDesign` (units stated)."""
-    from optimisation.dynamic.manoeuvres import declared
+    """The human output of a :class:`~optimisation.dynamic.DynamicDesign`: the designs, what fixes them, the
+    checks table grouped by manoeuvre in words and units (internal names only in ``--json``), the factors and
+    their rules, the transient and the defaults it took."""
     from ropemodel.machines.base import declared_machine
 
-    CHECK = declared(design.scene).CHECK
     q = design.scene.built.quantities
     lines = [f"{design.scene.name}: dynamic sizing (start and stop in both directions, verified by simulation)"]
     if design.continuous:
@@ -66,37 +83,27 @@ def design_text(design) -> str:
             lines.append(_row(k, [design.design[k] if design.design else None, design.continuous[k],
                                   (design.static or {}).get(k)], q))
     if design.feasible:
-        lines += ["", "active constraints: " + ", ".join(design.active)]
-        lines += _manoeuvre_lines(design.manoeuvres, q)
-        places = _places(design.manoeuvres)
-        lines += ["", f"{'check margin (least over the manoeuvre)':<52}{'value':>14}  {'unit':<6}{'':<6}rule"
-                      "; where the load is"]
-        for k, v in design.margins.items():
-            base = k.split(" @ ")[0]
-            if base in CHECK:   # a check through a manoeuvre, in the check's own unit
-                unit, shown = CHECK[base].shown, v
-            else:               # a static check (on a route: "@ segment 2"), as static sizing prints it
-                unit, shown = q[base].display_unit, q[base].to_display(v)
-            unit = "-" if unit == "1" else unit
-            shown = shown if abs(v) > 1e-9 else 0.0     # an active check prints as 0, not -8.9e-13
-            where = f"; load at {places[k]}" if k in places else ""
-            lines.append(f"{k:<52}{shown:>14.6g}  {unit:<6}{'ok' if v >= -1e-9 else 'FAILS':<6}"
-                         f"{design.scene.check_basis(base)}{where}")
+        places = len(design.manoeuvres[0]["positions"]) if design.manoeuvres else 0
+        lines += _active_lines(design.active)
+        lines += checks_lines(check_groups(design), design.manoeuvres, places)
+        lines += _factor_lines(design.scene)
     lines += _transient_lines(design)
-    lines += ["", design.message]
+    lines += ["", in_words(design.message)]
     return "\n".join(lines)
 
 
 def ramp_text(scene, answer) -> str:
     from optimisation.dynamic.verify import by_manoeuvre
 
+    manoeuvres = by_manoeuvre(answer.verdicts)
+    places = len(manoeuvres[0]["positions"]) if manoeuvres else 0
+    fails = "; ".join(readable(a) for a in answer.active) or "a check"
     lines = [f"{scene.name}: the shortest start and stop ramp that keeps the design safe",
              "design: " + ", ".join(f"{k} = {scene.built.quantities[k].to_display(v):.6g} "
                                     f"{scene.built.quantities[k].display_unit}" for k, v in answer.design.items()),
-             "", f"t_ramp = {answer.t_ramp:.6g} s  (verified by simulation: it holds; a shorter ramp fails "
-             f"{', '.join(answer.active) or 'a check'})"]
-    lines += _manoeuvre_lines(by_manoeuvre(answer.verdicts), scene.built.quantities)
-    return "\n".join(lines)
+             "", f"t_ramp = {answer.t_ramp:.6g} s  (verified by simulation: it holds; a shorter ramp fails {fails})"]
+    groups = [(m["manoeuvre"], manoeuvre_rows(m, parameters=scene.parameters)) for m in manoeuvres]
+    return "\n".join(lines + checks_lines(groups, manoeuvres, places) + _factor_lines(scene))
 
 
 def main(scene, args, to_json) -> int:

@@ -41,6 +41,9 @@ NEWTON_OPTIONS = {"abstol": 1e-12, "abstolStep": 1e-14, "max_iter": 100, "error_
 def compile_solver(model, structure: Structure, guesses: dict[str, float] | None = None,
                    name: str = "solve") -> ca.Function:
     """Function with one named scalar input per known and one named output per unknown."""
+    explicit = _explicit_solver(model, structure, name)
+    if explicit is not None:
+        return explicit
     guesses = dict(guesses or {})
     value: dict[str, ca.MX] = {k: ca.MX.sym(k) for k in structure.knowns}
     expandable = True
@@ -74,6 +77,29 @@ def compile_solver(model, structure: Structure, guesses: dict[str, float] | None
     fun = ca.Function(name, [value[k] for k in structure.knowns], outputs,
                       list(structure.knowns), list(structure.unknowns), MANY_INPUTS)
     return fun.expand(name, MANY_INPUTS) if expandable else fun
+
+
+def _explicit_solver(model, structure: Structure, name: str) -> ca.Function | None:
+    """The SX Function of a structure whose every block is explicit and without a call equation, or None.
+
+    Each block's solution is written in the model's symbols (:func:`linear_solution`), then the unknowns are
+    substituted block after block (``substitute_inplace``): one pass over the expression graph, where a Function
+    per block costs a graph of its own (a route of thousands of segments has thousands of blocks)."""
+    unknowns, solutions = [], []
+    for block in structure.blocks:
+        eqs = [model.equations[i] for i in block.equations]
+        if any(eq.call is not None for eq in eqs):
+            return None
+        x = ca.vertcat(*[model.symbols[u] for u in block.unknowns])
+        sol = linear_solution(ca.vertcat(*[eq.residual for eq in eqs]), x)
+        if sol is None:
+            return None
+        unknowns += [model.symbols[u] for u in block.unknowns]
+        solutions += [sol[k] for k in range(len(block.unknowns))]
+    resolved, _ = ca.substitute_inplace(unknowns, solutions, [], False)    # each in terms of the knowns only
+    by_name = {u: resolved[k] for k, u in enumerate(u for b in structure.blocks for u in b.unknowns)}
+    return ca.Function(name, [model.symbols[k] for k in structure.knowns], [by_name[u] for u in structure.unknowns],
+                       list(structure.knowns), list(structure.unknowns), MANY_INPUTS)
 
 
 def linear_solution(res: ca.SX, x: ca.SX) -> ca.SX | None:

@@ -56,7 +56,7 @@ def incidence(model, unknowns) -> Incidence:
     """Equations × unknowns incidence (the sparsity of ∂residual/∂unknowns)."""
     res = ca.vertcat(*[model.structural(i) for i in range(len(model.equations))])
     x = ca.vertcat(*[model.symbols[u] for u in unknowns])
-    J = ca.jacobian(res, x).sparsity()
+    J = ca.jacobian_sparsity(res, x)   # the pattern only: the Jacobian itself grows as the square of a long route
     rows, cols = J.get_triplet()
     by_row: list[list[int]] = [[] for _ in range(J.size1())]
     by_col: list[list[int]] = [[] for _ in range(J.size2())]

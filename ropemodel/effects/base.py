@@ -109,6 +109,11 @@ class Submodel:
     assumptions: ClassVar[tuple[str, ...]] = ()
     #: what a calculation with this variant still lacks before it is filed, one sentence each ("Data still missing")
     missing: ClassVar[tuple[str, ...]] = ()
+    #: whether this variant's outputs depend on the load's place x_m only through the load's pull on its segment
+    #: and the least tension of the winding rope (docs/physics.md §4, "Where the load governs"), so that the places
+    #: :mod:`ropemodel.envelope.prune` keeps hold every worst case of them; False for a variant that reads x_m
+    #: otherwise (the as-built elongation integrates the tension along the rope, the load's pull times x_m)
+    place_through_pull: ClassVar[bool] = True
 
     def __init__(self, options: dict | None = None, effects: dict | None = None):
         #: the scene's ``[numerics]`` (and structural options such as the route's segments)

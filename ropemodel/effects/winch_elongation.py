@@ -66,6 +66,9 @@ class ElongationAsBuilt(Submodel):
 
     description = ("elongation of each rope side from its tension profile along the route, the tensioner's "
                    "falls, constructional stretch and temperature")
+    #: the winding side's tension integral holds the load's pull times x_m (side_tension_integral): a worst
+    #: elongation may be at a place the pruned list leaves out
+    place_through_pull = False
     citations: ClassVar[tuple[str, ...]] = ("krauze2025", "rope_extension")
     assumptions = (
         "Hooke's law along each rope side with its tension profile (load position x_m; not given: the load at "

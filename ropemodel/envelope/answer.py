@@ -14,6 +14,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from ropemodel.envelope.cases import CASE_INPUTS, LoadCase, load_cases, with_ramps
+from ropemodel.envelope.prune import prune
 from ropemodel.envelope.result import EnvelopeResult
 from ropemodel.envelope.worst import case_columns, envelope
 from ropemodel.errors import InputError, SolveError
@@ -68,7 +69,10 @@ def run(scene: SceneLike, values: Mapping | None = None) -> Result:
     cases = load_cases(sc)
     if len(cases) == 1:
         return Problem(sc).solve(cases[0].values(sc.parameters))
-    return EnvelopeResult(sc, sc.built, envelope(Problem(sc), cases))
+    # the places that can govern (on a long route a few of thousands; each case costs the whole route)
+    env = envelope(Problem(sc), prune(cases, sc.parameters, sc.built))
+    env.spanned = cases
+    return EnvelopeResult(sc, sc.built, env)
 
 
 def solve(scene: SceneLike, given: Mapping, find: Sequence[str] | str, bare: str = "si") -> Result:

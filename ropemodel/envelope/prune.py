@@ -16,7 +16,10 @@ place enters the winch's equations in two ways only (docs/physics.md §4, "Where
 
 The places kept (for every direction and manoeuvre of the cases) are these, and the route's two ends.  None
 of them depends on q_l or F_nwl, so the pruned list holds for every rope and pretension a sizing tries; it
-does depend on G_m, μ_pm, the route and the resistances, so a sweep that varies those must not prune.
+does depend on G_m, μ_pm, the route and the resistances, so a sweep that varies those must not prune.  A
+scene whose effects read the place otherwise (the as-built elongation: the load's pull times x_m) is not
+pruned (:func:`prunable`).  ``run`` and ``size`` evaluate the kept places only: at n places the whole model,
+whose size grows with n, would cost O(n²).
 """
 
 from __future__ import annotations
@@ -72,11 +75,19 @@ def _cross(x, y, o, a, b) -> float:
     return float((x[a] - x[o]) * (y[b] - y[o]) - (y[a] - y[o]) * (x[b] - x[o]))
 
 
-def prune(cases: list[LoadCase], params) -> list[LoadCase]:
+def prunable(model) -> bool:
+    """Whether every submodel of ``model`` reads the load's place only through its pull and the least tension
+    (:attr:`ropemodel.effects.base.Submodel.place_through_pull`): only then do the kept places hold every
+    worst case."""
+    return all(sm.place_through_pull for sm in model.submodels)
+
+
+def prune(cases: list[LoadCase], params, model) -> list[LoadCase]:
     """``cases`` at the places that can govern only (:func:`governing_places`); ``cases`` as they are when the
-    place is pinned or there are few places."""
+    place is pinned, there are few places, or a submodel of ``model`` reads the place otherwise
+    (:func:`prunable`)."""
     places = {c.joint for c in cases}
-    if None in places or len(places) < MIN_PLACES:
+    if None in places or len(places) < MIN_PLACES or not prunable(model):
         return cases
     one_per_manoeuvre = {c.manoeuvre: c for c in cases}.values()
     accelerations = {float(c.values(params).get("a_h", params.get("a_h", 0.0))) for c in one_per_manoeuvre}

@@ -7,6 +7,7 @@ import math
 from typing import Any
 
 from ropemodel.envelope.cases import OPEN, LoadCase, describe, free
+from ropemodel.envelope.cases import reads as cases_reads
 from ropemodel.envelope.worst import Envelope
 from ropemodel.result import Result, row, unit_cell, value_cell
 
@@ -47,8 +48,14 @@ class EnvelopeResult(Result):
         return list(self.envelope.no_worst)
 
     def cases_text(self) -> str:
-        """``4 places of the load x 3 manoeuvres (steady, start, stop)``."""
-        return describe(self.envelope.cases, self.envelope.params)
+        """``4 places of the load x 3 manoeuvres (steady, start, stop)``; on a long route, with the places that
+        can govern evaluated (:mod:`ropemodel.envelope.prune`): ``… (evaluated at the 36 places that can govern)``."""
+        env = self.envelope
+        text = describe(env.spanned or env.cases, env.params)
+        if env.spanned and len(env.spanned) != len(env.cases):
+            places = len({c.joint for c in env.cases})
+            text += f" (evaluated at the {places} places that can govern)"
+        return text
 
     def worst_case(self) -> dict:
         """The JSON of the worst cases: what was spanned, and for each output its sense, value and place."""
@@ -61,7 +68,8 @@ class EnvelopeResult(Result):
                 if other is not top:
                     entry[other.sense] = {"value": _finite(other.value), "where": other.where(params)}
             outputs[name] = entry
-        out = {"cases": len(env.cases), "spans": self.cases_text(), "free": list(self.free), "outputs": outputs,
+        out = {"cases": len(env.spanned or env.cases), "evaluated": len(env.cases), "spans": self.cases_text(),
+               "free": list(self.free), "outputs": outputs,
                "no_worst": self.no_worst}
         if self.governing is not None:
             c = self.governing
@@ -91,6 +99,11 @@ class EnvelopeResult(Result):
 
     def to_json(self, **extra) -> str:
         return super().to_json(worst_case=self.worst_case(), **extra)
+
+    def reads(self) -> set[str]:
+        """The equations' inputs and what the worst case spans (:func:`ropemodel.envelope.cases.reads`: the open
+        case inputs and what their manoeuvres' accelerations come from)."""
+        return super().reads() | cases_reads(self.scene)
 
     def table(self) -> str:
         """Inputs, the outputs the same everywhere, then each output's worst and where, the design checks
@@ -122,9 +135,8 @@ class EnvelopeResult(Result):
                       + ", ".join(env.no_worst)]
         for title, frame in self.frames.items():
             lines += ["", title, frame.to_string(index=False)]
-        if self.scene.defaults:
-            lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in self.scene.defaults.items()
-                                              if k in self.values or k in self.free]
+        if self.defaults_used():
+            lines += ["", "defaults used"] + [f"  {k}: {why}" for k, why in self.defaults_used().items()]
         lines += ["", "references"] + [f"  {c}" for c in self.citations]
         return "\n".join(lines)
 

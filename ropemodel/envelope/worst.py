@@ -86,6 +86,8 @@ class Envelope:
     extremes: output → its extremes (one per sense its quantity declares), for outputs that vary.
     constant: outputs that are the same in every case.
     no_worst: outputs that vary with the case and declare no worst.
+    spanned: every case the worst is taken over, when ``cases`` are those of them that can govern
+        (:func:`ropemodel.envelope.prune.prune`); None when every case was evaluated.
     """
 
     cases: list[LoadCase]
@@ -94,6 +96,7 @@ class Envelope:
     extremes: dict[str, tuple[Extreme, ...]] = field(default_factory=dict)
     constant: list[str] = field(default_factory=list)
     no_worst: list[str] = field(default_factory=list)
+    spanned: list[LoadCase] | None = None
 
     def worst(self, name: str) -> Extreme:
         """The governing extreme of ``name``: its only one, or of two the one of larger magnitude."""

@@ -32,14 +32,34 @@ segment.  Units: N, m, rad.
 
 from __future__ import annotations
 
+import casadi as ca
+
 from ropemodel._math import cos, fmax, fmin, if_else, sin
 
 #: standard gravity [m/s²] (CGPM 1901)
 G_N = 9.80665
 
 
+def _symbolic(*items) -> bool:
+    return any(isinstance(a, (ca.SX, ca.MX, ca.DM)) for a in items)
+
+
+def _vector(items):
+    """A list with CasADi entries as one column (vector operations: a route of thousands of segments builds in a
+    few operations, not thousands), or None for numbers (summed one by one, as written)."""
+    return ca.vertcat(*items) if _symbolic(*items) else None
+
+
+def _sum(column, start=0.0):
+    """start + column[0] + column[1] + …, added in that order (as the loops over numbers add them)."""
+    return start + ca.sum1(column) if column.numel() else start
+
+
 def route_length(lengths):
     """Length of the route L_u = Σ L_i [m].  lengths [m] of the segments, each > 0."""
+    column = _vector(lengths)
+    if column is not None:
+        return _sum(column)
     total = 0.0
     for length in lengths:
         total = total + length
@@ -51,6 +71,9 @@ def rope_weight_along_route(q_l, lengths, inclinations):
 
     q_l [N/m] rope weight per metre; lengths [m]; inclinations α_i [rad], −π/2 < α_i < π/2.
     """
+    L, a = _vector(lengths), _vector(inclinations)
+    if L is not None and a is not None:
+        return _sum(q_l * L * ca.sin(a))
     total = 0.0
     for length, alpha in zip(lengths, inclinations):
         total = total + q_l * length * sin(alpha)
@@ -62,6 +85,9 @@ def rope_resistance_along_route(q_l, lengths, inclinations, mus):
 
     mus: resistance coefficient of the rope in each segment [-] (μ_pl for the unwinding rope).
     """
+    L, a, m = _vector(lengths), _vector(inclinations), _vector(mus)
+    if L is not None and a is not None and m is not None:
+        return _sum(m * q_l * L * ca.cos(a))
     total = 0.0
     for length, alpha, mu in zip(lengths, inclinations, mus):
         total = total + mu * q_l * length * cos(alpha)
@@ -99,7 +125,16 @@ def rope_resistance_between(q_l, lengths, inclinations, mus, s0, s1):
 
 def at_position(x, lengths, values):
     """The value of the segment containing x [m] (from the drive): ``values[j]`` with
-    L_1 + … + L_{j-1} < x <= L_1 + … + L_j; x <= L_1 gives the first, x beyond the route the last."""
+    L_1 + … + L_{j-1} < x <= L_1 + … + L_j; x <= L_1 gives the first, x beyond the route the last.
+
+    Symbolic, as vectors: with c_j = [x <= L_1 + … + L_j] (c_n = 1), rising once along the route, the value is
+    Σ_j values[j] (c_j − c_{j−1}): exactly one term is the value itself, the others add zeros."""
+    if len(values) > 1 and _symbolic(x, *lengths, *values):
+        L, v = ca.vertcat(*lengths), ca.vertcat(*values)
+        ends = ca.cumsum(L)[:-1]
+        inside = ca.vertcat(ends >= x, 1.0)                       # c_1 … c_n
+        first = inside - ca.vertcat(0.0, inside[:-1])             # 1 on the load's segment only
+        return _sum(first * v)
     out = values[-1]
     ends, total = [], 0.0
     for length in lengths:

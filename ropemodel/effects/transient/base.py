@@ -200,6 +200,9 @@ class TransientSubmodel(Submodel):
     #: quantities of the static model the variant reads (declared there, e.g. q_lw): scene parameters of a
     #: transient like its own ``quantities``, without claiming them (messages name their static owners)
     reads: ClassVar[tuple[str, ...]] = ()
+    #: its parameters that only an elastic rope loop uses (a rigid loop does not move them: a tensioner's
+    #: carriage mass); what a transient reads leaves them out with an inextensible rope
+    elastic_only: ClassVar[tuple[str, ...]] = ()
 
     def equations(self, v):
         if not self.gathered:

@@ -62,6 +62,7 @@ class ConstantForceTensioner(Tensioner):
 
     description = "carriage pulled with F_nwl, stroke limits [0, stroke]"
     quantities = (M_T, STROKE)
+    elastic_only = ("m_t",)         # an inextensible loop holds the carriage still (``self.loop``)
     constant_force = True
     smooth = "free"
 

@@ -58,6 +58,22 @@ CHECKS = (
 )
 CHECK = {c.name: c for c in CHECKS}
 
+#: what each check compares at an instant, (the force or take-up judged, its limit) in SI, from the same
+#: series ``o`` and values ``a`` as its margin: the value and limit columns of the output
+#: (:func:`optimisation.dynamic.manoeuvres.sides`, :mod:`ropemodel.views.checks`); a slip check's limit is the
+#: judged force less its margin (F_C/rho, F_S/rho)
+SIDES = {
+    "safety_margin": (lambda o, a: o["F_C"], lambda o, a: a["F_min"] / a["n_rope"]),
+    "safety_margin_S": (lambda o, a: o["F_S"], lambda o, a: a["F_min"] / a["n_rope"]),
+    "slip_margin_fwd": (lambda o, a: o["F_S"], lambda o, a: o["F_S"] - o["slip_fwd"]),
+    "slip_margin_back": (lambda o, a: o["F_C"], lambda o, a: o["F_C"] - o["slip_back"]),
+    "slack_margin": (lambda o, a: o["F_S"], lambda o, a: a["F_S_min"]),
+    "taut_margin": (lambda o, a: o["F_C"], lambda o, a: a["F_S_min"]),
+    "tension_margin": (lambda o, a: o["T"], lambda o, a: 0.0),
+    "stroke_margin": (lambda o, a: o["take_up"], lambda o, a: a["stroke"]),
+    "stroke_start_margin": (lambda o, a: o["take_up"], lambda o, a: 0.0),
+}
+
 
 def completed(scene, design: dict) -> dict:
     """What a manoeuvre's scene needs that the scene leaves out: a rigid drum without a diameter, 40 d (its

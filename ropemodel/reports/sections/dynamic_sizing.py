@@ -8,6 +8,7 @@ from __future__ import annotations
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
 from ropemodel.reports.sections.transient import every_parameter
+from ropemodel.views.checks import factors, manoeuvre_rows, readable
 
 INTRO = """<p>Every design check holds through the start and stop of both directions of travel (four manoeuvres),
 with the load anywhere on the route (the ends and the middle of every segment), not only at the static forces
@@ -46,23 +47,18 @@ def dynamic_sizing(ctx):
                         "dynamic factor [-]", "checks"], rows,
                        kinds=["name", "", "num", "num", "num", "num", ""], cls="manoeuvres")
     html += page.fragment("<h3>What fixes the design</h3><p>Active at the continuous optimum (a check at an instant "
-                          "of a manoeuvre, or a static check):</p><ul>{% for a in active %}<li><code>{{ a }}</code>"
-                          "</li>{% endfor %}</ul>", active=design.active_continuous)
+                          "of a manoeuvre, or a static check):</p><ul>{% for a in active %}<li>{{ a }}</li>"
+                          "{% endfor %}</ul>", active=[readable(a) for a in design.active_continuous])
     return html + _least_margins(design.manoeuvres, design.scene)
 
 
 def _least_margins(manoeuvres, scene) -> str:
-    """Each check's least margin through each manoeuvre (the simulator's history), in the check's own unit,
-    with the rule its factor comes from."""
-    from optimisation.dynamic.manoeuvres import declared
-
-    CHECK = declared(scene).CHECK
-    rows = []
-    for m in manoeuvres:
-        for name, least in m["least_margins"].items():
-            unit = CHECK[name].shown
-            rows.append([name, m["manoeuvre"], least["where"], f"{least['margin']:.6g}", "-" if unit == "1" else unit,
-                         f"{least['t']:.3f}", "pass" if least["margin"] >= 0 else "FAIL", scene.check_basis(name)])
-    return page.fragment("<h3>Least margins through the manoeuvres</h3>") + page.table(
-        ["check", "manoeuvre", "with the load at", "least margin", "unit", "at t [s]", "verdict", "rule"], rows,
-        kinds=["name", "", "", "num", "", "num", "", ""], cls="manoeuvre-checks")
+    """Each check's least margin through each manoeuvre (the simulator's history) in words: the force or
+    take-up it judges and its limit there, the margin, the instant and the load's place
+    (:mod:`ropemodel.views.checks`, as ``size --dynamic`` prints them), and the factors with their rules."""
+    rows = [[m["manoeuvre"], r.check, r.value, r.limit, r.margin, r.t, r.where, "pass" if r.ok else "FAIL"]
+            for m in manoeuvres for r in manoeuvre_rows(m, merged=False, parameters=scene.parameters)]
+    return page.fragment("<h3>Checks through the manoeuvres</h3>") + page.table(
+        ["manoeuvre", "check", "value", "limit", "margin", "at t", "with the load at", "verdict"], rows,
+        kinds=["name", "", "num", "num", "num", "num", "", ""], cls="manoeuvre-checks") + page.fragment(
+        "<p>Factors:</p><ul>{% for f in factors %}<li>{{ f }}</li>{% endfor %}</ul>", factors=factors(scene))
