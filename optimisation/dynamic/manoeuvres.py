@@ -1,8 +1,8 @@
 """The manoeuvres of dynamic sizing, where the load is in each, and the checks made through them.
 
 The scene's machine declares its manoeuvres (``Machine.manoeuvres``: a winch's
-:mod:`ropemodel.machines.winch.manoeuvres`): ``ORDER``, the (``dynamics``, ``travel``) of each, and
-``CHECKS``, the checks through them (each ≥ 0 at every instant), and ``SIDES``, what each check compares (the
+:mod:`ropemodel.machines.winch.manoeuvres`): ``ORDER``, the (``dynamics``, ``travel``) of each;
+``CHECKS``, the checks through them (each ≥ 0 at every instant); and ``SIDES``, what each check compares (the
 value and limit the output shows, :func:`sides`).  Each manoeuvre is the scene's transient with
 those two effects set, and it can happen with the load anywhere on the route: a *case* (:class:`Manoeuvre`) is
 one manoeuvre with the load at one candidate position (:mod:`.positions`: each segment's ends and middle, or the
@@ -54,7 +54,8 @@ class Manoeuvre:
 
 
 def declared(scene):
-    """The manoeuvres ``scene``'s machine declares (``ORDER``, ``CHECKS``, ``CHECK``, ``EVENTS``, ``values``)."""
+    """The manoeuvres ``scene``'s machine declares (``ORDER``, ``CHECKS``, ``CHECK``, ``SIDES``, ``EVENTS``,
+    ``values``)."""
     return needing("manoeuvres", scene, "dynamic sizing")
 
 

@@ -6,8 +6,9 @@ from ropemodel.cli._common import add_scene_arguments, scene_from_args
 from ropemodel.errors import InputError
 
 NAME = "simulate"
-HELP = ("simulate the transient the scene's dynamics effect chooses: a start-up, a stop or a braking (with elastic "
-        "ropes where the scene's machine has them), or a whole trip")
+HELP = ("simulate the transient the scene's dynamics effect chooses: a start-up (dynamics = \"start\"), a stop or "
+        "a braking (\"stop\", \"braking\"; with elastic ropes where the scene's machine has them) or a whole trip "
+        "(\"trip\"), as the scene's machine offers them")
 
 
 def add_arguments(parser) -> None:
