@@ -2,7 +2,7 @@
 
 Same decision variables (d, F_nwl, stroke, scaled as in :class:`optimisation.problem.SizingProblem`),
 same lexicographic objective (least rope mass, then pretension, then stroke), same parameters p and
-every static check; added: the checks of :data:`~optimisation.dynamic.manoeuvres.CHECKS` at every
+every static check; added: the checks of :data:`~ropemodel.machines.winch.manoeuvres.CHECKS` at every
 point of each case's time grid, each case's transient integrated inside the NLP
 (:mod:`optimisation.dynamic.shooting`).  The cases integrated are those that govern a check
 (:mod:`optimisation.dynamic.screen`), out of every manoeuvre with the load at every candidate

@@ -3,7 +3,7 @@
 The design (d, F_nwl, stroke: the scene's) is fixed; the drive's ramp time ``t_ramp`` (one value for start
 and stop, the scene's ramp parameter) is the decision variable of an optimal-control problem:
 
-    min t_ramp   s.t.  every check of :data:`~optimisation.dynamic.manoeuvres.CHECKS` ≥ 0 at every instant of
+    min t_ramp   s.t.  every check of :data:`~ropemodel.machines.winch.manoeuvres.CHECKS` ≥ 0 at every instant of
                        the four manoeuvres, t_ramp ≤ t_end,
 
 the same constraints as dynamic sizing (:class:`~optimisation.dynamic.problem.DynamicSizingProblem`: every

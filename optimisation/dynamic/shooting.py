@@ -5,7 +5,7 @@ its ramp) is integrated phase by phase of the drive profile — restarted at eve
 hybrid simulator does, so no step of the drive's acceleration is stepped over — in scaled time
 t = t0 + (t1 − t0)·τ, τ ∈ [0, 1], so that a phase's end may be a decision variable (``t_ramp`` for the
 shortest ramp).  The integrator returns the state on the grid of τ; the checks
-(:data:`~optimisation.dynamic.manoeuvres.CHECKS`) are evaluated there.  Exact derivatives: CasADi
+(:data:`~ropemodel.machines.winch.manoeuvres.CHECKS`) are evaluated there.  Exact derivatives: CasADi
 differentiates through the integrator by forward sensitivities (the Jacobian) and
 forward-over-adjoint ones (the Hessian of the Lagrangian), under cvodes' own error control.
 

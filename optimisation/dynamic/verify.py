@@ -68,7 +68,7 @@ def simulation_scene(scene, manoeuvre, design: dict, values: dict | None = None)
 def verify(problem, xs, values: dict | None = None) -> list[Verdict]:
     """Simulate every case of ``problem`` (each manoeuvre, the load at each candidate position) at scaled
     design ``xs`` (``values``: SI parameters that replace the scene's) and judge every check
-    (:data:`~optimisation.dynamic.manoeuvres.CHECKS`)."""
+    (:data:`~ropemodel.machines.winch.manoeuvres.CHECKS`)."""
     design = problem.to_si(xs)
     p = problem.p_of(values or {})
     a = {k: float(v) for k, v in problem.values(np.asarray(xs, float) * problem.x_scale, p).items()}
