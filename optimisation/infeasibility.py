@@ -158,11 +158,11 @@ def remedies(problem: SizingProblem, conflicting, p, lbx, ubx, x0) -> list[str]:
                 continue
             done.add((name, sense))
             found = []
+            free = _freeing(problem, gfun, problem.params.index(name), sense, q[name], p)   # one NLP, d in bounds
             for d in _diameters(lbx, ubx, problem):
                 lo, hi = lbx.copy(), ubx.copy()
                 lo[0] = hi[0] = d / problem.x_scale[0]
-                start = np.array([lo[0], *x0[1:]])
-                found.append(_free(problem, gfun, problem.params.index(name), sense, q[name], p, lo, hi, start))
+                found.append(free(lo, hi, np.array([lo[0], *x0[1:]])))
             found = [v for v in found if v is not None]
             value = (min(found) if sense == "min" else max(found)) if found else None
             if value is not None:
@@ -191,8 +191,10 @@ def _safe_round(x: float, up: bool) -> float:
     return (math.ceil(x / step) if up else math.floor(x / step)) * step
 
 
-def _free(problem, gfun, i, sense, quantity, p, lbx, ubx, x0):
-    """The least (``"min"``) or largest (``"max"``) value of parameter i with a feasible design, or None."""
+def _freeing(problem, gfun, i, sense, quantity, p):
+    """A function of the design's bounds and start: the least (``"min"``) or largest (``"max"``) value of
+    parameter i with a feasible design within them, or None.  The NLP is built once and solved for each
+    catalogue diameter (fixed through the bounds)."""
     t = ca.MX.sym("t")
     scale = abs(p[i]) or 1.0
     pv = ca.vertcat(*[t * scale if j == i else problem.p[j] for j in range(len(p))])
@@ -202,10 +204,13 @@ def _free(problem, gfun, i, sense, quantity, p, lbx, ubx, x0):
                                          "g": gfun(xs, pv)}, OPTS)
     lo = quantity.low / scale if math.isfinite(quantity.low) else -np.inf
     hi = quantity.high / scale if math.isfinite(quantity.high) else np.inf
-    r = solver(x0=np.concatenate([x0, [1.0]]), p=p, lbx=np.concatenate([lbx, [lo]]), ubx=np.concatenate([ubx, [hi]]),
-               lbg=0.0, ubg=np.inf)
-    zz = np.asarray(r["x"]).ravel()
-    g = np.asarray(gfun(zz[:3], np.where(np.arange(len(p)) == i, zz[3] * scale, p))).ravel()
-    if not solver.stats()["success"] or g.min() < -1e-7 or not quantity.in_range(zz[3] * scale):
-        return None
-    return float(zz[3] * scale)
+
+    def free(lbx, ubx, x0):
+        r = solver(x0=np.concatenate([x0, [1.0]]), p=p, lbx=np.concatenate([lbx, [lo]]),
+                   ubx=np.concatenate([ubx, [hi]]), lbg=0.0, ubg=np.inf)
+        zz = np.asarray(r["x"]).ravel()
+        g = np.asarray(gfun(zz[:3], np.where(np.arange(len(p)) == i, zz[3] * scale, p))).ravel()
+        if not solver.stats()["success"] or g.min() < -1e-7 or not quantity.in_range(zz[3] * scale):
+            return None
+        return float(zz[3] * scale)
+    return free

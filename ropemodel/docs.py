@@ -16,6 +16,7 @@ file that holds it).  ``python -m ropemodel.docs`` rewrites every file of :func:
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import sys
@@ -36,9 +37,11 @@ def effects_table() -> str:
     return "\n".join(rows)
 
 
-def _roles(model: str) -> tuple[list[str], list[str]]:
+@functools.cache
+def _roles(model: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """(parameters, outputs) of ``model`` over every variant (a name computed by one variant and given
-    to another, e.g. the sheave's Q_R, is in both)."""
+    to another, e.g. the sheave's Q_R, is in both).  Cached: it builds a model per variant, and the registry
+    does not change after import."""
     from ropemodel.core.model import Model
 
     outputs: dict[str, None] = {}
@@ -49,7 +52,7 @@ def _roles(model: str) -> tuple[list[str], list[str]]:
             outputs.update(dict.fromkeys(m.outputs))
             parameters.update(dict.fromkeys(m.parameters))
     declared = list(all_quantities(model))
-    return [n for n in declared if n in parameters], [n for n in declared if n in outputs]
+    return tuple(n for n in declared if n in parameters), tuple(n for n in declared if n in outputs)
 
 
 def _unit(q) -> str:

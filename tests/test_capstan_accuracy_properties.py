@@ -193,6 +193,7 @@ def test_other_tolerances_are_met_and_estimated_honestly(rtol):
 
 
 @pytest.mark.slow
+@pytest.mark.exhaustive     # minutes: not in CI (CONTRIBUTING, "Test tiers")
 @pytest.mark.parametrize("variant", ["li", "continuous", "smooth"])
 def test_every_regime_10k(variant):
     err, est = compare(variant, N, 22)

@@ -99,6 +99,7 @@ def test_static_optimum_slips_or_overloads_in_a_start(scene):
 
 # ---------------------------------------------------------------------------------------- the shortest ramp
 @pytest.mark.slow
+@pytest.mark.exhaustive     # minutes: not in CI (CONTRIBUTING, "Test tiers")
 def test_shortest_ramp_holds_and_a_slightly_shorter_one_fails(scene):
     """The shortest t_ramp for a given design, checked by the simulator on both sides: at the answer every
     check holds through the four manoeuvres; 1 % shorter, some check fails."""

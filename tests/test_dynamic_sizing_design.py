@@ -17,7 +17,7 @@ from optimisation.dynamic.refine import solve_refined
 from optimisation.problem import VARIABLES, load_sizing
 from ropemodel.cli import main
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.exhaustive]     # minutes each: not in CI (CONTRIBUTING, "Test tiers")
 
 
 @pytest.fixture(scope="module")

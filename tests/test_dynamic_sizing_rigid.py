@@ -21,7 +21,7 @@ from optimisation.dynamic import size_dynamic
 from optimisation.problem import load_sizing
 from ropemodel.papers import en12385
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.exhaustive]     # minutes each: not in CI (CONTRIBUTING, "Test tiers")
 
 G_N = 9.80665                                           # standard gravity [m/s²]
 #: the route from the drive: length [m], inclination [deg] (no segment gives its own friction: mu_pl on each)

@@ -21,7 +21,7 @@ from optimisation.problem import load_sizing
 from ropemodel.cli._size_dynamic import design_text
 from ropemodel.papers import en12385
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.exhaustive]     # minutes each: not in CI (CONTRIBUTING, "Test tiers")
 
 
 @pytest.fixture(scope="module")

@@ -159,9 +159,16 @@ def _slow(i: int, case) -> bool:
     valid inputs (minutes each).  ``-m slow`` runs the rest."""
     if "--dynamic" in case.argv and case.expect == "sound":
         return True
+    if case.expect == "sound" and ("--pdf" in case.argv or "every input at its" in case.what):
+        return True                                     # Chromium prints a PDF; every input at an edge sizes slowly
     if case.kind in DEFAULT_KINDS or "every input" in case.what:
         return False
     return i % (3 if case.expect == "fail" else 10) != 0
+
+
+def _exhaustive(case) -> bool:
+    """Dynamic sizing's valid inputs (one to four minutes each): ``-m exhaustive``, not CI's slow run."""
+    return "--dynamic" in case.argv and case.expect == "sound"
 
 
 def _param(i, case):
@@ -169,6 +176,8 @@ def _param(i, case):
     marks = [pytest.mark.xfail(reason=reason, strict=True)] if reason else []
     if _slow(i, case):
         marks.append(pytest.mark.slow)
+    if _exhaustive(case):
+        marks.append(pytest.mark.exhaustive)
     return pytest.param(case, id=f"{case.command}-{case.kind}-{i}-{case.what[:120]}", marks=marks)
 
 

@@ -88,3 +88,18 @@ def test_tests_import_their_helpers_by_module_name():
                 [a.name for a in node.names] if isinstance(node, ast.Import) else [])
             bad += [f"{path.name}: {n}" for n in names if n == "tests" or n.startswith("tests.")]
     assert not bad, bad
+
+
+def test_every_test_named_slow_by_duration_exists():
+    """An entry of ``SLOW_BY_DURATION`` whose test was renamed would silently put a long test back into the
+    README's command; each must name a test function of its file."""
+    from conftest import SLOW_BY_DURATION
+
+    stale = []
+    for entry in SLOW_BY_DURATION:
+        path, name = entry.split("::")
+        tree = ast.parse((ROOT / path).read_text(encoding="utf-8"))
+        functions = {n.name for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)}
+        if name.split("[")[0] not in functions:
+            stale.append(entry)
+    assert not stale, stale

@@ -139,6 +139,7 @@ def test_the_rigid_design_slips_in_the_elastic_stop_from_the_middle_of_the_wind(
 
 
 @pytest.mark.slow
+@pytest.mark.exhaustive     # minutes: not in CI (CONTRIBUTING, "Test tiers")
 def test_sizing_through_the_transient_holds_in_the_lumped_model():
     d = size("koepe_braking", with_sensitivities=False)
     x = d.design
@@ -172,6 +173,7 @@ def test_text_and_json_show_the_design_with_units_and_what_governs(capsys):
 
 
 @pytest.mark.slow
+@pytest.mark.exhaustive     # minutes: not in CI (CONTRIBUTING, "Test tiers")
 def test_no_design_exits_1_with_the_remedy(capsys):
     assert main(["size", "koepe_example", "--set", "mu=0.12"]) == 1
     captured = capsys.readouterr()

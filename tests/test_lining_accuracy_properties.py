@@ -148,6 +148,7 @@ def test_every_integrator_meets_its_rtol(plugin):
 
 
 @pytest.mark.slow
+@pytest.mark.exhaustive     # minutes: not in CI (CONTRIBUTING, "Test tiers")
 @pytest.mark.parametrize("plugin", sorted(INTEGRATORS))
 def test_every_integrator_10k(plugin):
     args = sample(N, 8, True)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 from _studies import load_study
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.exhaustive]     # minutes each: not in CI (CONTRIBUTING, "Test tiers")
 
 
 @pytest.fixture(scope="module")

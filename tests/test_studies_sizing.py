@@ -27,6 +27,7 @@ def test_sizing_benchmark_fast(tmp_path):
 
 
 @pytest.mark.slow
+@pytest.mark.exhaustive     # minutes: not in CI (CONTRIBUTING, "Test tiers")
 def test_sizing_benchmark_full_meets_the_readme(tmp_path):
     """The README's caption, on the full run (120 random feasible scenes, the same in every run): IPOPT solved
     all of them, SLSQP 116; SLSQP at least 1.3x slower in the ratio of median times measured in the same run
@@ -83,6 +84,7 @@ def test_sizing_map_speed_fast(tmp_path):
 
 
 @pytest.mark.slow
+@pytest.mark.exhaustive     # minutes: not in CI (CONTRIBUTING, "Test tiers")
 def test_sizing_map_speed_full(tmp_path):
     """The README's headline (the full 1000-point map, best of three interleaved rounds): IPOPT needed at 6 points, and
     the active-set path at least 10x faster than SLSQP with finite differences and than IPOPT at every point,
