@@ -85,10 +85,13 @@ class Design(DesignViews):
             out["D_min"] = self.least_drum
         out["sensitivities"] = self.sensitivities
         if self.diagnosis is not None and not self.diagnosis.feasible:
-            out["infeasible"] = {"conflicting": self.diagnosis.conflicting,
-                                 "max_violation_scaled": self.diagnosis.max_violation,
-                                 "relax_alone": self.diagnosis.alone, "elastic": self.diagnosis.elastic,
-                                 "where": self.diagnosis.where.strip(), "needs": self.diagnosis.needs}
+            infeasible = {"conflicting": self.diagnosis.conflicting,
+                          "max_violation_scaled": self.diagnosis.max_violation,
+                          "relax_alone": self.diagnosis.alone, "elastic": self.diagnosis.elastic,
+                          "where": self.diagnosis.where.strip(), "needs": self.diagnosis.needs}
+            if self.diagnosis.scan:
+                infeasible["scan"] = self.diagnosis.scan
+            out["infeasible"] = infeasible
         out["message"] = self.message
         out.update(self.rope)
         if self.objective:

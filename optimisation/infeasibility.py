@@ -56,6 +56,8 @@ class Diagnosis:
     margins_at_least_violation: dict[str, float] = field(default_factory=dict)
     where: str = ""
     needs: list[str] = field(default_factory=list)    # "needs D >= 1.26 m": what would make a design exist
+    backing: str = ""                                 # what backs the verdict beyond the local solvers (a scan)
+    scan: dict = field(default_factory=dict)          # that scan's axes and counts
 
     def text(self, units: dict[str, str]) -> str:
         if self.feasible:
@@ -63,6 +65,8 @@ class Diagnosis:
         lines = [f"no design meets every check{self.where}: " + (
             "these checks conflict: " + ", ".join(self.conflicting) if self.conflicting else   # none with a multiplier
             "these checks cannot hold: " + ", ".join(self.elastic))]                         # above 1e-6: the relaxed
+        if self.backing:
+            lines.append(f"  {self.backing}")
         if self.needs:
             lines.append("  each of these alone makes a design exist: " + "; ".join(self.needs))
         for c in self.conflicting:

@@ -116,7 +116,7 @@ def solve_continuous(problem: SizingProblem, p=None, x0=None, d_range=None, fix_
         _active_set(problem, sol, lbx, ubx, p)
         if sol.success:
             _polish(problem, sol, p, lbx, ubx)
-            sol.lexicographic_ok = _lexicographic_ok(problem, sol, p)
+            sol.lexicographic_ok = lexicographic_ok(problem, sol, p)
     return sol
 
 
@@ -177,7 +177,7 @@ def _polish(problem, sol, p, lbx, ubx):
         sol.xs, sol.g, sol.polished = x, g, True
 
 
-def _lexicographic_ok(problem, sol, p) -> bool:
+def lexicographic_ok(problem, sol, p) -> bool:
     """True when the design is also a KKT point of the primary objective (rope mass) alone.
 
     The primary gradient must be a nonnegative combination of the active constraint

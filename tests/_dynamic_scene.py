@@ -45,13 +45,15 @@ segments = 4
 """
 
 
-def write_scene(tmp_path, extra: str = "", name: str = "dyn.toml"):
-    """The test scene as a file (``extra``: more [parameters] lines)."""
+def write_scene(tmp_path, extra: str = "", name: str = "dyn.toml", segments: int = 4):
+    """The test scene as a file (``extra``: more [parameters] lines; ``segments``: rope elements per span)."""
     path = tmp_path / name
-    path.write_text(SCENE.format(extra=extra))
+    path.write_text(SCENE.format(extra=extra).replace("segments = 4", f"segments = {segments}"))
     return path
 
 
+#: the dynamic slip factor's default (``n_slip_dynamic``): the slip reserve the tests ask of a dynamic design
+N_SLIP_DYNAMIC = 1.1
 #: the four manoeuvres
 MANOEUVRES = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
 
@@ -75,14 +77,17 @@ def places(scene) -> list[float]:
 
 
 def simulated_failures(scene, design: dict, values: dict | None = None, where=None, manoeuvres=MANOEUVRES,
-                       t_end: float | None = None) -> list[str]:
+                       t_end: float | None = None, slip_factor: float | None = None) -> list[str]:
     """Every check of the manoeuvres with the load at each place of ``where`` (default :func:`places`) judged
     from ``ropemodel.dynamics.simulate`` alone (the hybrid simulator at rtol 1e-10), written here from the
     simulator's history and events, independently of the sizing package: rope safety F_min = K d² R_r
     (EN 12385-4) against n_rope·max F_C and n_rope·max F_S, no slip, no stroke stop reached, no slack element,
     take-up within the stroke, F_S and F_C ≥ F_S_min.  ``t_end`` [s]: how long each manoeuvre is followed
-    (default the scene's)."""
+    (default the scene's).  ``slip_factor``: also a slip reserve at every sample, e^{mu_d alpha_d} F_slack ≥
+    slip_factor F_tight (Euler–Eytelwein on a rigid lining, both directions)."""
     import dataclasses
+
+    import numpy as np
 
     from ropemodel.dynamics import simulate
     from ropemodel.papers import en12385
@@ -107,5 +112,9 @@ def simulated_failures(scene, design: dict, values: dict | None = None, where=No
                      "rope safety": v["n_rope"] * max(F_C.max(), F_S.max()) > F_min,
                      "take-up": h["take_up [m]"].max() > design["stroke"],
                      "taut": min(F_C.min(), F_S.min()) < v["F_S_min"]}
+            if slip_factor is not None:
+                rho = np.exp(v["mu_d"] * v["alpha_d"])
+                reserve = rho * np.minimum(F_S, F_C) - slip_factor * np.maximum(F_S, F_C)
+                tests["dynamic slip factor"] = bool((reserve < 0).any())
             failures += [f"{name} in the {tag}" for name, bad in tests.items() if bad]
     return failures

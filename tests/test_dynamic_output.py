@@ -36,7 +36,7 @@ def _least(name: str, value: float, limit: float, t: float, x_m: float) -> dict:
     elif name == "stroke_margin":
         margin = limit - value                      # stroke - z
     else:
-        margin = value - limit                      # F_S - F_C/rho, F - F_S_min, T - 0, z - 0
+        margin = value - limit                      # F_S - n_slip_dynamic F_C/rho, F - F_S_min, T - 0, z - 0
     where = {0.0: "x_m = 0 m (at the drive, on the route)", 575.0: "x_m = 575 m (middle of the route)"}[x_m]
     return {"margin": margin, "t": t, "x_m": x_m, "where": where, "value": value, "limit": limit}
 
@@ -127,7 +127,7 @@ def test_each_row_states_value_limit_margin_instant_and_place_with_units(design)
     force = rows["rope force F_S <= F_min/n_rope"]        # 299.8 / 280.1 - 1 = 7.033 %
     assert (force["value"], force["limit"], force["margin"], force["t"]) == ("280.1 kN", "299.8 kN", "+7.033 %", "0.5")
     assert force["where"] == "x_m = 0 m (at the drive, on the route)"
-    grip = rows["drum grip F_S >= F_C/rho"]                 # 42.05 - 42.04357 kN = 6.43 N
+    grip = rows["drum grip F_S >= n_slip_dynamic F_C/rho"]  # 42.05 - 42.04357 kN = 6.43 N
     assert (grip["value"], grip["limit"], grip["margin"]) == ("42.05 kN", "42.04 kN", "+0.00643 kN")
     take_up = rows["take-up z <= stroke"]                   # 3611 - 3459 mm
     assert (take_up["value"], take_up["limit"], take_up["margin"]) == ("3459 mm", "3611 mm", "+152 mm")
@@ -139,12 +139,14 @@ def test_each_row_states_value_limit_margin_instant_and_place_with_units(design)
 
 def test_active_checks_and_factors_in_words(design):
     text = design_text(design)
-    assert "  drum grip F_S >= F_C/rho (upward start, x_m = 575 m, t = 1.969 s)" in text
+    assert "  drum grip F_S >= n_slip_dynamic F_C/rho (upward start, x_m = 575 m, t = 1.969 s)" in text
     assert "  every rope element T >= 0 (downward stop, x_m = 0 m, t = 0.704 s)" in text
     assert "  take-up dF <= stroke (steady upward travel)" in text
     assert "factors: n_rope = 4.5 (rope force, every manoeuvre and steady travel): user-given" in text
     assert "n_slip = 1.25 (drum grip in steady travel): user-given" in text
-    assert "drum grip in the manoeuvres: no slip factor" in text
+    # every drum contact of a transient carries the dynamic slip factor, here its default, said so
+    assert re.search(r"n_slip_dynamic = 1\.1 \(drum grip in the manoeuvres, rho F_S\(t\) >= n_slip_dynamic "
+                     r"F_C\(t\) at\s+every instant\): default: not given: 1\.1, engineering judgement", text), text
 
 
 def test_the_report_section_says_the_same_in_words(design):
@@ -168,9 +170,30 @@ def test_a_dynamic_slip_factor_shows_when_the_design_carries_it():
              "slip_margin_fwd": "n_slip_dynamic: practice X"}
     scene = SimpleNamespace(parameters={"n_rope": 4.5, "n_slip": 1.25, "n_slip_dynamic": 1.1},
                             check_basis=lambda name: basis.get(name, "-"))
-    assert factors(scene)[-1] == "n_slip_dynamic = 1.1 (drum grip in the manoeuvres): practice X"
+    assert factors(scene)[-1] == ("n_slip_dynamic = 1.1 (drum grip in the manoeuvres, rho F_S(t) >= n_slip_dynamic "
+                                  "F_C(t) at every instant): practice X")
     rows = manoeuvre_rows(_manoeuvre("upward start", 1.0), parameters=scene.parameters)
     assert "drum grip F_S >= n_slip_dynamic F_C/rho" in [r.check for r in rows]
+
+
+def test_the_mesh_in_words_and_kN(design):
+    """The mesh control's record (``DynamicDesign.mesh``, SI) in the text and the report: the elements per span,
+    the tolerance, the largest force estimate with its unsafe part and back-off in kN, its check in words."""
+    from ropemodel.reports.sections.dynamic_sizing import dynamic_sizing
+
+    mesh = {"segments": 8, "segments_scene": 4, "tolerance": 500.0, "units": {"safety_margin": "N",
+            "slip_margin_fwd": "N", "stroke_margin": "m"}, "errors": {"safety_margin": 320.0, "slip_margin_fwd": 410.0,
+            "stroke_margin": 0.02}, "unsafe": {"safety_margin": 320.0, "slip_margin_fwd": 0.0, "stroke_margin": 0.02},
+            "backoffs": {"safety_margin": 388.7, "slip_margin_fwd": 4.7, "stroke_margin": 0.024}}
+    with_mesh = DynamicDesign(**{**design.__dict__, "mesh": mesh})
+    text = " ".join(design_text(with_mesh).split())
+    assert ("rope mesh: 8 elements per span (from the scene's 4, doubled while Richardson's estimate of a force "
+            "check's discretisation error exceeded mesh_tol = 0.5 kN); the largest estimate 0.41 kN, drum grip F_S >= "
+            "n_slip_dynamic F_C/rho, 0 kN of it on the unsafe side, backed off by 0.0047 kN") in text
+    assert "with 8 elements per span" in text and INTERNAL.search(text) is None
+    html = str(dynamic_sizing(SimpleNamespace(design=with_mesh, scene=with_mesh.scene, sizing=True)))
+    assert "rope mesh: 8 elements per span" in html and "the largest estimate 0.41 kN" in html
+    assert "rope mesh" not in design_text(design)          # no mesh record (a rigid rope): no line
 
 
 def test_no_design_says_its_conflicting_checks_in_words(scene):
@@ -181,8 +204,9 @@ def test_no_design_says_its_conflicting_checks_in_words(scene):
                "\n  slip_margin_fwd @ upward start, x_m = 575 m, t = 1.969 s: relaxing it alone is not enough")
     text = design_text(DynamicDesign(scene, False, message=message))
     assert INTERNAL.search(text) is None, text
-    assert ("these checks conflict: drum grip F_S >= F_C/rho @ upward start, x_m = 575 m, t = 1.969 s, every rope "
-            "element T >= 0 @ upward stop, x_m = 0 m, t = 2 s, take-up dF <= stroke (steady upward travel)") in text
+    assert ("these checks conflict: drum grip F_S >= n_slip_dynamic F_C/rho @ upward start, x_m = 575 m, t = 1.969 s, "
+            "every rope element T >= 0 @ upward stop, x_m = 0 m, t = 2 s, take-up dF <= stroke (steady upward "
+            "travel)") in text
 
 
 def test_readable_names():
@@ -200,7 +224,7 @@ def test_the_shortest_ramp_text_groups_its_checks_too(scene, design, monkeypatch
                              active=["slip_margin_fwd @ upward start, x_m = 575 m, t = 1.969 s"])
     text = ramp_text(scene, answer)
     assert INTERNAL.search(text) is None
-    assert "a shorter ramp fails drum grip F_S >= F_C/rho (upward start" in text
+    assert "a shorter ramp fails drum grip F_S >= n_slip_dynamic F_C/rho (upward start" in text
     assert [t.split(":")[0] for t in groups(text)] == MANOEUVRES
 
 
@@ -214,7 +238,7 @@ def test_value_and_limit_are_what_the_margin_compares(name):
          "take_up": rng.uniform(0, 3.5, n)}
     rho = 3.2
     o["slip_fwd"], o["slip_back"] = o["F_S"] - o["F_C"] / rho, o["F_C"] - o["F_S"] / rho
-    a = {"F_min": 1.6e6, "n_rope": 4.5, "F_S_min": 5e3, "stroke": 3.611}
+    a = {"F_min": 1.6e6, "n_rope": 4.5, "n_slip_dynamic": 1.1, "F_S_min": 5e3, "stroke": 3.611}
     margin = np.asarray(CHECK[name].margin(o, a), float)
     i = int(np.argmin(margin))
     s = sides(winch, name, o, a, i)
@@ -225,9 +249,9 @@ def test_value_and_limit_are_what_the_margin_compares(name):
         assert s["limit"] - s["value"] == pytest.approx(margin[i], rel=1e-12)
     else:
         assert s["value"] - s["limit"] == pytest.approx(margin[i], rel=1e-12, abs=1e-9)
-    if name.startswith("slip"):      # the limit of a grip check is the other side over rho
+    if name.startswith("slip"):      # the limit of a grip check: n_slip_dynamic times the other side over rho
         other = "F_C" if name.endswith("fwd") else "F_S"
-        assert s["limit"] == pytest.approx(o[other][i] / rho, rel=1e-12)
+        assert s["limit"] == pytest.approx(1.1 * o[other][i] / rho, rel=1e-12)
 
 
 @pytest.mark.parametrize("command", [["run", "winch_sizing_fig9"],

@@ -1,10 +1,13 @@
 """Dynamic sizing on the three-segment route of issue 21 (600 m at 12°, 700 m at 20°, 500 m at 6° from the
-drive; 300 kN; 3 m/s; a 4 s ramp; 6x36-IWRC), from a scene with no transient in it (slow: one sizing ~4 CPU-min).
+drive; 300 kN; 3 m/s; a 4 s ramp; 6x36-IWRC), from a scene with no transient in it (slow: one sizing with its
+mesh control, minutes of CPU).
 
 Truth: the hybrid simulator's histories judged by this test's own checks (``_dynamic_scene.simulated_failures``:
-rope safety, slip, slack, stroke, taut rope), followed twice as long as the sizing follows them, with the load
-on the steepest segment (its ends, its quarter points, which are no candidate of the sizing, and its middle),
-and at every candidate place the sizing left out of its NLP.
+rope safety, slip, the dynamic slip factor, slack, stroke, taut rope), followed twice as long as the sizing
+follows them, with the load on the steepest segment (its ends, its quarter points, which are no candidate of
+the sizing, and its middle), and at every candidate place the sizing left out of its NLP; and under mesh
+refinement (issue 23, items 1 and 2, ``_mesh_checks``): with 2x the scene's elements at every place, 4x with
+the load where each manoeuvre is governed, 3 % less at the converged mesh.
 """
 
 from __future__ import annotations
@@ -14,7 +17,8 @@ import os
 
 import pytest
 import _route3 as route3
-from _dynamic_scene import MANOEUVRES, places, simulated_failures
+from _dynamic_scene import MANOEUVRES, N_SLIP_DYNAMIC, places, simulated_failures
+from _mesh_checks import failures_with_elements, lighter_that_holds, mesh_record_problems
 
 from optimisation.dynamic import size_dynamic
 from optimisation.problem import load_sizing
@@ -52,6 +56,14 @@ def design(sized):
     return sized[0]
 
 
+@pytest.fixture(scope="module")
+def scene_with(tmp_path_factory):
+    """The route with ``n`` rope elements per span (the scene's: the default 8)."""
+    tmp = tmp_path_factory.mktemp("mesh")
+    return lambda n: load_sizing(route3.write(tmp, extra=f"[numerics]\nsegments = {n}\n", name=f"route{n}.toml"),
+                                 emit=False)
+
+
 def _horizon(design) -> float:
     """Twice as long after the ramp as the sizing followed each manoeuvre."""
     v = design.scene.parameters
@@ -68,7 +80,28 @@ def test_the_design_holds_with_the_load_on_the_steepest_segment(scene, design):
     """Starts and stops in both directions with the load anywhere on the 20° segment (600 m to 1300 m from the
     drive): at its ends, quarter points and middle."""
     steep = [600.001, 775.0, 950.0, 1125.0, 1300.0]
-    assert simulated_failures(scene, design.design, where=steep, t_end=_horizon(design)) == []
+    assert simulated_failures(scene, design.design, where=steep, t_end=_horizon(design),
+                              slip_factor=N_SLIP_DYNAMIC) == []
+
+
+def test_design_holds_with_twice_the_rope_elements(scene_with, design):
+    """The catalogue design keeps every check, the dynamic slip factor included, simulated with twice the
+    scene's 8 elements per span, every manoeuvre at every place of the load."""
+    assert failures_with_elements(scene_with, design, 16) == []
+
+
+def test_design_holds_with_four_times_the_rope_elements(scene_with, design):
+    """And with four times (32 per span), each manoeuvre with the load where it is governed (36 simulations of
+    32 elements a span would be minutes of CPU: 4 here)."""
+    assert failures_with_elements(scene_with, design, 32, everywhere=False) == []
+
+
+def test_three_percent_less_fails_at_the_converged_mesh(scene_with, design):
+    assert lighter_that_holds(scene_with(design.mesh["segments"]), design) == []
+
+
+def test_mesh_and_factors_are_reported(design):
+    assert mesh_record_problems(design, 8, n_slip=1.25) == []
 
 
 def test_places_left_out_of_the_nlp_hold_in_simulation(scene, design):
@@ -80,7 +113,7 @@ def test_places_left_out_of_the_nlp_hold_in_simulation(scene, design):
     for dynamics, travel in MANOEUVRES:
         left_out = [x for x in places(scene) if (dynamics, travel, round(x, 6)) not in inside]
         failures += simulated_failures(scene, design.design, where=left_out, manoeuvres=[(dynamics, travel)],
-                                       t_end=_horizon(design))
+                                       t_end=_horizon(design), slip_factor=N_SLIP_DYNAMIC)
     assert failures == []
 
 

@@ -19,8 +19,11 @@ Layout:
 * :mod:`.verify` — every design simulated by the hybrid simulator in every case (an independent path);
 * :mod:`.design` — :func:`size_dynamic`, the whole answer (``ropemodel size --dynamic``);
 * :mod:`.ramp` — the shortest start and stop ramps that keep a given design safe;
+* :mod:`.warm` — a re-solve on the previous optimum's active set (Newton, kept at a KKT point);
 * :mod:`.diagnose` — no design: the conflicting checks and what would help;
-* :mod:`.sensitivity`, :mod:`.sweep` — sensitivities and sweeps of the dynamic optimum.
+* :mod:`.scan` — the scan of the design box that backs a "no design";
+* :mod:`.sensitivity`, :mod:`.sweep` — sensitivities and sweeps of the dynamic optimum (in chunks, on dask,
+  resumable).
 """
 
 from optimisation.dynamic.design import DynamicDesign, size_dynamic

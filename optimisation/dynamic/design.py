@@ -7,9 +7,12 @@ Steps of :func:`size_dynamic`: the transient made from the scene
 the static design with the dynamic factors its own transient shows
 (:func:`~optimisation.dynamic.start.factored_start`, the start); the cases that govern a check there
 (:mod:`optimisation.dynamic.screen`); the dynamic NLP on a refined time grid, with every case that comes
-within the back-off at its optimum (:func:`~optimisation.dynamic.refine.solve_refined`); the next catalogue
-size up with F_nwl and stroke re-optimised through the transients, rounded up as the static sizing rounds;
-each design simulated in every case, every manoeuvre with the load at every candidate position
+within the back-off at its optimum (:func:`~optimisation.dynamic.refine.solve_refined`); the rope's
+elements per span chosen from the force tolerance ``mesh_tol``, and the NLP solved again there with each
+check backed off by the Richardson estimate of its discretisation error
+(:func:`~optimisation.dynamic.mesh.converge`); the next catalogue size up with F_nwl and stroke
+re-optimised through the transients, rounded up as the static sizing rounds; each design simulated in
+every case, every manoeuvre with the load at every candidate position
 (:func:`~optimisation.dynamic.verify.verify`).  A design the simulator does not confirm is an error
 (:class:`~ropemodel.errors.SolveError`), never a result.
 """
@@ -24,6 +27,7 @@ import numpy as np
 
 from optimisation.design import Design, rounded_up, solve_best
 from optimisation.dynamic.diagnose import diagnose_dynamic
+from optimisation.dynamic.mesh import converge, segments_of
 from optimisation.dynamic.problem import DynamicSizingProblem
 from optimisation.dynamic.refine import Refinement, solve_refined
 from optimisation.dynamic.start import factored_start, fallback_starts
@@ -45,7 +49,9 @@ class DynamicDesign(Design):
     ``nlp_cases`` (the manoeuvres and places the NLP integrated), ``static`` (the static optimum, SI),
     ``refinement`` (what the grid refinement did), ``seconds`` (static and dynamic solve times, s, this
     run); ``defaults`` (parameter → why its default) and ``transient`` (effect → (variant, chosen by the
-    scene)) of the transient it sized through."""
+    scene)) of the transient it sized through; ``mesh`` (the rope's elements per span, the tolerance, each
+    check's estimated discretisation error and back-off, :func:`mesh_record`); ``slip_factors`` (the static
+    and the dynamic slip factor, each with where its value comes from)."""
 
     manoeuvres: list = field(default_factory=list)
     manoeuvres_continuous: list = field(default_factory=list)
@@ -55,6 +61,8 @@ class DynamicDesign(Design):
     seconds: dict = field(default_factory=dict)
     defaults: dict = field(default_factory=dict)
     transient: dict = field(default_factory=dict)
+    mesh: dict = field(default_factory=dict)
+    slip_factors: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         out = super().to_dict()
@@ -69,6 +77,8 @@ class DynamicDesign(Design):
         out["static"] = self.static
         out["refinement"] = self.refinement
         out["seconds"] = self.seconds
+        out["mesh"] = self.mesh
+        out["slip_factors"] = self.slip_factors
         return out
 
 
@@ -119,6 +129,13 @@ def continuous_optimum(problem, static_xs, record: Refinement | None = None, say
                                  screen=False)
     if sol.feasible:
         return problem, sol, None
+    return decided(problem, sol, record, say)
+
+
+def decided(problem, sol, record: Refinement | None = None, say=None):
+    """The least-violation problem (:func:`diagnose_dynamic`) on ``problem`` whose NLP ended infeasible at
+    ``sol``: (problem, solution, the diagnosis) when no design exists, else the NLP solved again from the
+    design it found: (problem, solution, None)."""
     diagnosis, x_least = diagnose_dynamic(problem, sol.xs, say)
     if not diagnosis.feasible:
         return problem, sol, diagnosis
@@ -187,7 +204,7 @@ def size_dynamic(scene: SceneLike, with_sensitivities: bool = False,
 def _size(scene: Scene, with_sensitivities: bool, say: Callable[[str], None]) -> DynamicDesign:
     problem = DynamicSizingProblem(scene)
     design = DynamicDesign(problem.scene, False, units=dict(problem.units), defaults=dict(problem.scene.defaults),
-                           transient=transient_effects_of(problem.scene))
+                           transient=transient_effects_of(problem.scene), slip_factors=slip_factors(problem.scene))
     say("static optimum")
     static, ssol, t_static = _static(problem.scene)
     if not ssol.feasible:
@@ -199,12 +216,20 @@ def _size(scene: Scene, with_sensitivities: bool, say: Callable[[str], None]) ->
     t0 = time.perf_counter()
     record = Refinement()
     problem, sol, diagnosis = continuous_optimum(problem, ssol.xs, record, say)
+    if diagnosis is None:
+        say("mesh: the rope's discretisation error at the optimum")
+        n_scene, t1 = segments_of(problem.scene), time.perf_counter()
+        problem, sol, found = converge(problem, sol, record, say)
+        design.mesh = mesh_record(problem, found, n_scene, time.perf_counter() - t1)
+        if not sol.feasible:        # none on the finer mesh with the back-offs, or one the NLP missed
+            problem, sol, diagnosis = decided(problem, sol, record, say)
     design.refinement = record.to_dict()
     if diagnosis is not None:
         design.diagnosis = diagnosis
         design.message = diagnosis.text(problem.units)
         return design
-    design.seconds = {"static": t_static, "dynamic": time.perf_counter() - t0}
+    design.seconds = {"static": t_static, "dynamic": time.perf_counter() - t0,
+                      "mesh": design.mesh.get("seconds", 0.0)}
     say("verifying the continuous optimum by simulation")
     design.manoeuvres_continuous = by_manoeuvre(_checked(problem, sol.xs, "continuous"))
     design.continuous = problem.to_si(sol.xs)
@@ -227,7 +252,7 @@ def _catalogue(problem, sol, design: DynamicDesign, say) -> DynamicDesign:
     d_star = design.continuous["d"]
     for dk in [d for d in ropes.diameters() if d >= d_star - 1e-9]:
         x0 = np.array([dk / problem.x_scale[0], *sol.xs[1:]])
-        prob, dsol = solve_refined(problem, x0, fix_d=dk)
+        prob, dsol = solve_refined(problem, x0, fix_d=dk, warm=(problem, sol))
         if not dsol.feasible:
             continue
         xs = rounded_up(prob, dsol.xs)
@@ -263,3 +288,26 @@ def why_no_size(problem, d_star: float, design: DynamicDesign) -> None:
         design.diagnosis = diag
         design.message += (f"; the next size up, {above[0] * 1e3:g} mm, already fails the static checks: "
                            + diag.text(static.units))
+
+
+def mesh_record(problem, found, n_scene: int, seconds: float) -> dict:
+    """What the mesh control did (``--json``'s ``mesh``): the scene's and the chosen elements per span, the
+    tolerance [N], each check's estimated discretisation error and its back-off in the NLP (in the check's
+    unit, N or m; the back-off adds the integration's), the observed orders, each mesh tried, the seconds."""
+    if found is None:
+        return {"segments_scene": None, "segments": None, "note": "the transient's rope has no elements to refine"}
+    backed = set(found.errors) | set(problem.backoffs)      # every check the optimum's NLP backs off its own way
+    check = problem.machine.manoeuvres.CHECK
+    return {**found.to_dict(), "segments_scene": n_scene, "at": "the continuous optimum", "seconds": seconds,
+            "backoffs": {c: problem.backoff(c) * (problem.F_ref if check[c].unit == "N" else 1.0) for c in backed}}
+
+
+def slip_factors(scene) -> dict:
+    """The static and the dynamic slip factor of ``scene`` (value, and where it comes from) — {} without a
+    drum lining's slip checks."""
+    out = {}
+    for name, what in (("n_slip", "static: rho F_S >= n_slip F_C in steady motion"),
+                       ("n_slip_dynamic", "dynamic: rho F_S(t) >= n_slip_dynamic F_C(t) through every manoeuvre")):
+        if name in scene.parameters:
+            out[name] = {"value": scene.parameters[name], "check": what, "basis": scene.basis(name)}
+    return out if "n_slip" in out else {}

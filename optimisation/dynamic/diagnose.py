@@ -8,6 +8,11 @@ The same questions as :mod:`optimisation.infeasibility` asks of the static probl
 2. in the user's terms: each scene parameter that relaxes a conflicting check (:data:`REMEDIES`, the
    static ones and the ramp time, which lowers every dynamic force) is freed alone, d anywhere in the
    catalogue's range, and the NLP finds the value at which a design just exists: "needs t_ramp >= 7.3 s".
+
+Both are local: before the verdict, a scan of the design box (:func:`~optimisation.dynamic.scan.scan_box`)
+looks for a design at every catalogue diameter and a grid of pretensions.  None found: the verdict says how fine
+the scan was (``Diagnosis.backing``, ``Diagnosis.scan``); one found: it is returned as the design to solve again
+from (a design the local solvers missed).
 """
 
 from __future__ import annotations
@@ -17,6 +22,7 @@ import math
 import casadi as ca
 import numpy as np
 
+from optimisation.dynamic.scan import scan_box
 from optimisation.infeasibility import REMEDIES as STATIC_REMEDIES
 from optimisation.infeasibility import Diagnosis, remedy_text
 from ropemodel.papers import en12385 as ropes
@@ -84,12 +90,17 @@ def diagnose_dynamic(problem, x0, say=None) -> tuple[Diagnosis, np.ndarray]:
     t_star = float(zz[3])
     if t_star <= TOL:
         return Diagnosis(True, t_star), zz[:3]
+    say("no design from the least violation: a scan of the design box")
+    scan = scan_box(problem, p)
+    if scan.designs:
+        return Diagnosis(True, t_star, backing=scan.text(), scan=scan.to_dict()), scan.designs[0]
     lam = np.abs(np.asarray(r["lam_g"]).ravel())
     conflicting = [c for c, value in zip(problem.constraints, lam) if value > 1e-6]
     gz = np.asarray(gfun(zz[:3], p)).ravel()
     margins = {c: float(v * s) for c, v, s in zip(problem.constraints, gz, problem.g_scale) if c in conflicting}
     needs = remedies(problem, conflicting, lbx, ubx, zz[:3], say)
-    return Diagnosis(False, t_star, conflicting, {}, {}, margins, " through the manoeuvres", needs), zz[:3]
+    return Diagnosis(False, t_star, conflicting, {}, {}, margins, " through the manoeuvres", needs, scan.text(),
+                     scan.to_dict()), zz[:3]
 
 
 def remedies(problem, conflicting, lbx, ubx, x0, say=None) -> list[str]:

@@ -29,8 +29,9 @@ from ropemodel.dynamics.assemble import chosen, structural
 
 #: largest step [s] of the first time grid (refinement adds the exact local minima of the checks)
 DT_GRID = 0.1
-#: back-off of every check through a manoeuvre in the NLP, in scaled units (F_ref = 0.1 G_m for forces, 1 m
-#: for the stroke): the NLP asks g >= BACKOFF.  Two integrations at rtol 1e-10 (the NLP's and the hybrid
+#: back-off of every check through a manoeuvre in the NLP for the time integration, in scaled units (F_ref =
+#: 0.1 G_m for forces, 1 m for the stroke): the NLP asks g >= BACKOFF plus the check's discretisation error
+#: (``backoffs``, :mod:`optimisation.dynamic.mesh`).  Two integrations at rtol 1e-10 (the NLP's and the hybrid
 #: simulator's) of the Fig. 9 manoeuvres agree to 0.2 N (4e-6 F_ref); the back-off (4.7 N on ~250 kN, 0.1 mm
 #: of stroke) keeps a design the NLP puts on a check on the safe side of it in the simulator too
 BACKOFF = 1e-4
@@ -55,11 +56,14 @@ class DynamicSizingProblem(SizingProblem):
     modes (:class:`~optimisation.dynamic.shooting.Path`); ``selected``: the indices of the cases the NLP
     integrates (default: those governing a check at the start design, :func:`~optimisation.dynamic.screen.governing`),
     ``paths`` theirs and ``grids`` their time grids (default a uniform grid of step :data:`DT_GRID`).
-    ``paths`` given: the smooth modes of a previous problem of the same scene, re-used.
+    ``paths`` given: the smooth modes of a previous problem of the same scene, re-used.  ``backoffs``: check
+    name → its back-off in the NLP (scaled; default :data:`BACKOFF`), from the mesh's error estimate
+    (:func:`optimisation.dynamic.mesh.backoffs`).
     """
 
-    def __init__(self, scene, grids=None, paths=None, selected=None):
+    def __init__(self, scene, grids=None, paths=None, selected=None, backoffs=None):
         super().__init__(transient_scene(scene))
+        self.backoffs = dict(backoffs or {})
         self.static_constraints = list(self.constraints)
         self.g_static = self.g
         self.cases = cases(self.scene)
@@ -111,7 +115,7 @@ class DynamicSizingProblem(SizingProblem):
     def _add_paths(self) -> None:
         x_si = self.xs * ca.DM(self.x_scale)
         a = self.values(x_si, self.p)
-        g, names, scale, margins = [], [], [], []
+        g, names, scale, margins, offsets = [], [], [], [], []
         unit_scale = {"N": self.F_ref, "m": 1.0}
         for j, (path, grid) in enumerate(zip(self.paths, self.grids)):
             _, o, _ = path.samples(self.pp_of(path, x_si, self.p), grid, f"m{j}")
@@ -125,12 +129,18 @@ class DynamicSizingProblem(SizingProblem):
                         tag = f"[{e}]" if check.needs == "T" else ""
                         names.append(f"{check.name}{tag} @ {path.manoeuvre.tag}, t = {t:.6g} s")
                 scale += [unit_scale[check.unit]] * (rows * len(times))
+                offsets += [self.backoff(check.name)] * (rows * len(times))
                 self.units.update({n: check.unit for n in names[len(names) - rows * len(times):]})
         self.dynamic_constraints = names
         self.constraints = self.static_constraints + names
-        self.g = ca.vertcat(self.g, ca.vertcat(*g) / ca.DM(scale) - BACKOFF)
+        self.g = ca.vertcat(self.g, ca.vertcat(*g) / ca.DM(scale) - ca.DM(offsets))
         self.g_scale = np.concatenate([self.g_scale, scale])
         self._margin_exprs = self._margin_exprs + margins
+
+    def backoff(self, check: str) -> float:
+        """The back-off of ``check`` (a name of :data:`~optimisation.dynamic.manoeuvres.CHECKS`) in the NLP,
+        scaled."""
+        return self.backoffs.get(check, BACKOFF)
 
     @cached_property
     def ipopt_options(self) -> dict:
@@ -167,12 +177,12 @@ class DynamicSizingProblem(SizingProblem):
         for i in self.selected:
             old, new = self.all_paths[i], paths[i]
             if not _same_transient(self.pp0(old, xs, p), old, self.pp0(new, xs, p), new, self.F_ref):
-                return DynamicSizingProblem(self.scene, None, paths, self.selected)
+                return DynamicSizingProblem(self.scene, None, paths, self.selected, self.backoffs)
         return None
 
     def refined(self, grids) -> DynamicSizingProblem:
         """The same problem on other grids (the cases' smooth modes re-used)."""
-        return DynamicSizingProblem(self.scene, grids, self.all_paths, self.selected)
+        return DynamicSizingProblem(self.scene, grids, self.all_paths, self.selected, self.backoffs)
 
     def with_cases(self, selected) -> DynamicSizingProblem:
         """The same problem integrating the cases ``selected`` (indices); a case it already integrates keeps its
@@ -180,7 +190,7 @@ class DynamicSizingProblem(SizingProblem):
         selected = sorted(set(selected))
         kept = dict(zip(self.selected, self.grids))
         grids = [kept.get(i) or self.all_paths[i].uniform_grid(self.pp0(self.all_paths[i]), DT_GRID) for i in selected]
-        return DynamicSizingProblem(self.scene, grids, self.all_paths, selected)
+        return DynamicSizingProblem(self.scene, grids, self.all_paths, selected, self.backoffs)
 
     def screened(self, xs, p=None) -> DynamicSizingProblem:
         """The same problem integrating the cases that govern a check at scaled design ``xs``."""

@@ -6,7 +6,8 @@ a dense grid (:data:`DT_DENSE`, the NLP's own integrator), every local minimum b
 :data:`ADD_TOL` is located exactly (bounded Brent on the check integrated from the sample before,
 to 1e-10 s), and the times whose margin is below half the back-off are added to the grid; the
 problem is solved again from the previous optimum.  It stops when every exact local minimum of
-every check keeps at least half the back-off (:data:`~optimisation.dynamic.problem.BACKOFF`): the
+every check keeps its back-off less half the integration's (:data:`~optimisation.dynamic.problem.BACKOFF`;
+a check's back-off adds its mesh error estimate, :mod:`optimisation.dynamic.mesh`): the
 optimum holds between the grid points, the other half of the back-off is left for the difference
 between the NLP's integrator and the hybrid simulator's (:mod:`optimisation.dynamic.verify`).  Then
 the cases the NLP leaves out (:mod:`optimisation.dynamic.screen`) are screened at the optimum: one where
@@ -24,6 +25,7 @@ import numpy as np
 from optimisation.dynamic.problem import BACKOFF
 from optimisation.dynamic.screen import check_scale, governing, uncovered
 from optimisation.dynamic.start import DT_DENSE
+from optimisation.dynamic.warm import on_active_set
 from optimisation.ipopt import solve_continuous
 from ropemodel.errors import SolveError
 
@@ -122,8 +124,12 @@ def add_points(problem, grids, points: list[Minimum], p=None):
     return grids
 
 
-def _first_feasible(problem, starts, p, fix_d):
-    """IPOPT from each scaled start in turn until one ends feasible (the last attempt otherwise)."""
+def _first_feasible(problem, starts, p, fix_d, warm=None):
+    """IPOPT from each scaled start in turn until one ends feasible (the last attempt otherwise); first, with
+    ``warm`` = (previous problem, its optimum), Newton on that optimum's active set
+    (:func:`~optimisation.dynamic.warm.on_active_set`)."""
+    if warm is not None and (sol := on_active_set(*warm, problem, p, fix_d)) is not None:
+        return sol
     for x0 in starts:
         sol = solve_continuous(problem, p=p, x0=x0, fix_d=fix_d)
         if sol.feasible:
@@ -132,7 +138,7 @@ def _first_feasible(problem, starts, p, fix_d):
 
 
 def solve_refined(problem, x0, p=None, fix_d: float | None = None, record: Refinement | None = None, others=(),
-                  screen: bool = True):
+                  screen: bool = True, warm=None):
     """IPOPT on ``problem`` from scaled ``x0``, then on grids refined by the checks' exact local minima
     until every minimum keeps half the back-off, and with the cases left out that come within the back-off
     added; then again on the transients built at the optimum if they differ there from the ones solved with
@@ -154,31 +160,32 @@ def solve_refined(problem, x0, p=None, fix_d: float | None = None, record: Refin
     if screen and (governs := set(governing(problem, x0, p)) - set(problem.selected)):
         problem = problem.with_cases([*problem.selected, *governs])
     for _ in range(MAX_REBUILDS):
-        problem, sol = _refined(problem, x0, p, fix_d, record, others)
+        problem, sol = _refined(problem, x0, p, fix_d, record, others, warm)
         again = problem.relinearised(sol.xs, p) if sol.feasible else None
         if again is None:
             return problem, sol
-        problem, x0, others = again, sol.xs, (x0, *others)
+        problem, x0, others, warm = again, sol.xs, (x0, *others), (problem, sol)
     raise SolveError(f"the manoeuvres' transients built at the optimum kept differing from the ones solved with "
                      f"after {MAX_REBUILDS} rebuilds; report it")
 
 
-def _refined(problem, x0, p, fix_d, record, others):
-    """IPOPT from ``x0`` (then ``others``) on grids refined until every exact local minimum keeps half the
-    back-off: (problem on the final grid, solution)."""
-    sol = _first_feasible(problem, [x0, *others], p, fix_d)
+def _refined(problem, x0, p, fix_d, record, others, warm=None):
+    """IPOPT from ``x0`` (then ``others``; first ``warm``'s active set) on grids refined until every exact local
+    minimum keeps half the back-off: (problem on the final grid, solution)."""
+    sol = _first_feasible(problem, [x0, *others], p, fix_d, warm)
     for _ in range(MAX_ROUNDS):
         if not sol.feasible:
             return problem, sol
-        found = minima(problem, sol.xs, p)
-        low = [m for m in found if m.value < 0.5 * BACKOFF]
-        more = [] if low else uncovered(problem, sol.xs, p, BACKOFF)
+        found = minima(problem, sol.xs, p, ADD_TOL + max(problem.backoffs.values(), default=0.0))
+        low = [m for m in found if m.value < problem.backoff(m.check) - 0.5 * BACKOFF]
+        more = [] if low else uncovered(problem, sol.xs, p, max(problem.backoffs.values(), default=BACKOFF))
         if record is not None:
             record.rounds.append((float(min((m.value for m in found), default=np.inf)), len(low),
                                   [problem.cases[i].tag for i in more]))
         if not low and not more:
             return problem, sol
+        old = problem
         problem = problem.refined(add_points(problem, problem.grids, low, p)) if low else \
             problem.with_cases([*problem.selected, *more])
-        sol = _first_feasible(problem, [sol.xs, x0, *others], p, fix_d)
+        sol = _first_feasible(problem, [sol.xs, x0, *others], p, fix_d, (old, sol))
     raise SolveError(f"the time grid and the cases of the dynamic checks did not converge in {MAX_ROUNDS} refinements")

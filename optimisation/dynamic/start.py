@@ -57,10 +57,12 @@ def factored_design(static: SizingProblem, k_rope: float, k_slip: float, x0=None
 
 def factored_start(problem, static_xs, p=None) -> np.ndarray:
     """A start for the dynamic NLP: the static design sized with the factors its own transient shows (the
-    rope safety with k_C, the traction with max(n_slip, k_R) — the transient asks no slip, the static
-    check n_slip) and the stroke the take-up reaches, :data:`ROUNDS` rounds from the static optimum."""
+    rope safety with k_C, the traction with max(n_slip, n_slip_dynamic k_R) — the transient asks
+    n_slip_dynamic, the static check n_slip) and the stroke the take-up reaches, :data:`ROUNDS` rounds from
+    the static optimum."""
     p = problem.p0 if p is None else np.asarray(p, float)
     n_slip = p[problem.params.index("n_slip")] if "n_slip" in problem.params else 1.0
+    n_slip /= p[problem.params.index("n_slip_dynamic")] if "n_slip_dynamic" in problem.params else 1.0
     x = np.asarray(static_xs, float).copy()
     static = SizingProblem(problem.scene)
     for _ in range(ROUNDS):

@@ -12,7 +12,7 @@ import json
 import textwrap
 
 from ropemodel.progress import status
-from ropemodel.views.checks import check_groups, factors, in_words, manoeuvre_rows, readable
+from ropemodel.views.checks import check_groups, factors, in_words, manoeuvre_rows, mesh_text, readable
 
 #: what ``--find`` can ask for with ``--dynamic``
 FINDS = ("t_ramp",)
@@ -48,20 +48,22 @@ def checks_lines(groups, manoeuvres, places: int) -> list[str]:
     return lines
 
 
-def _active_lines(active) -> list[str]:
-    return ["", "what fixes the design (active):"] + [f"  {readable(a)}" for a in active]
+def _active_lines(active, parameters) -> list[str]:
+    return ["", "what fixes the design (active):"] + [f"  {readable(a, parameters)}" for a in active]
 
 
 def _factor_lines(scene) -> list[str]:
-    lines = factors(scene)
-    return ["", "factors: " + lines[0]] + [f"         {x}" for x in lines[1:]]
+    return [""] + [ln for i, x in enumerate(factors(scene))
+                   for ln in textwrap.wrap(x, WIDTH, initial_indent="factors: " if i == 0 else " " * 9,
+                                           subsequent_indent=" " * 11)]
 
 
 def _transient_lines(design) -> list[str]:
     effects = ", ".join(f"{e} = {v}" + ("" if chosen else " (default)") for e, (v, chosen) in design.transient.items())
     if design.transient.get("rope_elasticity", ("",))[0] == "segments":
-        effects += f" with [numerics] segments = {design.scene.numerics['segments']} per span"
+        effects += f" with {design.mesh.get('segments') or design.scene.numerics['segments']} elements per span"
     lines = ["", *textwrap.wrap(f"transient: {effects}", WIDTH, subsequent_indent="  ")]
+    lines += textwrap.wrap(mesh_text(design.mesh, design.scene.parameters), WIDTH, subsequent_indent="  ")
     if design.defaults:
         lines += ["", "defaults used"] + [ln for k, why in design.defaults.items()
                                           for ln in textwrap.wrap(f"{k}: {why}", WIDTH, initial_indent="  ",
@@ -84,11 +86,11 @@ def design_text(design) -> str:
                                   (design.static or {}).get(k)], q))
     if design.feasible:
         places = len(design.manoeuvres[0]["positions"]) if design.manoeuvres else 0
-        lines += _active_lines(design.active)
+        lines += _active_lines(design.active, design.scene.parameters)
         lines += checks_lines(check_groups(design), design.manoeuvres, places)
         lines += _factor_lines(design.scene)
     lines += _transient_lines(design)
-    lines += ["", in_words(design.message)]
+    lines += ["", in_words(design.message, design.scene.parameters)]
     return "\n".join(lines)
 
 
@@ -97,7 +99,7 @@ def ramp_text(scene, answer) -> str:
 
     manoeuvres = by_manoeuvre(answer.verdicts)
     places = len(manoeuvres[0]["positions"]) if manoeuvres else 0
-    fails = "; ".join(readable(a) for a in answer.active) or "a check"
+    fails = "; ".join(readable(a, scene.parameters) for a in answer.active) or "a check"
     lines = [f"{scene.name}: the shortest start and stop ramp that keeps the design safe",
              "design: " + ", ".join(f"{k} = {scene.built.quantities[k].to_display(v):.6g} "
                                     f"{scene.built.quantities[k].display_unit}" for k, v in answer.design.items()),

@@ -48,8 +48,8 @@ def add_arguments(parser) -> None:
                         help="discard an unfinished sweep instead of resuming, or recompute a finished one")
     parser.add_argument("--sizing", action="store_true",
                         help="at every point, the sizing optimum (the design the scene's machine declares) instead of "
-                             "the outputs; "
-                             "each optimisation warm-starts from its neighbour (not resumable)")
+                             "the outputs; each optimisation warm-starts from its neighbour (not resumable; with "
+                             "--dynamic: in chunks of --chunk-size points, default 8, resumable)")
     parser.add_argument("--cold", action="store_true", help="with --sizing: no warm start")
     parser.add_argument("--dynamic", action="store_true",
                         help="with --sizing: the dynamic optimum (every check through start and stop in both "
@@ -149,28 +149,46 @@ def _sizing(vary, points, args) -> int:
 
         raise InputError(f"--sizing computes the design ({design_words()}); it takes no --given, --find or "
                          "--outputs")
+    chunked = ("chunk_size", "restart") if args.dynamic else ()
     for flag in ("chunk_size", "threads", "backend", "si", "mark_failures", "restart"):
-        if getattr(args, flag) not in (None, False):
+        if getattr(args, flag) not in (None, False) and flag not in chunked:
             raise InputError(f"--{flag.replace('_', '-')} acts on a sweep of the outputs, not on --sizing (a sizing "
-                             f"sweep is one optimisation per point, not chunked, not resumable): leave it out")
+                             f"sweep is one optimisation per point, not chunked, not resumable; --sizing --dynamic "
+                             f"takes --chunk-size and --restart): leave it out")
     if args.dynamic and args.cold:
         raise InputError("--cold acts on static --sizing only (--dynamic starts each point from its neighbour's "
                          "design, the first from the static one): leave --cold out")
+    if args.dynamic:
+        return _dynamic_sizing(vary, points, args)
     out = check_output(args.output)
     with OutputLock(out):
-        scene = sizing_scene_from_args(args, dynamic=args.dynamic)
+        scene = sizing_scene_from_args(args)
         try:
-            if args.dynamic:
-                from optimisation.dynamic.sweep import dynamic_sizing_sweep
-
-                frame = dynamic_sizing_sweep(scene, vary or None, points=points,
-                                             progress=enabled(False if args.no_progress else None))
-            else:
-                frame = sizing_sweep(scene, vary or None, points=points, warm=not args.cold,
-                                     progress=enabled(False if args.no_progress else None))
+            frame = sizing_sweep(scene, vary or None, points=points, warm=not args.cold,
+                                 progress=enabled(False if args.no_progress else None))
         except KeyboardInterrupt:
             print("interrupted: nothing written (a sizing sweep is not resumable)", file=sys.stderr)
             return 130
         rows, columns = write_frame(frame, out)
     _summary(out, args.json, rows, columns)
+    return 0
+
+
+def _dynamic_sizing(vary, points, args) -> int:
+    """``--sizing --dynamic``: chunked and resumable (:func:`optimisation.dynamic.sweep.dynamic_sizing_sweep`)."""
+    from optimisation.dynamic.sweep import CHUNK, dynamic_sizing_sweep
+    from ropemodel.progress import enabled
+    from ropemodel.sweeps.files import check_output
+    from ropemodel.sweeps.runner import SweepInterrupted
+
+    out = check_output(args.output)
+    scene = sizing_scene_from_args(args, dynamic=True)
+    try:
+        frame = dynamic_sizing_sweep(scene, vary or None, points=points, out=out, restart=args.restart,
+                                     chunk_size=CHUNK if args.chunk_size is None else args.chunk_size,
+                                     progress=enabled(False if args.no_progress else None))
+    except SweepInterrupted as exc:
+        print(f"interrupted: {exc}", file=sys.stderr)
+        return 130
+    _summary(out, args.json, len(frame), list(frame.columns))
     return 0

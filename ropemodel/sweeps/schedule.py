@@ -8,12 +8,15 @@ from collections import deque
 from ropemodel.sweeps.chunk import run_chunk
 
 
-def results(job, pts, bounds, todo, executor):
-    """(chunk index, table) in chunk order; with an executor, a bounded window of chunks in flight."""
+def results(job, pts, bounds, todo, executor, run=None):
+    """(chunk index, table) in chunk order; with an executor, a bounded window of chunks in flight.  ``run(job,
+    start, inputs)`` computes one chunk's table (default :func:`~ropemodel.sweeps.chunk.run_chunk`; it and
+    ``job`` must pickle to travel to an executor)."""
+    run = run_chunk if run is None else run
     if executor is None:
         for k in todo:
             start, stop = bounds[k]
-            yield k, run_chunk(job, start, pts.chunk(start, stop))
+            yield k, run(job, start, pts.chunk(start, stop))
         return
     window = max(2, 2 * workers(executor))
     pending: deque = deque()
@@ -21,7 +24,7 @@ def results(job, pts, bounds, todo, executor):
     try:
         for k in it:
             start, stop = bounds[k]
-            pending.append((k, executor.submit(run_chunk, job, start, pts.chunk(start, stop))))
+            pending.append((k, executor.submit(run, job, start, pts.chunk(start, stop))))
             if len(pending) >= window:
                 break
         while pending:
@@ -30,7 +33,7 @@ def results(job, pts, bounds, todo, executor):
             nxt = next(it, None)
             if nxt is not None:
                 start, stop = bounds[nxt]
-                pending.append((nxt, executor.submit(run_chunk, job, start, pts.chunk(start, stop))))
+                pending.append((nxt, executor.submit(run, job, start, pts.chunk(start, stop))))
             yield k, result
     finally:  # interrupted or failed: chunks not started are not started
         for _, fut in pending:

@@ -9,8 +9,10 @@ stop, downward start, downward stop, as :mod:`optimisation.dynamic.manoeuvres` n
 static checks of steady travel, each row the value the check judges and its limit with their units, the margin,
 the instant (s) and where the load is.  :func:`readable` turns any one name into words (the active
 constraints), :func:`in_words` every name in a message (no design), and :func:`factors` says which factor
-each check applies and its rule.  The layer sits low: it reads only the attributes and dictionaries it is
-given.
+each check applies and its rule; :func:`check_words` says what a check through a manoeuvre compares (the drum's
+grip with the dynamic slip factor ``n_slip_dynamic`` where the scene carries it) and :func:`mesh_text` what the
+mesh control did (the rope's elements per span, the largest error estimate and its back-off).  The layer sits
+low: it reads only the attributes and dictionaries it is given.
 """
 
 from __future__ import annotations
@@ -113,16 +115,21 @@ def _least(rows: list[tuple[float, str, Row]], merged: bool) -> list[Row]:
             for members in groups.values()]
 
 
+def check_words(name: str, parameters=None) -> str:
+    """What the check through a manoeuvre ``name`` compares, in words; the grip checks with the dynamic slip
+    factor where ``parameters`` (the scene's) carry ``n_slip_dynamic`` (:data:`WITH_DYNAMIC_SLIP`)."""
+    if "n_slip_dynamic" in (parameters or {}) and name in WITH_DYNAMIC_SLIP:
+        return WITH_DYNAMIC_SLIP[name]
+    return MANOEUVRE_WORDS[name].text
+
+
 def manoeuvre_rows(manoeuvre: dict, merged: bool = True, parameters=None) -> list[Row]:
     """The rows of one manoeuvre (an entry of ``DynamicDesign.manoeuvres``): each check's least margin over
     every place of the load, at its instant and place, with the value and limit it compares there
     (``parameters``: the scene's; with ``n_slip_dynamic`` the grip checks say so, :data:`WITH_DYNAMIC_SLIP`)."""
-    dynamic_slip = "n_slip_dynamic" in (parameters or {})
     rows = []
     for name, least in manoeuvre["least_margins"].items():
-        words = MANOEUVRE_WORDS[name]
-        if dynamic_slip and name in WITH_DYNAMIC_SLIP:
-            words = words._replace(text=WITH_DYNAMIC_SLIP[name])
+        words = MANOEUVRE_WORDS[name]._replace(text=check_words(name, parameters))
         kind = "length" if words.kind == "length" else "force"
         value = _quantity(kind, least["value"]) if "value" in least else ""
         limit = _quantity(kind, least["limit"]) if "limit" in least else ""
@@ -163,13 +170,14 @@ def check_groups(design, merged: bool = True) -> list[tuple[str, list[Row]]]:
     return out
 
 
-def readable(name: str) -> str:
+def readable(name: str, parameters=None) -> str:
     """A check's internal name in words: ``slip_margin_fwd @ upward start, x_m = 575 m, t = 1.97 s`` →
-    ``drum grip F_S >= F_C/rho (upward start, x_m = 575 m, t = 1.97 s)``; ``stroke_margin_up`` → ``take-up dF <=
-    stroke (steady upward travel)``; anything else (a bound, the catalogue size) as it is."""
+    ``drum grip F_S >= F_C/rho (upward start, x_m = 575 m, t = 1.97 s)`` (``parameters``: the scene's, for the
+    dynamic slip factor, :func:`check_words`); ``stroke_margin_up`` → ``take-up dF <= stroke (steady upward
+    travel)``; anything else (a bound, the catalogue size) as it is."""
     m = _DYNAMIC.match(name)
     if m and m["base"] in MANOEUVRE_WORDS:
-        return f"{MANOEUVRE_WORDS[m['base']].text} ({m['rest']})"
+        return f"{check_words(m['base'], parameters)} ({m['rest']})"
     m = _STATIC.match(name)
     if m and m["base"] in STATIC_WORDS:
         where = ", ".join(w for w in (f"steady {_DIRECTION[m['dir']]} travel" if m["dir"] else "steady travel",
@@ -178,13 +186,13 @@ def readable(name: str) -> str:
     return name
 
 
-def in_words(text: str) -> str:
+def in_words(text: str, parameters=None) -> str:
     """``text`` (a message) with every check's internal name in it put in words (:func:`readable` of the name
     alone: ``slip_margin_fwd @ upward start`` → ``drum grip F_S >= F_C/rho @ upward start``)."""
     def words(m) -> str:
         base = m[0].split("[")[0]
         if base in MANOEUVRE_WORDS:
-            return MANOEUVRE_WORDS[base].text
+            return check_words(base, parameters)
         return readable(base).replace(" (steady travel)", "")
 
     return _NAME.sub(words, text)
@@ -202,9 +210,35 @@ def factors(scene) -> list[str]:
             out.append(f"{name} = {values[name]:g} ({where}): {scene.check_basis(check).split(': ', 1)[-1]}")
     if "n_slip_dynamic" in values:
         basis = scene.check_basis("slip_margin_fwd")
-        out.append(f"n_slip_dynamic = {values['n_slip_dynamic']:g} (drum grip in the manoeuvres)"
-                   + (f": {basis.split(': ', 1)[-1]}" if basis != "-" else ""))
+        basis = basis.split(": ", 1)[-1] if basis != "-" else scene.basis("n_slip_dynamic")
+        out.append(f"n_slip_dynamic = {values['n_slip_dynamic']:g} (drum grip in the manoeuvres, rho F_S(t) >= "
+                   f"n_slip_dynamic F_C(t) at every instant): {basis}")
     else:
         out.append("drum grip in the manoeuvres: no slip factor (the drum holds while rho F_S >= F_C at every "
                    "instant)")
     return out
+
+
+#: what a force check's discretisation error is an error of, where that is not the margin the table shows
+#: (the rope's safety: the NLP's F_min - n_rope F, n_rope times the force's own error)
+CONSTRAINT_WORDS = {"safety_margin": "of F_min - n_rope F_C", "safety_margin_S": "of F_min - n_rope F_S"}
+
+
+def mesh_text(mesh: dict, parameters=None) -> str:
+    """What dynamic sizing's mesh control did (``DynamicDesign.mesh``), in words and kN: the rope's elements
+    per span, the tolerance, the largest estimate of a force check's discretisation error, the part of it on
+    the unsafe side and the check's back-off ("" without a mesh to refine)."""
+    if not mesh.get("segments"):
+        return ""
+    forces = {c: e for c, e in mesh["errors"].items() if mesh["units"][c] == "N"}
+    text = (f"rope mesh: {mesh['segments']} elements per span (from the scene's {mesh['segments_scene']}, doubled "
+            f"while Richardson's estimate of a force check's discretisation error exceeded mesh_tol = "
+            f"{mesh['tolerance'] * 1e-3:g} kN)")
+    if forces:
+        worst = max(forces, key=lambda c: forces[c])
+        of = f" {CONSTRAINT_WORDS[worst]}" if worst in CONSTRAINT_WORDS else ""
+        text += (f"; the largest estimate {forces[worst] * 1e-3:.3g} kN{of}, {check_words(worst, parameters)}, "
+                 f"{mesh['unsafe'][worst] * 1e-3:.3g} kN of it on the unsafe side, backed off by "
+                 f"{mesh['backoffs'][worst] * 1e-3:.3g} kN")
+    return text + ("; each check through a manoeuvre is backed off by a little more than the part of its own "
+                   "estimate on the unsafe side")

@@ -203,6 +203,9 @@ class TransientSubmodel(Submodel):
     #: its parameters that only an elastic rope loop uses (a rigid loop does not move them: a tensioner's
     #: carriage mass); what a transient reads leaves them out with an inextensible rope
     elastic_only: ClassVar[tuple[str, ...]] = ()
+    #: its parameters only dynamic sizing reads (a factor or a tolerance of its checks through a manoeuvre):
+    #: the simulator never does, so a simulation's report does not list them among its assumptions
+    sizing_only: ClassVar[tuple[str, ...]] = ()
 
     def equations(self, v):
         if not self.gathered:

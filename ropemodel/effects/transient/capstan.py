@@ -48,7 +48,7 @@ import math
 
 from ropemodel.effects.base import effects_of, register
 from ropemodel.effects.transient.base import MODEL
-from ropemodel.effects.transient.contact import DrumContact
+from ropemodel.effects.transient.contact import N_SLIP_DYNAMIC, DrumContact
 from ropemodel.effects.winch import D_DRUM
 from ropemodel.errors import InputError
 from ropemodel.papers import li_capstan as li
@@ -89,7 +89,7 @@ class CapstanDrumContact(DrumContact):
     description = "slip-zone compliance of the rope on the drum in series with the tight span (Li et al.)"
     citations = ("li_capstan",)
     gathered = False
-    quantities = (D_DRUM,)
+    quantities = (D_DRUM, N_SLIP_DYNAMIC)
 
     def rules(self, values):
         """A friction drum and an elastic rope: what the contact's slip zone is made of (the other effects'

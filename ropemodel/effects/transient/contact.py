@@ -23,15 +23,30 @@ sticks.  ``capstan``: the wrapped rope's slip zone is a spring in series with th
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 import casadi as ca
 
+from ropemodel.effects import domains as dom
 from ropemodel.effects.base import define_effect, register
 from ropemodel.effects.transient.base import MODEL, State, Switch, TransientSubmodel
+from ropemodel.quantity import Quantity
 
 define_effect(MODEL, "drum_contact", "rigid",
               "rope-on-drum contact of the transient: rigid, or capstan (Li et al. slip-zone stiffness in series)")
 
 SLIP = ("slip_fwd", "slip_back")
+#: the dynamic slip factor dynamic sizing checks through every manoeuvre (docs/physics.md §6, "Checks through a
+#: manoeuvre"); the simulator itself switches to slip at the onset, ρ F_slack = F_tight, whatever its value
+N_SLIP_DYNAMIC = Quantity(
+    "n_slip_dynamic", "1", "required safety factor against slip of the rope on the drum through a start or stop "
+    "(rho F_slack >= n_slip_dynamic F_tight at every instant; the static checks use n_slip)", guess=1.1,
+    default=1.1, warn_high=2.0,
+    default_note="not given: 1.1, engineering judgement (no rule or named practice for a haulage drum's "
+                 "dynamic slip factor was found): a tenth of the drum's traction held back through a start or stop",
+    usual_source="engineering judgement: 1 is the onset of slip; static slip factors are 1.25 to 2",
+    **dom.domain(1.0, 1e3, "at least 1 (physics: below 1 the rope slips in the manoeuvre); 1000 bounds any rule; "
+                           "the default 1.1 is engineering judgement, not a named practice"))
 NEWTON_STEPS = 4
 
 
@@ -69,6 +84,8 @@ class DrumContact(TransientSubmodel):
     order = 40
     column = "drum"
     smooth = "stick"
+    quantities: ClassVar[tuple[Quantity, ...]] = (N_SLIP_DYNAMIC,)
+    sizing_only = ("n_slip_dynamic",)   # the simulator slips at the onset, rho F_slack = F_tight
 
     def bind(self, setup):
         super().bind(setup)

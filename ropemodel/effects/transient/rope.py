@@ -48,6 +48,18 @@ ROPE_DAMPING = Quantity("rope_damping", "s", "Kelvin-Voigt retardation time c/k 
                         **dom.domain(0.0, 100.0, "0 to 100 s: a damping ratio tau omega/2 of 100 even for a rope's "
                                                  "slowest modes (omega about 2 rad/s), an overdamped creep"))
 
+#: the force tolerance of the rope's spatial discretisation (dynamic sizing's mesh control,
+#: :mod:`optimisation.dynamic.mesh`); the simulator itself takes ``[numerics] segments`` as given
+MESH_TOL = Quantity("mesh_tol", "N", "tolerance on the forces of the rope's discretisation into elements: dynamic "
+                    "sizing doubles [numerics] segments until the Richardson estimate of every force check's "
+                    "discretisation error is within it, and backs each check off by its estimate", "kN",
+                    default=1000.0, guess=1000.0, warn_low=10.0, warn_high=1e5,
+                    default_note="not given: 1 kN (0.2 % of the Fig. 9 load's weight, 467 kN; a check's back-off "
+                                 "is at most this much force)",
+                    usual_source="engineering judgement: 0.1 % to 1 % of the load's weight of a haulage",
+                    **dom.domain(1e-3, dom.FORCE_MAX, "1 mN (below any force a design check reads) to "
+                                                     "10^9 N (the largest force of a scene)"))
+
 
 class Rope(TransientSubmodel):
     """The lumped loop: node forces, tensions, forces at the drum's tangent points, the slack event."""
@@ -162,7 +174,8 @@ class RopeSegments(Rope):
     Krauze et al. 2025 eq. (19)-(20)); the rope's mass q_l ℓ/g lumped half on each node."""
 
     description = "lumped-mass rope, [numerics] segments Kelvin-Voigt elements per span"
-    quantities = (V_EPS, ROPE_DAMPING)
+    quantities: ClassVar[tuple[Quantity, ...]] = (V_EPS, ROPE_DAMPING, MESH_TOL)
+    sizing_only = ("mesh_tol",)          # the simulator takes [numerics] segments as given
     reads = ("q_lw",)                    # EA = L_u/q_lw, Krauze eq. (19)-(20) (the elongation effect's)
 
     def segments(self) -> int:
@@ -178,6 +191,7 @@ class RopeSpring(RopeSegments):
     """Each rope span one Kelvin–Voigt element; its mass lumped half on each end."""
 
     description = "one Kelvin-Voigt spring per rope span"
+    quantities = (V_EPS, ROPE_DAMPING)       # one element per span: no mesh to refine
 
     def segments(self):
         return 1

@@ -5,12 +5,16 @@ stop.  Each manoeuvre is the scene's transient (its ramp, rope model, tensioner,
 ``dynamics`` = ``"start"`` or ``"stop"`` and ``travel`` = ``"up"`` or ``"down"``, with the load at every
 candidate position (:mod:`optimisation.dynamic.positions`).
 
-The checks through a manoeuvre (:data:`CHECKS`, each ≥ 0 at every instant; docs/physics.md §2, §6):
+The checks through a manoeuvre (:data:`CHECKS`, each ≥ 0 at every instant; docs/physics.md §2 and §6,
+"Checks through a manoeuvre"):
 
 * rope safety: the rope force at the drum's tangent points against the static check's rope safety,
   F_min − n_rope·F_C(t) ≥ 0 and the same for F_S(t) (the margin shown as F_min/(n_rope F) − 1);
-* no slip on the drum: the switching functions of the hybrid simulator, slip_fwd = F_S − F_C/ρ(F_S)
-  and slip_back = F_C − F_S/ρ(F_C) ≥ 0 [N] (the transient is the force history itself: no n_slip);
+* no slip on the drum with the dynamic slip factor n_dyn = ``n_slip_dynamic`` (the static checks use
+  ``n_slip``): ρ F_S(t) ≥ n_dyn F_C(t) and ρ F_C(t) ≥ n_dyn F_S(t), written from the hybrid simulator's
+  switching functions slip_fwd = F_S − F_C/ρ(F_S) and slip_back = F_C − F_S/ρ(F_C) as
+  F_S − n_dyn F_C/ρ = n_dyn slip_fwd − (n_dyn − 1) F_S ≥ 0 and n_dyn slip_back − (n_dyn − 1) F_C ≥ 0 [N]
+  (n_dyn = 1: the switching functions themselves, the onset of slip);
 * unwinding rope taut, F_S(t) − F_S_min ≥ 0, and winding rope taut, F_C(t) − F_S_min ≥ 0 [N], as in
   static sizing; every element of the rope loop in tension, T_e(t) ≥ 0 [N] (the lumped rope model's
   validity; the simulator's terminal ``slack`` event);
@@ -36,15 +40,21 @@ def _ratio(force):
     return lambda o, a: a["F_min"] / (a["n_rope"] * o[force]) - 1
 
 
+def _slip(switch: str, slack: str):
+    """(ρ F_slack − n_dyn F_tight)/ρ [N] from the switching function ``switch`` (F_slack − F_tight/ρ) and the
+    slack side's force ``slack``: F_slack − n_dyn (F_slack − switch) = n_dyn switch − (n_dyn − 1) F_slack."""
+    return lambda o, a: a["n_slip_dynamic"] * o[switch] - (a["n_slip_dynamic"] - 1.0) * o[slack]
+
+
 CHECKS = (
     Check("safety_margin", "rope safety F_min/F_C(t) >= n_rope", "N", "1", "F_C",
           lambda o, a: a["F_min"] - a["n_rope"] * o["F_C"], _ratio("F_C")),
     Check("safety_margin_S", "rope safety F_min/F_S(t) >= n_rope", "N", "1", "F_S",
           lambda o, a: a["F_min"] - a["n_rope"] * o["F_S"], _ratio("F_S")),
-    Check("slip_margin_fwd", "no slip, drum ahead: F_S(t) >= F_C(t)/rho", "N", "N", "slip_fwd",
-          lambda o, a: o["slip_fwd"], lambda o, a: o["slip_fwd"]),
-    Check("slip_margin_back", "no slip, rope overruns: F_C(t) >= F_S(t)/rho", "N", "N", "slip_back",
-          lambda o, a: o["slip_back"], lambda o, a: o["slip_back"]),
+    Check("slip_margin_fwd", "no slip, drum ahead: rho F_S(t) >= n_slip_dynamic F_C(t)", "N", "N", "slip_fwd",
+          _slip("slip_fwd", "F_S"), _slip("slip_fwd", "F_S")),
+    Check("slip_margin_back", "no slip, rope overruns: rho F_C(t) >= n_slip_dynamic F_S(t)", "N", "N", "slip_back",
+          _slip("slip_back", "F_C"), _slip("slip_back", "F_C")),
     Check("slack_margin", "unwinding rope taut F_S(t) >= F_S_min", "N", "N", "F_S",
           lambda o, a: o["F_S"] - a["F_S_min"], lambda o, a: o["F_S"] - a["F_S_min"]),
     Check("taut_margin", "winding rope taut F_C(t) >= F_S_min", "N", "N", "F_C",
@@ -60,13 +70,14 @@ CHECK = {c.name: c for c in CHECKS}
 
 #: what each check compares at an instant, (the force or take-up judged, its limit) in SI, from the same
 #: series ``o`` and values ``a`` as its margin: the value and limit columns of the output
-#: (:func:`optimisation.dynamic.manoeuvres.sides`, :mod:`ropemodel.views.checks`); a slip check's limit is the
-#: judged force less its margin (F_C/rho, F_S/rho)
+#: (:func:`optimisation.dynamic.manoeuvres.sides`, :mod:`ropemodel.views.checks`); a slip check's limit is
+#: n_slip_dynamic times the switching function's (n_slip_dynamic F_C/rho, n_slip_dynamic F_S/rho), so that
+#: value - limit is the margin :func:`_slip` gives
 SIDES = {
     "safety_margin": (lambda o, a: o["F_C"], lambda o, a: a["F_min"] / a["n_rope"]),
     "safety_margin_S": (lambda o, a: o["F_S"], lambda o, a: a["F_min"] / a["n_rope"]),
-    "slip_margin_fwd": (lambda o, a: o["F_S"], lambda o, a: o["F_S"] - o["slip_fwd"]),
-    "slip_margin_back": (lambda o, a: o["F_C"], lambda o, a: o["F_C"] - o["slip_back"]),
+    "slip_margin_fwd": (lambda o, a: o["F_S"], lambda o, a: a["n_slip_dynamic"] * (o["F_S"] - o["slip_fwd"])),
+    "slip_margin_back": (lambda o, a: o["F_C"], lambda o, a: a["n_slip_dynamic"] * (o["F_C"] - o["slip_back"])),
     "slack_margin": (lambda o, a: o["F_S"], lambda o, a: a["F_S_min"]),
     "taut_margin": (lambda o, a: o["F_C"], lambda o, a: a["F_S_min"]),
     "tension_margin": (lambda o, a: o["T"], lambda o, a: 0.0),
@@ -82,7 +93,9 @@ def completed(scene, design: dict) -> dict:
 
 
 def values(problem, x_si, p) -> dict:
-    """What the checks read besides the transient: F_min (the catalogue rope's), n_rope, F_S_min, stroke."""
+    """What the checks read besides the transient: F_min (the catalogue rope's), n_rope, n_slip_dynamic (1
+    without a drum lining: no slip check), F_S_min, stroke."""
     xs = x_si / ca.DM(problem.x_scale)
+    n_dyn = p[problem.params.index("n_slip_dynamic")] if "n_slip_dynamic" in problem.params else 1.0
     return {"F_min": problem.outputs(x=xs, p=p)["F_min"], "n_rope": p[problem.params.index("n_rope")],
-            "F_S_min": p[problem.params.index("F_S_min")], "stroke": x_si[2]}
+            "n_slip_dynamic": n_dyn, "F_S_min": p[problem.params.index("F_S_min")], "stroke": x_si[2]}

@@ -8,7 +8,7 @@ from __future__ import annotations
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
 from ropemodel.reports.sections.transient import every_parameter
-from ropemodel.views.checks import factors, manoeuvre_rows, readable
+from ropemodel.views.checks import factors, manoeuvre_rows, mesh_text, readable
 
 INTRO = """<p>Every design check holds through the start and stop of both directions of travel (four manoeuvres),
 with the load anywhere on the route (the ends and the middle of every segment), not only at the static forces
@@ -46,9 +46,12 @@ def dynamic_sizing(ctx):
     html += page.table(["manoeuvre", "governed with the load at", "F_C max [kN]", "F_S min [kN]", "take-up max [m]",
                         "dynamic factor [-]", "checks"], rows,
                        kinds=["name", "", "num", "num", "num", "num", ""], cls="manoeuvres")
+    html += page.fragment("{% if m %}<p>{{ m }}.</p>{% endif %}",
+                          m=mesh_text(design.mesh, design.scene.parameters))
     html += page.fragment("<h3>What fixes the design</h3><p>Active at the continuous optimum (a check at an instant "
                           "of a manoeuvre, or a static check):</p><ul>{% for a in active %}<li>{{ a }}</li>"
-                          "{% endfor %}</ul>", active=[readable(a) for a in design.active_continuous])
+                          "{% endfor %}</ul>",
+                          active=[readable(a, design.scene.parameters) for a in design.active_continuous])
     return html + _least_margins(design.manoeuvres, design.scene)
 
 

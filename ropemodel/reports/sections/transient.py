@@ -41,7 +41,14 @@ def every_parameter(ctx) -> set[str]:
     return set(ctx.scene.parameters)
 
 
-@section("transient", "Transient", when=has_transient, reads=every_parameter)
+def simulated(ctx) -> set[str]:
+    """What a simulation of the scene reads: every parameter but those of its transient variants that only
+    dynamic sizing reads (``sizing_only``: the dynamic slip factor, the mesh tolerance)."""
+    s = ctx.scene
+    return set(s.parameters) - {n for e in s.effects for n in getattr(_variant(s, e), "sizing_only", ())}
+
+
+@section("transient", "Transient", when=has_transient, reads=simulated)
 def transient(ctx):
     sim = ctx.simulation
     history = sim.history
