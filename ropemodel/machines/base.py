@@ -127,6 +127,20 @@ def needing(part: str, scene, what: str):
     return found
 
 
+class DesignBox(NamedTuple):
+    """The design box a scan behind a dynamic "no design" covers (:mod:`optimisation.dynamic.scan`), by the
+    names of the sizing's design variables: ``catalogue`` takes every catalogue rope diameter within its sizing
+    bounds; ``grid`` takes evenly spaced values from 0 to a top where the static checks fail for every catalogue
+    diameter, found by doubling from ``top(problem, xs, p)`` (SI; ``xs`` the scaled design at the thickest
+    rope, ``grid`` 0 and the ``held`` values); ``held`` (variable → SI value) are held at one value, each one
+    that every check only gains from (so a point without a design there has none at any smaller value)."""
+
+    catalogue: str
+    grid: str
+    held: dict
+    top: Callable
+
+
 class ManoeuvreCheck(NamedTuple):
     """A check through a manoeuvre: ``nlp(o, a)`` the constraint (≥ 0, in ``unit`` — N or m — before
     scaling), ``margin(o, a)`` the margin shown (its own ``shown`` unit); ``o`` the smooth mode's

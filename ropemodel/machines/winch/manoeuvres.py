@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import casadi as ca
 
+from ropemodel.machines.base import DesignBox
 from ropemodel.machines.base import ManoeuvreCheck as Check
 
 #: (dynamics, travel) of each manoeuvre, in the order they are reported
@@ -99,3 +100,17 @@ def values(problem, x_si, p) -> dict:
     n_dyn = p[problem.params.index("n_slip_dynamic")] if "n_slip_dynamic" in problem.params else 1.0
     return {"F_min": problem.outputs(x=xs, p=p)["F_min"], "n_rope": p[problem.params.index("n_rope")],
             "n_slip_dynamic": n_dyn, "F_S_min": p[problem.params.index("F_S_min")], "stroke": x_si[2]}
+
+
+def _top(problem, xs, p) -> float:
+    """The pretension [N] the thickest catalogue rope's strength allows, F_min / n_rope: where the box's top
+    search starts."""
+    return problem.evaluate(xs, p)["F_min"] / p[problem.params.index("n_rope")]
+
+
+#: the design box of the scan behind a "no design" (:mod:`optimisation.dynamic.scan`): every catalogue d; the
+#: pretension F_nwl from 0 to where the static checks fail for every d; the stroke held at 100 m — the smooth
+#: mode does not depend on the stroke (only the stroke's stops, events that leave it, do) and every check gains
+#: from more of it (the stroke checks are stroke − z ≥ 0, eq. (23)), so a point without a design at this stroke
+#: has none at any shorter one
+BOX = DesignBox(catalogue="d", grid="F_nwl", held={"stroke": 100.0}, top=_top)
