@@ -23,7 +23,7 @@ from ropemodel.cli import main
 from ropemodel.cli._size_dynamic import design_text, ramp_text
 from ropemodel.machines.winch import manoeuvres as winch
 from ropemodel.machines.winch.manoeuvres import CHECK, CHECKS
-from ropemodel.views.checks import MANOEUVRE_WORDS, STATIC_WORDS, factors, manoeuvre_rows, readable
+from ropemodel.machines.winch.words import MANOEUVRE_WORDS, STATIC_WORDS, WORDS
 
 KN, MM = 1e3, 1e-3
 
@@ -170,9 +170,9 @@ def test_a_dynamic_slip_factor_shows_when_the_design_carries_it():
              "slip_margin_fwd": "n_slip_dynamic: practice X"}
     scene = SimpleNamespace(parameters={"n_rope": 4.5, "n_slip": 1.25, "n_slip_dynamic": 1.1},
                             check_basis=lambda name: basis.get(name, "-"))
-    assert factors(scene)[-1] == ("n_slip_dynamic = 1.1 (drum grip in the manoeuvres, rho F_S(t) >= n_slip_dynamic "
-                                  "F_C(t) at every instant): practice X")
-    rows = manoeuvre_rows(_manoeuvre("upward start", 1.0), parameters=scene.parameters)
+    assert WORDS.factors(scene)[-1] == ("n_slip_dynamic = 1.1 (drum grip in the manoeuvres, rho F_S(t) >= "
+                                        "n_slip_dynamic F_C(t) at every instant): practice X")
+    rows = WORDS.manoeuvre_rows(_manoeuvre("upward start", 1.0), parameters=scene.parameters)
     assert "drum grip F_S >= n_slip_dynamic F_C/rho" in [r.check for r in rows]
 
 
@@ -210,9 +210,9 @@ def test_no_design_says_its_conflicting_checks_in_words(scene):
 
 
 def test_readable_names():
-    assert readable("route_margin_down @ x_m = 1150 m") == "rope on the route >= F_S_min (steady downward travel, " \
-                                                           "x_m = 1150 m)"
-    assert readable("F_nwl lower bound") == "F_nwl lower bound"
+    assert WORDS.readable("route_margin_down @ x_m = 1150 m") == ("rope on the route >= F_S_min (steady downward "
+                                                                 "travel, x_m = 1150 m)")
+    assert WORDS.readable("F_nwl lower bound") == "F_nwl lower bound"
 
 
 def test_the_shortest_ramp_text_groups_its_checks_too(scene, design, monkeypatch):

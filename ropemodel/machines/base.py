@@ -51,7 +51,8 @@ class Machine:
     ``transient``: how its transient is simulated (:class:`Transient`), or None;
     ``trips``: what its trips along a route take from it (:mod:`ropemodel.trips`), or None;
     ``sections``: the report sections its scenes may show (names of :mod:`ropemodel.reports` sections);
-    ``check_text``: each check in words.
+    ``check_text``: each check in words; ``words``: the checks of dynamic sizing in words, with the factors they
+    apply (a :class:`ropemodel.views.checks.Vocabulary`, needed with ``manoeuvres``).
     """
 
     model: str
@@ -66,6 +67,8 @@ class Machine:
     ropes: tuple[type, ...] = ()
     #: check (a margin's base name) → what it checks, in words (the report's table of checks)
     check_text: dict[str, str] = field(default_factory=dict)
+    #: its checks in words where dynamic sizing shows them (:class:`ropemodel.views.checks.Vocabulary`), or None
+    words: Any = None
 
 
 #: model → its machine's declaration (every subpackage of :mod:`ropemodel.machines` registers its own)

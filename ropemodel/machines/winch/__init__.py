@@ -3,8 +3,9 @@
 Its physics is in :mod:`ropemodel.effects` (``winch*`` modules, the transient's :mod:`ropemodel.effects.transient`).
 Declared here: its checks in report order (:mod:`ropemodel.effects.winch_checks`), its sizing
 (:mod:`.sizing`: d, F_nwl and stroke, least rope mass first), the four manoeuvres of dynamic sizing
-(:mod:`.manoeuvres`), its transient (start-up, braking or a whole trip), what its trips take from it
-(:mod:`.trips`) and its report sections.  :mod:`.scenes` makes random sizing scenes for the studies.
+(:mod:`.manoeuvres`) with its checks in words (:mod:`.words`), its transient (start-up, braking or a whole trip),
+what its trips take from it (:mod:`.trips`) and its report sections.  :mod:`.scenes` makes random sizing scenes
+for the studies.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from ropemodel.effects.winch_checks import CHECKS, margin_names
 from ropemodel.effects.winch_rope import RopeCatalogue
 from ropemodel.machines.base import Machine, Transient, register
 from ropemodel.machines.winch import manoeuvres, sizing, trips
+from ropemodel.machines.winch.words import WORDS
 
 
 def _scale(setup) -> tuple[float, float]:
@@ -47,4 +49,5 @@ MACHINE = register(Machine(
     sections=("sizing", "transient", "trip", "dynamic_sizing"),
     ropes=(RopeCatalogue,),
     check_text={base: text for base, text, _ in CHECKS},
+    words=WORDS,
 ))

@@ -8,7 +8,7 @@ from __future__ import annotations
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
 from ropemodel.reports.sections.transient import every_parameter
-from ropemodel.views.checks import factors, manoeuvre_rows, mesh_text, readable
+from ropemodel.machines.base import declared_machine
 
 INTRO = """<p>Every design check holds through the start and stop of both directions of travel (four manoeuvres),
 with the load anywhere on the route (the ends and the middle of every segment), not only at the static forces
@@ -46,22 +46,25 @@ def dynamic_sizing(ctx):
     html += page.table(["manoeuvre", "governed with the load at", "F_C max [kN]", "F_S min [kN]", "take-up max [m]",
                         "dynamic factor [-]", "checks"], rows,
                        kinds=["name", "", "num", "num", "num", "num", ""], cls="manoeuvres")
+    words = declared_machine(design.scene).words
     html += page.fragment("{% if m %}<p>{{ m }}.</p>{% endif %}",
-                          m=mesh_text(design.mesh, design.scene.parameters))
+                          m=words.mesh_text(design.mesh, design.scene.parameters))
     html += page.fragment("<h3>What fixes the design</h3><p>Active at the continuous optimum (a check at an instant "
                           "of a manoeuvre, or a static check):</p><ul>{% for a in active %}<li>{{ a }}</li>"
                           "{% endfor %}</ul>",
-                          active=[readable(a, design.scene.parameters) for a in design.active_continuous])
+                          active=[words.readable(a, design.scene.parameters) for a in design.active_continuous])
     return html + _least_margins(design.manoeuvres, design.scene)
 
 
 def _least_margins(manoeuvres, scene) -> str:
     """Each check's least margin through each manoeuvre (the simulator's history) in words: the force or
     take-up it judges and its limit there, the margin, the instant and the load's place
-    (:mod:`ropemodel.views.checks`, as ``size --dynamic`` prints them), and the factors with their rules."""
+    (the machine's words, :class:`ropemodel.views.checks.Vocabulary`, as ``size --dynamic`` prints them), and the
+    factors with their rules."""
+    words = declared_machine(scene).words
     rows = [[m["manoeuvre"], r.check, r.value, r.limit, r.margin, r.t, r.where, "pass" if r.ok else "FAIL"]
-            for m in manoeuvres for r in manoeuvre_rows(m, merged=False, parameters=scene.parameters)]
+            for m in manoeuvres for r in words.manoeuvre_rows(m, merged=False, parameters=scene.parameters)]
     return page.fragment("<h3>Checks through the manoeuvres</h3>") + page.table(
         ["manoeuvre", "check", "value", "limit", "margin", "at t", "with the load at", "verdict"], rows,
         kinds=["name", "", "num", "num", "num", "num", "", ""], cls="manoeuvre-checks") + page.fragment(
-        "<p>Factors:</p><ul>{% for f in factors %}<li>{{ f }}</li>{% endfor %}</ul>", factors=factors(scene))
+        "<p>Factors:</p><ul>{% for f in factors %}<li>{{ f }}</li>{% endfor %}</ul>", factors=words.factors(scene))
