@@ -27,6 +27,7 @@ import numpy as np
 
 from optimisation.design import Design, rounded_up, solve_best
 from optimisation.dynamic.diagnose import diagnose_dynamic
+from optimisation.dynamic.manoeuvres import declared
 from optimisation.dynamic.mesh import converge, segments_of
 from optimisation.dynamic.problem import DynamicSizingProblem
 from optimisation.dynamic.refine import Refinement, solve_refined
@@ -303,11 +304,12 @@ def mesh_record(problem, found, n_scene: int, seconds: float) -> dict:
 
 
 def slip_factors(scene) -> dict:
-    """The static and the dynamic slip factor of ``scene`` (value, and where it comes from) — {} without a
-    drum lining's slip checks."""
+    """The slip factors of ``scene`` (value, the check it applies to and where it comes from), as its machine's
+    manoeuvres declare them (``SLIP_FACTORS``, the static one first) — {} where the scene carries no static one
+    (no lining's slip checks)."""
     out = {}
-    for name, what in (("n_slip", "static: rho F_S >= n_slip F_C in steady motion"),
-                       ("n_slip_dynamic", "dynamic: rho F_S(t) >= n_slip_dynamic F_C(t) through every manoeuvre")):
+    for name, what in declared(scene).SLIP_FACTORS:
         if name in scene.parameters:
             out[name] = {"value": scene.parameters[name], "check": what, "basis": scene.basis(name)}
-    return out if "n_slip" in out else {}
+    first = declared(scene).SLIP_FACTORS[0][0]
+    return out if first in out else {}

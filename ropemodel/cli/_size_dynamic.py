@@ -25,20 +25,19 @@ def _row(name, values, q) -> str:
     return f"{name:<12}{cells}  {q[name].display_unit}"
 
 
-def _header(m: dict) -> str:
-    """A manoeuvre's title line: its worst peaks over every place of the load."""
-    pk = m["peaks"]
-    return (f"{m['manoeuvre']}: peak F_C {pk['F_C_max'] * 1e-3:.4g} kN (dynamic factor {pk['dynamic_factor']:.3g}), "
-            f"least F_S {pk['F_S_min'] * 1e-3:.4g} kN, largest take-up {pk['take_up_max'] * 1e3:.4g} mm"
-            + ("" if m.get("ok", True) else "  FAILS"))
+def _header(m: dict, peak_text) -> str:
+    """A manoeuvre's title line: its worst peaks over every place of the load (``peak_text``: the machine's
+    manoeuvres' words for them)."""
+    return f"{m['manoeuvre']}: {peak_text(m['peaks'])}" + ("" if m.get("ok", True) else "  FAILS")
 
 
-def checks_lines(groups, manoeuvres, places: int) -> list[str]:
+def checks_lines(groups, manoeuvres, places: int, scene) -> list[str]:
     """The checks table (:meth:`ropemodel.views.checks.Vocabulary.check_groups`): a title line per manoeuvre
     (its peaks) and steady travel, one row per check in words with value, limit, margin, instant and the load's
     place."""
     width = max((len(r.check) for _, rows in groups for r in rows), default=0) + 2
-    titles = {m["manoeuvre"]: _header(m) for m in manoeuvres}
+    peak_text = declared_machine(scene).manoeuvres.peak_text
+    titles = {m["manoeuvre"]: _header(m, peak_text) for m in manoeuvres}
     lines = ["", f"checks, each at its least over the load's {places} place{'s' if places != 1 else ''} and "
                  "every instant of the manoeuvre",
              f"  {'check':<{width}}{'value':>11}{'limit':>12}{'margin':>14}{'at t':>10}  load at"]
@@ -93,7 +92,8 @@ def design_text(design) -> str:
     if design.feasible:
         places = len(design.manoeuvres[0]["positions"]) if design.manoeuvres else 0
         lines += _active_lines(design.active, design.scene)
-        lines += checks_lines(_words(design.scene).check_groups(design), design.manoeuvres, places)
+        lines += checks_lines(_words(design.scene).check_groups(design), design.manoeuvres, places,
+                              design.scene)
         lines += _factor_lines(design.scene)
     lines += _transient_lines(design)
     lines += ["", _words(design.scene).in_words(design.message, design.scene.parameters)]
@@ -112,7 +112,7 @@ def ramp_text(scene, answer) -> str:
                                     f"{scene.built.quantities[k].display_unit}" for k, v in answer.design.items()),
              "", f"t_ramp = {answer.t_ramp:.6g} s  (verified by simulation: it holds; a shorter ramp fails {fails})"]
     groups = [(m["manoeuvre"], words.manoeuvre_rows(m, parameters=scene.parameters)) for m in manoeuvres]
-    return "\n".join(lines + checks_lines(groups, manoeuvres, places) + _factor_lines(scene))
+    return "\n".join(lines + checks_lines(groups, manoeuvres, places, scene) + _factor_lines(scene))
 
 
 def main(scene, args, to_json) -> int:

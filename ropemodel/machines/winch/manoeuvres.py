@@ -25,7 +25,9 @@ The checks through a manoeuvre (:data:`CHECKS`, each ≥ 0 at every instant; doc
 from __future__ import annotations
 
 import casadi as ca
+import numpy as np
 
+from ropemodel.effects.transient.contact import traction_of
 from ropemodel.machines.base import DesignBox
 from ropemodel.machines.base import ManoeuvreCheck as Check
 
@@ -87,6 +89,12 @@ SIDES = {
 }
 
 
+#: the slip factors, (parameter, the check it applies to), the static one first: recorded with a dynamic design
+#: (``--json``'s ``slip_factors``, :func:`optimisation.dynamic.design.slip_factors`)
+SLIP_FACTORS = (("n_slip", "static: rho F_S >= n_slip F_C in steady motion"),
+                ("n_slip_dynamic", "dynamic: rho F_S(t) >= n_slip_dynamic F_C(t) through every manoeuvre"))
+
+
 def completed(scene, design: dict) -> dict:
     """What a manoeuvre's scene needs that the scene leaves out: a rigid drum without a diameter, 40 d (its
     traction does not depend on it)."""
@@ -114,3 +122,51 @@ def _top(problem, xs, p) -> float:
 #: from more of it (the stroke checks are stroke − z ≥ 0, eq. (23)), so a point without a design at this stroke
 #: has none at any shorter one
 BOX = DesignBox(catalogue="d", grid="F_nwl", held={"stroke": 100.0}, top=_top)
+
+
+def series(sim) -> dict:
+    """What the checks read of a simulated manoeuvre (:func:`ropemodel.dynamics.simulate`), over its history
+    (SI): the same names as the smooth mode's outputs the NLP's checks read."""
+    h = sim.history
+    o = {"F_C": h["F_C [N]"].to_numpy(), "F_S": h["F_S [N]"].to_numpy()}
+    if not sim.setup.chain.rigid:      # an inextensible rope: no element, no take-up (as the NLP's checks)
+        o.update({"take_up": h["take_up [m]"].to_numpy(), "T": h["T_min [N]"].to_numpy()})
+    ratio = traction_of(sim.setup)
+    if ratio is not None:
+        v = h["v_drum [m/s]"].to_numpy()
+        o["slip_fwd"] = o["F_S"] - o["F_C"] / _rho(ratio, o["F_S"], v)
+        o["slip_back"] = o["F_C"] - o["F_S"] / _rho(ratio, o["F_C"], v)
+    return o
+
+
+def _rho(ratio, force, speed) -> np.ndarray:
+    """The lining's traction ratio at each sample (floats; a CasADi expression evaluated point by point)."""
+    values = [ratio(float(f), float(v)) for f, v in zip(force, speed)]
+    return np.array([float(ca.evalf(x)) if isinstance(x, (ca.SX, ca.MX)) else float(x) for x in values])
+
+
+#: each peak a simulated manoeuvre records (:func:`peaks`) and which of two values is the worse: the worst over
+#: the load's places is what the output shows of a manoeuvre (:func:`optimisation.dynamic.verify.by_manoeuvre`)
+PEAKS = (("F_C_max", max), ("F_S_min", min), ("take_up_max", max), ("dynamic_factor", max))
+
+
+def peaks(sim) -> dict:
+    """What a simulated manoeuvre records besides its checks (SI): the peak winding-rope force F_C_max and its
+    instant t_F_C_max, the least unwinding-rope force F_S_min, the largest take-up and the dynamic factor."""
+    h, s = sim.history, sim.summary
+    t = h["t [s]"].to_numpy()
+    return {"F_C_max": s["F_C_max"], "F_S_min": s["F_S_min"], "take_up_max": float(h["take_up [m]"].max()),
+            "dynamic_factor": s["dynamic_factor"], "t_F_C_max": float(t[int(np.argmax(h["F_C [N]"]))])}
+
+
+def peak_text(pk: dict) -> str:
+    """A manoeuvre's worst peaks in words (``size --dynamic``'s title line of the manoeuvre)."""
+    return (f"peak F_C {pk['F_C_max'] * 1e-3:.4g} kN (dynamic factor {pk['dynamic_factor']:.3g}), "
+            f"least F_S {pk['F_S_min'] * 1e-3:.4g} kN, largest take-up {pk['take_up_max'] * 1e3:.4g} mm")
+
+
+#: the report's columns of a manoeuvre's worst peaks: (heading, the cell from the peaks)
+PEAK_COLUMNS = (("F_C max [kN]", lambda pk: f"{pk['F_C_max'] * 1e-3:.4g}"),
+                ("F_S min [kN]", lambda pk: f"{pk['F_S_min'] * 1e-3:.4g}"),
+                ("take-up max [m]", lambda pk: f"{pk['take_up_max']:.4g}"),
+                ("dynamic factor [-]", lambda pk: f"{pk['dynamic_factor']:.3f}"))

@@ -21,10 +21,6 @@ def sizes_dynamically(ctx) -> bool:
     return bool(ctx.sizing) and ctx.scene.numerics.get("sizing") == "dynamic"
 
 
-def _kN(x: float) -> str:
-    return f"{x * 1e-3:.4g}"
-
-
 @section("dynamic_sizing", "Dynamic sizing", when=sizes_dynamically, reads=every_parameter)
 def dynamic_sizing(ctx):
     design = ctx.design
@@ -38,14 +34,13 @@ def dynamic_sizing(ctx):
     if not design.feasible:
         return html + page.verdict(False, "No design keeps every check through the manoeuvres.") + page.fragment(
             "<pre>{{ m }}</pre>", m=design.message)
-    rows = [[m["manoeuvre"], m["where"], _kN(m["peaks"]["F_C_max"]), _kN(m["peaks"]["F_S_min"]),
-             f"{m['peaks']['take_up_max']:.4g}", f"{m['peaks']['dynamic_factor']:.3f}",
-             "ok" if m["ok"] else "FAILS"] for m in design.manoeuvres]
+    columns = declared_machine(design.scene).manoeuvres.PEAK_COLUMNS
+    rows = [[m["manoeuvre"], m["where"], *(cell(m["peaks"]) for _, cell in columns), "ok" if m["ok"] else "FAILS"]
+            for m in design.manoeuvres]
     html += page.fragment("<h3>The four manoeuvres at the recommended design (simulated; the worst of every place "
                           "of the load)</h3>")
-    html += page.table(["manoeuvre", "governed with the load at", "F_C max [kN]", "F_S min [kN]", "take-up max [m]",
-                        "dynamic factor [-]", "checks"], rows,
-                       kinds=["name", "", "num", "num", "num", "num", ""], cls="manoeuvres")
+    html += page.table(["manoeuvre", "governed with the load at", *(heading for heading, _ in columns), "checks"],
+                       rows, kinds=["name", "", *("num" for _ in columns), ""], cls="manoeuvres")
     words = declared_machine(design.scene).words
     html += page.fragment("{% if m %}<p>{{ m }}.</p>{% endif %}",
                           m=words.mesh_text(design.mesh, design.scene.parameters))
