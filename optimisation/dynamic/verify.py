@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from optimisation.dynamic.manoeuvres import declared, manoeuvre_scene, sides
-from optimisation.problem import D_OPTIONAL, SIZED
+from optimisation.problem import declaration
 from ropemodel.dynamics import simulate
 
 SIM_RTOL = 1e-10
@@ -59,7 +59,8 @@ class Verdict:
 
 def simulation_scene(scene, manoeuvre, design: dict, values: dict | None = None):
     """The scene of one manoeuvre at ``design`` (SI), with the simulator at :data:`SIM_RTOL`, :data:`SIM_DT`."""
-    sc = manoeuvre_scene(scene, manoeuvre, design, SIZED + D_OPTIONAL)
+    sizing = declaration(scene)
+    sc = manoeuvre_scene(scene, manoeuvre, design, tuple(sizing.VARIABLES) + tuple(sizing.D_OPTIONAL))
     if values:
         sc = sc.with_values(values)
     return dataclasses.replace(sc, numerics={**sc.numerics, "sim_rtol": SIM_RTOL, "sim_dt": SIM_DT})
