@@ -24,7 +24,7 @@ SIZING_MODULE = ("VARIABLES", "D_OPTIONAL", "prepare", "rope_problem", "frees", 
                  "start", "PRIMARY", "WEIGHTS", "nlp_form", "unit", "rounded_up", "UNITS", "CHOOSES", "INTRO",
                  "ROUNDED", "SCENE_TEXT", "ELONGATION", "NOT_LEXICOGRAPHIC")
 #: the manoeuvres of dynamic sizing (:mod:`optimisation.dynamic`): what the drivers read
-MANOEUVRES = ("ORDER", "CHECKS", "CHECK", "EVENTS", "OBJECTIVE", "SIDES", "values", "completed", "BOX",
+MANOEUVRES = ("ORDER", "CHECKS", "CHECK", "EVENTS", "OBJECTIVE", "TEXT", "SIDES", "values", "completed", "BOX",
               "SLIP_FACTORS", "series", "peaks", "PEAKS", "peak_text", "PEAK_COLUMNS")
 #: what a machine's trips give :mod:`ropemodel.trips`
 TRIPS = ("length", "joints", "take_up", "summary", "lines", "remedy", "ROWS", "SUMMARY", "OUTPUTS")
@@ -76,6 +76,7 @@ def test_manoeuvres_are_whole_and_agree_with_the_sizing_and_the_words(model):
     assert man.CHECK == {c.name: c for c in man.CHECKS} and set(man.SIDES) <= set(man.CHECK)
     assert all(c.unit in ("N", "m") for c in man.CHECKS)
     assert all(len(pair) == 2 for pair in man.ORDER) and man.ORDER
+    assert set(man.TEXT) == {"all", "kinds", "through"} and all(man.TEXT.values())
     # the scan's box covers the design, each variable once
     assert machine.sizing is not None and isinstance(man.BOX, DesignBox)
     box = [man.BOX.catalogue, man.BOX.grid, *man.BOX.held]

@@ -213,7 +213,7 @@ def _size(scene: Scene, with_sensitivities: bool, say: Callable[[str], None]) ->
         design.message = "no static design exists, so no dynamic one: " + design.diagnosis.text(static.units)
         return design
     design.static = static.to_si(ssol.xs)
-    say("dynamic optimum (the four manoeuvres inside the NLP)")
+    say(f"dynamic optimum ({problem.machine.manoeuvres.TEXT['all']} inside the NLP)")
     t0 = time.perf_counter()
     record = Refinement()
     problem, sol, diagnosis = continuous_optimum(problem, ssol.xs, record, say)
@@ -268,7 +268,8 @@ def _catalogue(problem, sol, design: DynamicDesign, say) -> DynamicDesign:
         design.power = {k: values[k] for k in ("N_p_up", "N_p_down") if k in values}
         if prob.least_drum:
             design.least_drum = values["D"]
-        design.message = "design found; every check holds through the four manoeuvres (verified by simulation)"
+        design.message = (f"design found; every check holds through {prob.machine.manoeuvres.TEXT['all']} "
+                          "(verified by simulation)")
         return design
     design.message = (f"no catalogue diameter from {d_star * 1e3:.4g} mm up keeps every check through the "
                       f"manoeuvres (the largest is {ropes.diameters()[-1] * 1e3:g} mm)")

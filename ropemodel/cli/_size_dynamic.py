@@ -83,7 +83,8 @@ def design_text(design) -> str:
     checks table grouped by manoeuvre in words and units (internal names only in ``--json``), the factors and
     their rules, the transient and the defaults it took."""
     q = design.scene.built.quantities
-    lines = [f"{design.scene.name}: dynamic sizing (start and stop in both directions, verified by simulation)"]
+    kinds = declared_machine(design.scene).manoeuvres.TEXT["kinds"]
+    lines = [f"{design.scene.name}: dynamic sizing ({kinds}, verified by simulation)"]
     if design.continuous:
         lines += ["", f"{'':<12}{'catalogue':>14}{'continuous':>14}{'static':>14}"]
         for k in declared_machine(design.scene).sizing.VARIABLES:

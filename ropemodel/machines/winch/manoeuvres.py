@@ -37,6 +37,10 @@ ORDER = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
 EVENTS = ("slip_fwd", "slip_back", "stroke_end", "stroke_start", "slack", "torque_limit")
 #: what ``size --dynamic`` does, in words
 OBJECTIVE = "rope, pretension and stroke through four manoeuvres"
+#: the manoeuvres in words: ``all`` of them (the progress and the verdict), what they are (``kinds``: ``size
+#: --dynamic``'s title) and as travelled through (``through``: the report's introduction)
+TEXT = {"all": "the four manoeuvres", "kinds": "start and stop in both directions",
+        "through": "the start and stop of both directions of travel (four manoeuvres)"}
 
 
 def _ratio(force):

@@ -10,7 +10,7 @@ from ropemodel.reports.registry import section
 from ropemodel.reports.sections.transient import every_parameter
 from ropemodel.machines.base import declared_machine
 
-INTRO = """<p>Every design check holds through the start and stop of both directions of travel (four manoeuvres),
+INTRO = """<p>Every design check holds through {{ through }},
 with the load anywhere on the route (the ends and the middle of every segment), not only at the static forces
 (<code>ropemodel size --dynamic</code>); every design verified by the hybrid simulator.
 The recommended design against the static optimum (continuous optima; the static one is what the paper's
@@ -25,7 +25,8 @@ def sizes_dynamically(ctx) -> bool:
 def dynamic_sizing(ctx):
     design = ctx.design
     q = design.scene.built.quantities
-    html = page.fragment(INTRO)
+    text = declared_machine(design.scene).manoeuvres.TEXT
+    html = page.fragment(INTRO, through=text["through"])
     if design.continuous and design.static:
         rows = [[k, page.show(q[k], design.continuous[k]), page.show(q[k], design.static[k]),
                  f"{100 * (design.continuous[k] / design.static[k] - 1):+.1f} %"] for k in design.continuous]
@@ -37,8 +38,8 @@ def dynamic_sizing(ctx):
     columns = declared_machine(design.scene).manoeuvres.PEAK_COLUMNS
     rows = [[m["manoeuvre"], m["where"], *(cell(m["peaks"]) for _, cell in columns), "ok" if m["ok"] else "FAILS"]
             for m in design.manoeuvres]
-    html += page.fragment("<h3>The four manoeuvres at the recommended design (simulated; the worst of every place "
-                          "of the load)</h3>")
+    html += page.fragment("<h3>{{ all }} at the recommended design (simulated; the worst of every place of the "
+                          "load)</h3>", all=text["all"][:1].upper() + text["all"][1:])
     html += page.table(["manoeuvre", "governed with the load at", *(heading for heading, _ in columns), "checks"],
                        rows, kinds=["name", "", *("num" for _ in columns), ""], cls="manoeuvres")
     words = declared_machine(design.scene).words
