@@ -38,7 +38,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from optimisation.dynamic.manoeuvres import CHECK
 from optimisation.dynamic.problem import BACKOFF, DynamicSizingProblem
 from optimisation.dynamic.refine import solve_refined
 from optimisation.dynamic.screen import SCREEN_TOL, all_margins, check_scale, least_margins
@@ -90,7 +89,7 @@ def margins_at(problem, xs, n: int, p=None, which=None) -> dict[int, dict[str, f
     """Every check's least margin (SI, before back-offs) in every case (``which``: these, indices) at scaled
     design ``xs`` with ``n`` elements per span (the NLP's integrator, no sensitivities; the smooth modes of
     another mesh built at the start design, once: :meth:`DynamicSizingProblem.start_path`)."""
-    scale = {name: check_scale(problem, c) for name, c in CHECK.items()}
+    scale = {name: check_scale(problem, c) for name, c in problem.machine.manoeuvres.CHECK.items()}
     if n == segments_of(problem.scene):
         margins = all_margins(problem, xs, p, which)
     else:
@@ -153,7 +152,7 @@ def estimate(g: dict, n: int) -> tuple[dict, dict, dict]:
 
 
 def _scale(check: str, g: dict) -> float:
-    return g["F_ref"] if CHECK[check].unit == "N" else 1.0
+    return g["F_ref"] if g["units"][check] == "N" else 1.0
 
 
 def control(problem, xs, p=None, say=None) -> MeshEstimate | None:
@@ -163,7 +162,8 @@ def control(problem, xs, p=None, say=None) -> MeshEstimate | None:
         return None
     tol = problem.scene.parameters["mesh_tol"]
     n = segments_of(problem.scene)
-    g: dict = {"F_ref": problem.F_ref}
+    units = {c: check.unit for c, check in problem.machine.manoeuvres.CHECK.items()}
+    g: dict = {"F_ref": problem.F_ref, "units": units}
     levels = []
     while True:
         _measure(problem, xs, p, g, n, range(len(problem.cases)), say)
@@ -171,10 +171,10 @@ def control(problem, xs, p=None, say=None) -> MeshEstimate | None:
         for m in (2 * n, 4 * n):        # the finer meshes in the cases where a check can govern (all estimate reads)
             _measure(problem, xs, p, g, m, near, say)
         errors, unsafe, orders = estimate(g, n)
-        force = max((e for c, e in errors.items() if CHECK[c].unit == "N"), default=0.0)
+        force = max((e for c, e in errors.items() if units[c] == "N"), default=0.0)
         levels.append({"segments": n, "largest_force_error": force})
         if force <= tol:
-            return MeshEstimate(n, tol, errors, unsafe, orders, {c: CHECK[c].unit for c in errors}, levels)
+            return MeshEstimate(n, tol, errors, unsafe, orders, {c: units[c] for c in errors}, levels)
         if 8 * n > SEGMENTS_MAX:
             raise SolveError(f"the rope's discretisation error is {force:.4g} N at {n} elements per span "
                              f"(Richardson's estimate from {n}, {2 * n} and {4 * n}), above mesh_tol = {tol:.4g} N; "
@@ -194,7 +194,8 @@ def _measure(problem, xs, p, g: dict, m: int, cases, say) -> None:
 def backoffs(problem, found: MeshEstimate) -> dict[str, float]:
     """Check name → its back-off in the NLP (scaled): :data:`MARGIN` times the unsafe part of its E(n), plus
     :data:`BACKOFF`."""
-    return {c: BACKOFF + MARGIN * e / check_scale(problem, CHECK[c]) for c, e in found.unsafe.items()}
+    check = problem.machine.manoeuvres.CHECK
+    return {c: BACKOFF + MARGIN * e / check_scale(problem, check[c]) for c, e in found.unsafe.items()}
 
 
 def converge(problem, sol, record=None, say=None):
@@ -215,7 +216,8 @@ def converge(problem, sol, record=None, say=None):
         if say is not None:
             say(f"dynamic optimum on {found.segments} elements per span, checks backed off by their error")
         scene, old = with_segments(problem.scene, found.segments), problem
-        problem = DynamicSizingProblem(scene, selected=problem.selected, backoffs=wanted, built=problem.built)
+        problem = DynamicSizingProblem(scene, selected=problem.selected, backoffs=wanted,
+                                       shared_paths=problem.shared_paths)
         problem, sol = solve_refined(problem, sol.xs, record=record, warm=(old, sol))
         if not sol.feasible:
             return problem, sol, found

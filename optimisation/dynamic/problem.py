@@ -2,7 +2,7 @@
 
 Same decision variables (d, F_nwl, stroke, scaled as in :class:`optimisation.problem.SizingProblem`),
 same lexicographic objective (least rope mass, then pretension, then stroke), same parameters p and
-every static check; added: the checks of :data:`~optimisation.dynamic.manoeuvres.CHECKS` at every
+every static check; added: the checks of :data:`~ropemodel.machines.winch.manoeuvres.CHECKS` at every
 point of each case's time grid, each case's transient integrated inside the NLP
 (:mod:`optimisation.dynamic.shooting`).  The cases integrated are those that govern a check
 (:mod:`optimisation.dynamic.screen`), out of every manoeuvre with the load at every candidate
@@ -24,7 +24,7 @@ from optimisation.dynamic.manoeuvres import cases, manoeuvre_scene
 from optimisation.dynamic.screen import governing
 from optimisation.dynamic.shooting import Path
 from optimisation.dynamic.transient import transient_scene
-from optimisation.problem import D_OPTIONAL, SIZED, VARIABLES, SizingProblem
+from optimisation.problem import SizingProblem
 from ropemodel.dynamics.assemble import chosen, structural
 
 #: largest step [s] of the first time grid (refinement adds the exact local minima of the checks)
@@ -58,15 +58,15 @@ class DynamicSizingProblem(SizingProblem):
     ``paths`` theirs and ``grids`` their time grids (default a uniform grid of step :data:`DT_GRID`).
     ``paths`` given: the smooth modes of a previous problem of the same scene, re-used.  ``backoffs``: check
     name → its back-off in the NLP (scaled; default :data:`BACKOFF`), from the mesh's error estimate
-    (:func:`optimisation.dynamic.mesh.backoffs`).  ``built``: the cases' smooth modes built at the start design
-    (:meth:`start_path`), shared by the problems one sizing makes of the same scene (its grids, cases, meshes),
-    so that none is built twice.
+    (:func:`optimisation.dynamic.mesh.backoffs`).  ``shared_paths``: the cases' smooth modes built at the start
+    design (:meth:`start_path`), shared by the problems one sizing makes of the same scene (its grids, cases,
+    meshes), so that none is built twice.
     """
 
-    def __init__(self, scene, grids=None, paths=None, selected=None, backoffs=None, built=None):
+    def __init__(self, scene, grids=None, paths=None, selected=None, backoffs=None, shared_paths=None):
         super().__init__(transient_scene(scene))
         self.backoffs = dict(backoffs or {})
-        self.built = {} if built is None else built
+        self.shared_paths = {} if shared_paths is None else shared_paths
         self.static_constraints = list(self.constraints)
         self.g_static = self.g
         self.cases = cases(self.scene)
@@ -80,23 +80,23 @@ class DynamicSizingProblem(SizingProblem):
 
     def start_path(self, i: int, scene=None) -> Path:
         """The smooth mode of case ``i`` built at the start design (the scene's), for ``scene`` (default this
-        problem's; another mesh of it: its ``segments``), built once per mesh and shared through ``built``."""
+        problem's; another mesh of it: its ``segments``), built once per mesh and shared through ``shared_paths``."""
         scene = self.scene if scene is None else scene
         key = (scene.numerics.get("segments"), i)
-        if key not in self.built:
-            self.built[key] = self._path(self.cases[i], self.to_si(self.x0()), scene)
-        return self.built[key]
+        if key not in self.shared_paths:
+            self.shared_paths[key] = self._path(self.cases[i], self.to_si(self.x0()), scene)
+        return self.shared_paths[key]
 
     def _path(self, manoeuvre, design, scene=None) -> Path:
-        optional = SIZED + D_OPTIONAL
+        optional = self.variables + self.sizing.D_OPTIONAL
         sc = manoeuvre_scene(scene or self.scene, manoeuvre, design, optional)
         fixed = structural(chosen(sc))
         shared = [k for k in self.params if k in sc.parameters and k not in fixed and k not in FIXED]
-        return Path(manoeuvre, sc, VARIABLES + tuple(shared))
+        return Path(manoeuvre, sc, self.variables + tuple(shared))
 
     def pp_of(self, path, x_si, p):
         """The smooth mode's parameter vector of ``path`` from the design (SI) and the NLP's p."""
-        idx = [self.params.index(k) for k in path.names[len(VARIABLES):]]
+        idx = [self.params.index(k) for k in path.names[len(self.variables):]]
         return ca.vertcat(x_si, *[p[i] for i in idx])
 
     def pp0(self, path, xs=None, p=None) -> np.ndarray:
@@ -109,7 +109,7 @@ class DynamicSizingProblem(SizingProblem):
     def _static_at(self) -> ca.Function:
         x_m = ca.MX.sym("x_m")
         args = {k: self.p[i] for i, k in enumerate(self.params)}
-        args.update({k: self.xs[i] * self.x_scale[i] for i, k in enumerate(VARIABLES)})
+        args.update({k: self.xs[i] * self.x_scale[i] for i, k in enumerate(self.variables)})
         args.update({k: 0.0 for k in self.problem.given})
         out = self.problem.function.call({**args, "x_m": x_m})
         names = [f"{f}_{w}" for f in ("F_C", "F_S") for w in ("up", "down")]
@@ -120,12 +120,8 @@ class DynamicSizingProblem(SizingProblem):
         return {k: float(v) for k, v in self._static_at(x=xs, p=p, x_m=x_m).items()}
 
     def values(self, x_si, p) -> dict:
-        """What the checks read besides the transient: F_min (the catalogue rope's), n_rope, n_slip_dynamic (1
-        without a drum lining: no slip check), F_S_min, stroke."""
-        xs = x_si / ca.DM(self.x_scale)
-        n_dyn = p[self.params.index("n_slip_dynamic")] if "n_slip_dynamic" in self.params else 1.0
-        return {"F_min": self.outputs(x=xs, p=p)["F_min"], "n_rope": p[self.params.index("n_rope")],
-                "n_slip_dynamic": n_dyn, "F_S_min": p[self.params.index("F_S_min")], "stroke": x_si[2]}
+        """What the checks through the manoeuvres read besides the transient (the machine's ``values``)."""
+        return self.machine.manoeuvres.values(self, x_si, p)
 
     def _add_paths(self) -> None:
         x_si = self.xs * ca.DM(self.x_scale)
@@ -192,12 +188,12 @@ class DynamicSizingProblem(SizingProblem):
         for i in self.selected:
             old, new = self.all_paths[i], paths[i]
             if not _same_transient(self.pp0(old, xs, p), old, self.pp0(new, xs, p), new, self.F_ref):
-                return DynamicSizingProblem(self.scene, None, paths, self.selected, self.backoffs, self.built)
+                return DynamicSizingProblem(self.scene, None, paths, self.selected, self.backoffs, self.shared_paths)
         return None
 
     def refined(self, grids) -> DynamicSizingProblem:
         """The same problem on other grids (the cases' smooth modes re-used)."""
-        return DynamicSizingProblem(self.scene, grids, self.all_paths, self.selected, self.backoffs, self.built)
+        return DynamicSizingProblem(self.scene, grids, self.all_paths, self.selected, self.backoffs, self.shared_paths)
 
     def with_cases(self, selected) -> DynamicSizingProblem:
         """The same problem integrating the cases ``selected`` (indices); a case it already integrates keeps its
@@ -205,7 +201,7 @@ class DynamicSizingProblem(SizingProblem):
         selected = sorted(set(selected))
         kept = dict(zip(self.selected, self.grids))
         grids = [kept.get(i) or self.all_paths[i].uniform_grid(self.pp0(self.all_paths[i]), DT_GRID) for i in selected]
-        return DynamicSizingProblem(self.scene, grids, self.all_paths, selected, self.backoffs, self.built)
+        return DynamicSizingProblem(self.scene, grids, self.all_paths, selected, self.backoffs, self.shared_paths)
 
     def screened(self, xs, p=None) -> DynamicSizingProblem:
         """The same problem integrating the cases that govern a check at scaled design ``xs``."""
