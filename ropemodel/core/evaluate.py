@@ -48,6 +48,10 @@ from ropemodel.errors import InputError, SolveError
 BACKENDS = ("auto", "casadi", "compiled")
 BLOCK = 4096  # points per call of the compiled map: its work array stays in cache
 COMPILE_MIN = 20000  # "auto" compiles to C only for at least this many points (gcc takes ~0.3 s)
+#: constant inputs × points above which ``Function.map`` is not given the constants: CasADi's map repeats each
+#: constant input at every point (a 3000-segment route's model evaluated at 3000 places of the load: 18·10^6
+#: numbers), so the constants are folded into the Function first (:func:`folded`)
+FOLD_MIN = 10**6
 
 
 @dataclass
@@ -266,14 +270,36 @@ def reordered(function: ca.Function, order, outputs=None) -> ca.Function:
     return out.expand() if function.is_a("SXFunction") else out
 
 
+def folded(function: ca.Function, n_var: int, constants: list[float]) -> ca.Function:
+    """The SX ``function`` of its first ``n_var`` inputs only, the others fixed at ``constants``: CasADi does the
+    arithmetic on numbers once, here (the same operations in the same order, so the same results), and the
+    Function left is that of the varied inputs."""
+    syms = [ca.SX.sym(k) for k in function.name_in()[:n_var]]
+    out = function.call(syms + [ca.SX(float(c)) for c in constants])
+    return ca.Function(function.name(), syms, out, function.name_in()[:n_var], function.name_out(), MANY_INPUTS)
+
+
+class _FoldedJob:
+    """A :class:`Job` of a :func:`folded` Function (its constants inside it): evaluated by ``Function.map``,
+    built here and not cached (a Function for one set of constants)."""
+
+    def __init__(self, function: ca.Function, varied: list[str], threads: int):
+        self.varied, self.mapped = varied, _Mapped(function, len(varied), threads)
+
+    def __call__(self, inputs: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        return self.mapped([inputs[k] for k in self.varied], len(inputs[self.varied[0]]), [])
+
+
 def evaluate_columns(function: ca.Function, columns: dict, constants: dict, threads: int = 1,
-                     backend: str = "auto", chunk: int = 65536, block: int = BLOCK) -> dict[str, np.ndarray]:
-    """Every output of ``function`` at many points, in chunks: ``columns`` name → SI array (all one
-    length) vary, ``constants`` name → SI float do not; together they name every input.
+                     backend: str = "auto", chunk: int = 65536, block: int = BLOCK,
+                     outputs=None) -> dict[str, np.ndarray]:
+    """Every output of ``function`` (or only ``outputs``) at many points, in chunks: ``columns`` name → SI
+    array (all one length) vary, ``constants`` name → SI float do not; together they name every input.
 
     The same engine as a sweep (compiled once per process, threads, bounded memory), without
     validation or files: a drop-in body for ``Problem.evaluate``.  ``block``: points per call of
-    the compiled map (:class:`Job`).
+    the compiled map (:class:`Job`).  Evaluated by CasADi with many constants at many points (above
+    :data:`FOLD_MIN`), the constants are folded in first (:func:`folded`): memory linear in the points.
     """
     columns = {k: np.ascontiguousarray(v, dtype=float).ravel() for k, v in columns.items()}
     n_points = len(next(iter(columns.values()))) if columns else 1
@@ -287,14 +313,19 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     if any(len(v) != n for v in columns.values()):
         raise InputError(f"input arrays of different lengths: {sorted({len(v) for v in columns.values()})}")
     order = list(columns) + list(constants)
-    missing = [k for k in function.name_in() if k not in order]
+    given = set(order)
+    missing = [k for k in function.name_in() if k not in given]
     if missing:
         raise InputError(f"no value for {', '.join(missing)}")
-    hit = _REORDERED.get((id(function), tuple(order)))
+    key = (id(function), tuple(order), None if outputs is None else tuple(outputs))
+    hit = _REORDERED.get(key)
     if hit is None or hit[0] is not function:
-        hit = _remember(_REORDERED, (id(function), tuple(order)), (function, reordered(function, order)))
+        hit = _remember(_REORDERED, key, (function, reordered(function, order, outputs)))
     fun = hit[1]
-    job = Job(fun, list(columns), constants, backend=backend, threads=threads, block=block)
+    if backend == "casadi" and fun.is_a("SXFunction") and len(constants) * n > FOLD_MIN:
+        job: Job | _FoldedJob = _FoldedJob(folded(fun, len(columns), list(constants.values())), list(columns), threads)
+    else:
+        job = Job(fun, list(columns), constants, backend=backend, threads=threads, block=block)
     out = {o: np.empty(n) for o in fun.name_out()}
     for s in range(0, n, chunk):
         e = min(n, s + chunk)
