@@ -266,28 +266,41 @@ def reordered(function: ca.Function, order, outputs=None) -> ca.Function:
     syms = {k: ca.MX.sym(k) for k in function.name_in()}
     res = function.call(syms)
     outputs = list(function.name_out()) if outputs is None else list(outputs)
-    out = ca.Function(function.name(), [syms[k] for k in order], [res[o] for o in outputs], list(order), outputs)
-    return out.expand() if function.is_a("SXFunction") else out
+    out = ca.Function(function.name(), [syms[k] for k in order], [res[o] for o in outputs], list(order), outputs,
+                      MANY_INPUTS)
+    return out.expand(function.name(), MANY_INPUTS) if function.is_a("SXFunction") else out
 
 
-def folded(function: ca.Function, n_var: int, constants: list[float]) -> ca.Function:
-    """The SX ``function`` of its first ``n_var`` inputs only, the others fixed at ``constants``: CasADi does the
-    arithmetic on numbers once, here (the same operations in the same order, so the same results), and the
-    Function left is that of the varied inputs."""
+def folded(function: ca.Function, n_var: int, constants: list[float]) -> tuple[ca.Function | None, dict[str, float]]:
+    """The SX ``function`` with its inputs after the first ``n_var`` fixed at ``constants``: CasADi does the
+    arithmetic on numbers once, here (the same operations in the same order, so the same results).  Returns the
+    Function of the first ``n_var`` inputs to the outputs that still depend on them (None if none does), and the
+    values of the others (a route's sums, its segments' coefficients: one number each, not one per point)."""
     syms = [ca.SX.sym(k) for k in function.name_in()[:n_var]]
     out = function.call(syms + [ca.SX(float(c)) for c in constants])
-    return ca.Function(function.name(), syms, out, function.name_in()[:n_var], function.name_out(), MANY_INPUTS)
+    fixed = {k: float(ca.DM(e)) for k, e in zip(function.name_out(), out) if e.is_constant()}
+    moving = [k for k in function.name_out() if k not in fixed]
+    if not moving:
+        return None, fixed
+    return ca.Function(function.name(), syms, [out[function.index_out(k)] for k in moving],
+                       function.name_in()[:n_var], moving, MANY_INPUTS), fixed
 
 
 class _FoldedJob:
     """A :class:`Job` of a :func:`folded` Function (its constants inside it): evaluated by ``Function.map``,
-    built here and not cached (a Function for one set of constants)."""
+    built here and not cached (a Function for one set of constants); the outputs that no longer vary are
+    repeated, not evaluated at every point."""
 
-    def __init__(self, function: ca.Function, varied: list[str], threads: int):
-        self.varied, self.mapped = varied, _Mapped(function, len(varied), threads)
+    def __init__(self, function: ca.Function, varied: list[str], constants: list[float], threads: int):
+        moving, self.fixed = folded(function, len(varied), constants)
+        self.varied = varied
+        self.mapped = None if moving is None else _Mapped(moving, len(varied), threads)
 
     def __call__(self, inputs: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-        return self.mapped([inputs[k] for k in self.varied], len(inputs[self.varied[0]]), [])
+        n = len(inputs[self.varied[0]])
+        out = {} if self.mapped is None else self.mapped([inputs[k] for k in self.varied], n, [])
+        out.update({k: np.full(n, v) for k, v in self.fixed.items()})
+        return out
 
 
 def evaluate_columns(function: ca.Function, columns: dict, constants: dict, threads: int = 1,
@@ -323,7 +336,7 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
         hit = _remember(_REORDERED, key, (function, reordered(function, order, outputs)))
     fun = hit[1]
     if backend == "casadi" and fun.is_a("SXFunction") and len(constants) * n > FOLD_MIN:
-        job: Job | _FoldedJob = _FoldedJob(folded(fun, len(columns), list(constants.values())), list(columns), threads)
+        job: Job | _FoldedJob = _FoldedJob(fun, list(columns), list(constants.values()), threads)
     else:
         job = Job(fun, list(columns), constants, backend=backend, threads=threads, block=block)
     out = {o: np.empty(n) for o in fun.name_out()}
