@@ -53,6 +53,7 @@ import casadi as ca
 import numpy as np
 
 from ropemodel.effects.sizing import declared
+from ropemodel.core.evaluate import reordered
 from ropemodel.effects.winch_checks import margin_names
 from ropemodel.envelope import RAMPS, Envelope, LoadCase, envelope, free, load_cases
 from ropemodel.envelope.cases import depends_on, distinct
@@ -92,6 +93,15 @@ def _nlp_form(name: str, out: dict, args: dict):
     if name.startswith("slip_margin"):
         return out[f"F_S_{way}"] - args["n_slip"] * out[f"F_C_{way}"] / out[f"traction_{way}"]
     return out[name]
+
+
+def _nlp_function(fun: ca.Function, unknowns) -> ca.Function:
+    """``fun`` with only the outputs the NLP reads (the checks, what :func:`_nlp_form` writes them from, the rope
+    mass): a route's model has an output per segment, and every derivative of the NLP would carry them."""
+    reads = {"m_l", "F_min", *margin_names(unknowns)}
+    reads |= {f"{f}_{d}" for f in ("F_C", "F_S", "traction") for d in ("up", "down")}
+    wanted = [u for u in unknowns if u in reads]
+    return reordered(fun, fun.name_in(), wanted)
 
 
 def _label(check: str, case: LoadCase, inputs, params) -> str:
@@ -235,7 +245,7 @@ class SizingProblem:
         args.update({k: x_si[i] for i, k in enumerate(VARIABLES)})
         args.update({k: 0.0 for k in self.problem.given})   # drum_margin = 0 when D is a result
         self.xs, self.p = xs, p
-        out = self._constraints(fun, args)
+        out = self._constraints(_nlp_function(fun, self.problem.unknowns), args)
         self.g = ca.vertcat(*self._g) / ca.DM(self.g_scale)
         # reference mass per metre: the scene's rope at d = 10 mm (fixed number: the weights are constants)
         m_at = ca.Function("m", [xs, p], [out["m_l"]])
@@ -243,7 +253,8 @@ class SizingProblem:
         self.f_primary = out["m_l"] / self.m_ref
         self.f = self.f_primary + W_F * xs[1] + W_S * xs[2]
         self.output_names = list(self.problem.unknowns)
-        self.outputs = ca.Function("outputs", [xs, p], [out[n] for n in self.output_names],
+        every = fun.call({**args, **self.cases[0].values(ChainMap(args, scene.parameters))})
+        self.outputs = ca.Function("outputs", [xs, p], [every[n] for n in self.output_names],
                                    ["x", "p"], self.output_names)
 
     def _constraints(self, fun, args) -> dict:
