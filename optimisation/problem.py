@@ -48,6 +48,7 @@ from __future__ import annotations
 import math
 from collections import ChainMap
 from functools import cached_property
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -56,7 +57,7 @@ from ropemodel.effects.sizing import declared
 from ropemodel.core.evaluate import reordered
 from ropemodel.effects.winch_checks import margin_names
 from ropemodel.envelope import RAMPS, Envelope, LoadCase, envelope, free, load_cases
-from ropemodel.envelope.cases import depends_on, distinct
+from ropemodel.envelope.cases import depends_on, distinct, joint_ends
 from ropemodel.envelope.prune import prune
 from ropemodel.envelope.cases import reads as case_reads
 from ropemodel.errors import InputError, Problems
@@ -102,6 +103,20 @@ def _nlp_function(fun: ca.Function, unknowns) -> ca.Function:
     reads |= {f"{f}_{d}" for f in ("F_C", "F_S", "traction") for d in ("up", "down")}
     wanted = [u for u in unknowns if u in reads]
     return reordered(fun, fun.name_in(), wanted)
+
+
+def _vector_model(fun: ca.Function, params, free, given) -> ca.Function:
+    """``fun`` (one scalar input per known) as a Function of three vectors: the design ``x`` (SI, in the order of
+    :data:`VARIABLES`), the NLP's parameters ``p`` (``params``) and the case inputs ``c`` (``free``); the
+    ``given`` outputs 0.  Each case of the NLP is one call of it, not a node per parameter (a route has
+    thousands), and its derivatives are those of one SX Function."""
+    sym: Any = ca.SX.sym if fun.is_a("SXFunction") else ca.MX.sym
+    x, p, c = sym("x", len(VARIABLES)), sym("p", len(params)), sym("c", len(free))
+    env = {**{k: p[i] for i, k in enumerate(params)}, **{k: c[i] for i, k in enumerate(free)},
+           **{k: x[i] for i, k in enumerate(VARIABLES)}, **{k: 0.0 for k in given}}
+    out = fun.call({k: env[k] for k in fun.name_in() if k in env})
+    return ca.Function("nlp_model", [x, p, c], [out[k] for k in fun.name_out()], ["x", "p", "c"],
+                       list(fun.name_out()))
 
 
 def _label(check: str, case: LoadCase, inputs, params) -> str:
@@ -245,7 +260,9 @@ class SizingProblem:
         args.update({k: x_si[i] for i, k in enumerate(VARIABLES)})
         args.update({k: 0.0 for k in self.problem.given})   # drum_margin = 0 when D is a result
         self.xs, self.p = xs, p
-        out = self._constraints(_nlp_function(fun, self.problem.unknowns), args)
+        nlp_model = _vector_model(_nlp_function(fun, self.problem.unknowns), self.params, self.free,
+                                  self.problem.given)
+        out = self._constraints(nlp_model, fun, args)
         self.g = ca.vertcat(*self._g) / ca.DM(self.g_scale)
         # reference mass per metre: the scene's rope at d = 10 mm (fixed number: the weights are constants)
         m_at = ca.Function("m", [xs, p], [out["m_l"]])
@@ -257,13 +274,16 @@ class SizingProblem:
         self.outputs = ca.Function("outputs", [xs, p], [every[n] for n in self.output_names],
                                    ["x", "p"], self.output_names)
 
-    def _constraints(self, fun, args) -> dict:
+    def _constraints(self, model: ca.Function, fun: ca.Function, args) -> dict:
         """Every check in every case it can differ in (a check that depends only on the manoeuvre once per
         manoeuvre, one that depends on neither once): the constraints g, their labels, units and scales.
         The cases' places and accelerations follow the NLP's parameters (a segment's length moves x_m).
+        ``model``: :func:`_vector_model`; ``fun``: the same with one input per known.
         Returns the outputs at the first case."""
         q, scene = self.scene.built.quantities, self.scene
         values = ChainMap(args, scene.parameters)
+        ends = joint_ends(values) if scene.route else None
+        x_si = self.xs * ca.DM(self.x_scale)
         margins = margin_names(self.problem.unknowns)
         depends = depends_on(fun, margins)
         at: dict[int, dict] = {}
@@ -271,14 +291,16 @@ class SizingProblem:
         for c in margins:
             for i in distinct(self.cases, depends[c]):
                 if i not in at:
-                    at[i] = fun.call({**args, **self.cases[i].values(values)})
+                    case = self.cases[i].values(values, ends)     # an input a case leaves alone: 0, as CasADi's
+                    at[i] = model(x=x_si, p=self.p, c=ca.vertcat(*[case.get(k, 0.0) for k in self.free]))
                 self.constraints.append(_label(c, self.cases[i], depends[c], scene.parameters))
                 self._g.append(_nlp_form(c, at[i], args))
                 self._margin_exprs.append(at[i][c])
         unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
         self.units = {c: ("N" if c.startswith(RATIO_FORMS) else q[_base(c)].unit) for c in self.constraints}
         self.g_scale = np.array([unit_scale[self.units[c]] for c in self.constraints])
-        return at.get(0) or fun.call({**args, **self.cases[0].values(values)})
+        return at[0] if 0 in at else model(x=x_si, p=self.p, c=ca.vertcat(*[
+            self.cases[0].values(values, ends).get(k, 0.0) for k in self.free]))
 
     def envelope(self, xs, p=None) -> Envelope:
         """Every output of the scene at scaled ``xs`` in every case, each at its worst
