@@ -260,9 +260,13 @@ class SizingProblem:
         args.update({k: x_si[i] for i, k in enumerate(VARIABLES)})
         args.update({k: 0.0 for k in self.problem.given})   # drum_margin = 0 when D is a result
         self.xs, self.p = xs, p
-        nlp_model = _vector_model(_nlp_function(fun, self.problem.unknowns), self.params, self.free,
-                                  self.problem.given)
-        out = self._constraints(nlp_model, fun, args)
+        self._nlp_model = _vector_model(_nlp_function(fun, self.problem.unknowns), self.params, self.free,
+                                        self.problem.given)
+        self.constraints, self._g, self._margin_exprs, out = self._constraints(self._nlp_model, fun, args, p)
+        unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
+        q = scene.built.quantities
+        self.units = {c: ("N" if c.startswith(RATIO_FORMS) else q[_base(c)].unit) for c in self.constraints}
+        self.g_scale = np.array([unit_scale[self.units[c]] for c in self.constraints])
         self.g = ca.vertcat(*self._g) / ca.DM(self.g_scale)
         # reference mass per metre: the scene's rope at d = 10 mm (fixed number: the weights are constants)
         m_at = ca.Function("m", [xs, p], [out["m_l"]])
@@ -274,33 +278,49 @@ class SizingProblem:
         self.outputs = ca.Function("outputs", [xs, p], [every[n] for n in self.output_names],
                                    ["x", "p"], self.output_names)
 
-    def _constraints(self, model: ca.Function, fun: ca.Function, args) -> dict:
+    def _constraints(self, model: ca.Function, fun: ca.Function, args, p) -> tuple[list, list, list, dict]:
         """Every check in every case it can differ in (a check that depends only on the manoeuvre once per
-        manoeuvre, one that depends on neither once): the constraints g, their labels, units and scales.
-        The cases' places and accelerations follow the NLP's parameters (a segment's length moves x_m).
-        ``model``: :func:`_vector_model`; ``fun``: the same with one input per known.
-        Returns the outputs at the first case."""
-        q, scene = self.scene.built.quantities, self.scene
-        values = ChainMap(args, scene.parameters)
-        ends = joint_ends(values) if scene.route else None
+        manoeuvre, one that depends on neither once): their labels, the constraints g and the margins.
+        The cases' places and accelerations follow the NLP's parameters ``p`` (a segment's length moves x_m).
+        ``model``: :func:`_vector_model`; ``fun``: the same with one input per known; ``args``: each known's
+        value.  Returns (labels, g, margins, the outputs at the first case)."""
+        values = ChainMap(args, self.scene.parameters)
+        ends = joint_ends(values) if self.scene.route else None
         x_si = self.xs * ca.DM(self.x_scale)
+
+        def at_case(i: int) -> dict:
+            case = self.cases[i].values(values, ends)     # an input a case leaves alone: 0, as CasADi's default
+            return model(x=x_si, p=p, c=ca.vertcat(*[case.get(k, 0.0) for k in self.free]))
+
         margins = margin_names(self.problem.unknowns)
         depends = depends_on(fun, margins)
         at: dict[int, dict] = {}
-        self.constraints, self._g, self._margin_exprs = [], [], []
+        labels, g, exprs = [], [], []
         for c in margins:
             for i in distinct(self.cases, depends[c]):
                 if i not in at:
-                    case = self.cases[i].values(values, ends)     # an input a case leaves alone: 0, as CasADi's
-                    at[i] = model(x=x_si, p=self.p, c=ca.vertcat(*[case.get(k, 0.0) for k in self.free]))
-                self.constraints.append(_label(c, self.cases[i], depends[c], scene.parameters))
-                self._g.append(_nlp_form(c, at[i], args))
-                self._margin_exprs.append(at[i][c])
-        unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
-        self.units = {c: ("N" if c.startswith(RATIO_FORMS) else q[_base(c)].unit) for c in self.constraints}
-        self.g_scale = np.array([unit_scale[self.units[c]] for c in self.constraints])
-        return at[0] if 0 in at else model(x=x_si, p=self.p, c=ca.vertcat(*[
-            self.cases[0].values(values, ends).get(k, 0.0) for k in self.free]))
+                    at[i] = at_case(i)
+                labels.append(_label(c, self.cases[i], depends[c], self.scene.parameters))
+                g.append(_nlp_form(c, at[i], args))
+                exprs.append(at[i][c])
+        return labels, g, exprs, (at[0] if 0 in at else at_case(0))
+
+    @cached_property
+    def at_scene(self) -> dict:
+        """The NLP (:meth:`nlp`) at the scene's parameters ``p0``, folded into its expressions (a route's sums are
+        numbers; ``p`` is still an input, unused): what IPOPT solves when ``p`` is ``p0``, each evaluation no longer
+        through every segment."""
+        if not self._nlp_model.is_a("SXFunction"):
+            return self.nlp()
+        x, p, c = (ca.SX.sym(k, self._nlp_model.size1_in(k)) for k in ("x", "p", "c"))
+        model = ca.Function("nlp_model_p0", [x, p, c], self._nlp_model.call([x, ca.DM(self.p0), c]),
+                            ["x", "p", "c"], self._nlp_model.name_out())
+        x_si = self.xs * ca.DM(self.x_scale)
+        args = {**dict(zip(self.params, self.p0.tolist())), **{k: x_si[i] for i, k in enumerate(VARIABLES)},
+                **{k: 0.0 for k in self.problem.given}}
+        _, g, _, out = self._constraints(model, self.problem.function, args, self.p)
+        f = out["m_l"] / self.m_ref + W_F * self.xs[1] + W_S * self.xs[2]
+        return self.nlp(f=f, g=ca.vertcat(*g) / ca.DM(self.g_scale))
 
     def envelope(self, xs, p=None) -> Envelope:
         """Every output of the scene at scaled ``xs`` in every case, each at its worst
