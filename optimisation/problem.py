@@ -290,7 +290,8 @@ class SizingProblem:
 
         def at_case(i: int) -> dict:
             case = self.cases[i].values(values, ends)     # an input a case leaves alone: 0, as CasADi's default
-            return model(x=x_si, p=p, c=ca.vertcat(*[case.get(k, 0.0) for k in self.free]))
+            given = {"x": x_si, "p": p, "c": ca.vertcat(*[case.get(k, 0.0) for k in self.free])}
+            return model.call({k: given[k] for k in model.name_in()})
 
         margins = margin_names(self.problem.unknowns)
         depends = depends_on(fun, margins)
@@ -308,13 +309,13 @@ class SizingProblem:
     @cached_property
     def at_scene(self) -> dict:
         """The NLP (:meth:`nlp`) at the scene's parameters ``p0``, folded into its expressions (a route's sums are
-        numbers; ``p`` is still an input, unused): what IPOPT solves when ``p`` is ``p0``, each evaluation no longer
-        through every segment."""
+        numbers; the NLP's ``p`` is still there, unused): what IPOPT solves when ``p`` is ``p0``, its derivatives no
+        longer carrying every segment's parameters."""
         if not self._nlp_model.is_a("SXFunction"):
             return self.nlp()
-        x, p, c = (ca.SX.sym(k, self._nlp_model.size1_in(k)) for k in ("x", "p", "c"))
-        model = ca.Function("nlp_model_p0", [x, p, c], self._nlp_model.call([x, ca.DM(self.p0), c]),
-                            ["x", "p", "c"], self._nlp_model.name_out())
+        x, c = (ca.SX.sym(k, self._nlp_model.size1_in(k)) for k in ("x", "c"))
+        model = ca.Function("nlp_model_p0", [x, c], self._nlp_model.call([x, ca.DM(self.p0), c]),
+                            ["x", "c"], self._nlp_model.name_out())
         x_si = self.xs * ca.DM(self.x_scale)
         args = {**dict(zip(self.params, self.p0.tolist())), **{k: x_si[i] for i, k in enumerate(VARIABLES)},
                 **{k: 0.0 for k in self.problem.given}}
