@@ -11,16 +11,8 @@ Printed: time (wall, CPU) and memory per command and n, the time relative to the
 the numpy peer.  ``--fast``: n = 10, 30, 100 (what the test runs); full: n = 10, 30, 100, 300, 1000, 3000,
 10 000 (``size`` up to 1000).
 
-Measured in session 6 (2 shared cores under load: CPU seconds are the steadier number; before -> after the
-changes of issue 22.4's second part):
-
-=========  ==========================  ===============================
-command    1000 / 3000 / 10 000 points  before (main e5f4ec2)
-=========  ==========================  ===============================
-run        see studies/README.md         10k: 41 s wall, 547 MB
-trip       see studies/README.md         10k: 255 s wall, 3.47 GB
-size       100 / 300 / 1000 points       300: 296 s wall, 1.13 GB
-=========  ==========================  ===============================
+The numbers measured before and after issue 22.4's second part (1000 to 10 000 points) and what is left are in
+studies/README.md, "Routes at survey scale".
 """
 
 from __future__ import annotations
