@@ -1,4 +1,4 @@
-"""Sizing a model that declares its sizing (:mod:`ropemodel.effects.sizing`): the winch's machinery, generic.
+"""Sizing a model that declares its sizing (:mod:`ropemodel.machines.sizing`): the winch's machinery, generic.
 
 A declaration gives three continuous design variables (the first chosen from a catalogue), an integer it
 enumerates (one continuous NLP per value: IPOPT with exact derivatives, :func:`optimisation.ipopt.solve_continuous`;
@@ -23,7 +23,7 @@ from optimisation.design import Design
 from optimisation.discrete import next_size_up
 from optimisation.infeasibility import diagnose
 from optimisation.ipopt import Solution, solve_continuous
-from ropemodel.effects.sizing import Declaration
+from ropemodel.machines.sizing import Declaration
 from ropemodel.problem import Problem
 from ropemodel.scene import Scene
 
@@ -199,7 +199,7 @@ def static_design(problem: DeclaredProblem, design: Design) -> Design:
 
 
 def held(problem: DeclaredProblem, design: Design) -> dict[str, list[dict]]:
-    """Each transient of the design (:meth:`~ropemodel.effects.sizing.Declaration.transients`) simulated: per
+    """Each transient of the design (:meth:`~ropemodel.machines.sizing.Declaration.transients`) simulated: per
     allowance, what each gave (its words, whether it holds, its summary's numbers)."""
     from ropemodel.dynamics import simulate
 

@@ -3,7 +3,6 @@ sensitivities — or, when no design exists, which checks conflict and by how mu
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Any, cast
 
@@ -13,11 +12,11 @@ import numpy as np
 from optimisation import discrete
 from optimisation.infeasibility import Diagnosis, diagnose
 from optimisation.ipopt import Solution, solve_continuous
-from optimisation.problem import VARIABLES, SizingProblem, load_sizing
+from optimisation.problem import SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
-from ropemodel.effects.winch_checks import margin_names
-from ropemodel.effects.sizing import Declaration, declared
 from ropemodel.errors import InputError
+from ropemodel.machines.base import design_words
+from ropemodel.machines.sizing import Declaration, declared
 from ropemodel.papers import en12385 as ropes
 from ropemodel.rules.apply import with_rule_terms
 from ropemodel.rules.describe import summary as rules_summary
@@ -120,7 +119,7 @@ def at_design(problem: SizingProblem, xs):
     where, and every output's value (worst or the same everywhere)."""
     env = problem.envelope(xs)
     values = env.values()
-    margins = {n: values[n] for n in margin_names(values)}
+    margins = {n: values[n] for n in problem.machine.checks(values)}
     governing = {n: env.worst(n).where(env.params) if n in env.extremes else None for n in margins}
     power = {n: values[n] for n in POWER if n in values}
     drive = {}
@@ -144,29 +143,10 @@ class _Flat:
         return {"segment": None, "x_m": None, "direction": self.name.rsplit("_", 1)[1], "manoeuvre": None}
 
 
-#: steps the recommended F_nwl [N] and stroke [m] are rounded up to, coarsest first
-ROUNDING = ((100.0, 1e-3), (10.0, 1e-4), (1.0, 1e-5))
-
-
 def rounded_up(problem: SizingProblem, xs) -> np.ndarray:
-    """The design rounded up to practical steps (F_nwl to 0.1 kN, then the least stroke at that F_nwl to
-    1 mm; finer steps if needed) so that every check still holds exactly at the rounded, printed values;
-    else the design unrounded.
-
-    Rounding F_nwl up is the safe side of the slip and slack checks; the stroke is the least one for
-    the rounded F_nwl (stroke margin = stroke - dF, eq. 23), rounded up.  A coarser step is refused
-    when it breaks another check (e.g. the rope safety falls as F_nwl rises).
-    """
-    x = np.maximum(np.asarray(xs, dtype=float), 0.0)
-    d, F_nwl, stroke = problem.to_si(x).values()
-    for step_F, step_s in ROUNDING:
-        F = math.ceil(F_nwl / step_F - 1e-9) * step_F
-        margins = problem.margins(np.array([d, F, stroke]) / problem.x_scale)
-        need = stroke - min(v for k, v in margins.items() if k.startswith("stroke_margin"))
-        trial = np.array([d, F, math.ceil(need / step_s - 1e-9) * step_s]) / problem.x_scale
-        if min(problem.margins(trial).values()) >= 0.0:
-            return trial
-    return x
+    """The design rounded up to the practical steps the machine declares, every check still held exactly at
+    the rounded, printed values; else the design unrounded."""
+    return problem.sizing.rounded_up(problem, xs)
 
 
 def solve_best(problem: SizingProblem, p=None, x0=None) -> Solution:
@@ -190,7 +170,7 @@ def _size_declared(scene: Scene, method: str) -> Design:
 
     if method != DEFAULT_DISCRETE:
         raise InputError(f"the {scene.model}'s catalogue size is chosen next size up: --discrete {method} sizes "
-                         f"the winch only")
+                         f"only a machine sized in one NLP ({design_words()})")
     return size_declared(scene, cast(Declaration, declared(scene.model)))
 
 
@@ -256,7 +236,8 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
             design.message = design.diagnosis.text(problem.units)
         return design
     design.continuous = problem.to_si(sol.xs)
-    design.active_continuous = list(sol.active) + [f"{VARIABLES[i]} {side} bound" for i, side in sol.active_bounds]
+    design.active_continuous = list(sol.active) + [f"{problem.variables[i]} {side} bound"
+                                                    for i, side in sol.active_bounds]
     design.margins_continuous = at_design(problem, sol.xs)[0]
     design.lexicographic_ok = sol.lexicographic_ok
     if with_sensitivities:
@@ -283,7 +264,7 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     design.feasible = True
     xs = rounded_up(problem, dsol.xs)
     design.design = problem.to_si(xs)
-    design.active = list(dsol.active) + [f"{VARIABLES[i]} {side} bound" for i, side in dsol.active_bounds
+    design.active = list(dsol.active) + [f"{problem.variables[i]} {side} bound" for i, side in dsol.active_bounds
                                          if i != 0] + ["d (catalogue size)"]
     design.margins, design.governing, design.power, design.drive, values = at_design(problem, xs)
     if problem.least_drum:
@@ -291,6 +272,5 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     design.rope = {k: values[k] for k in ROPE_STIFFNESS if k in values}
     design.message = "design found"
     if sol.lexicographic_ok is False:
-        design.message += ("; warning: the rope mass alone is not optimal at this design (the pretension or "
-                           "stroke weight outweighed it): check the lexicographic order")
+        design.message += problem.sizing.NOT_LEXICOGRAPHIC
     return design

@@ -25,7 +25,7 @@ import casadi as ca
 import numpy as np
 
 from optimisation.ipopt import Solution
-from optimisation.problem import VARIABLES, SizingProblem
+from optimisation.problem import SizingProblem
 
 #: the KKT matrices' Functions of each problem, built once (kept while the problem lives)
 _KKT: weakref.WeakKeyDictionary[SizingProblem, tuple[ca.Function, ca.Function]] = weakref.WeakKeyDictionary()
@@ -82,4 +82,5 @@ def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, di
     dx = -dW * problem.x_scale[:, None]
     if not np.all(np.isfinite(dx)):
         return {}
-    return {name: {v: float(dx[i, j]) for i, v in enumerate(VARIABLES)} for j, name in enumerate(problem.params)}
+    return {name: {v: float(dx[i, j]) for i, v in enumerate(problem.variables)}
+            for j, name in enumerate(problem.params)}

@@ -38,13 +38,12 @@ from tqdm.auto import tqdm
 from optimisation.design import solve_best
 from optimisation.fastmap import ActiveSetMap
 from optimisation.ipopt import solve_continuous
-from optimisation.problem import VARIABLES, SizingProblem
+from optimisation.problem import SizingProblem, declaration
 from ropemodel.errors import InputError
 from ropemodel.sweeps.points import grid, table
 from ropemodel.sweeps.validate import check_ranges, check_rules
-from ropemodel.units import label
+from ropemodel.units import factor, label
 
-DESIGN_UNITS = {"d": "mm", "F_nwl": "kN", "stroke": "mm"}
 #: points per chunk (a table of points is read in chunks; the active-set path keeps its state across them)
 CHUNK = 4096
 METHODS = ("active-set", "ipopt")
@@ -92,7 +91,7 @@ def sizing_points(scene, problem, vary, points):
     if (vary is None) == (points is None):
         raise InputError("give either vary={name: axis} (a grid) or a table of points")
     for k in (vary or {}):
-        if k in VARIABLES:
+        if k in problem.variables:
             raise InputError(f"cannot vary {k}: it is a design variable the sizing chooses")
     pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=scene.built.outputs)
     check_ranges(pts, inputs)
@@ -103,7 +102,7 @@ def sizing_points(scene, problem, vary, points):
 def _ipopt_points(problem, names, chunk, warm, prev, bar):
     """IPOPT at every point of ``chunk`` (warm: from the previous optimum and its multipliers)."""
     n = len(chunk[names[0]])
-    x, feasible = np.full((n, 3), np.nan), np.zeros(n, bool)
+    x, feasible = np.full((n, len(problem.variables)), np.nan), np.zeros(n, bool)
     iterations, seconds = np.zeros(n, int), np.zeros(n)
     for i in range(n):
         p = problem.p_of({k: float(chunk[k][i]) for k in names})
@@ -125,8 +124,8 @@ def sizing_frame(problem, q, chunk, x, feasible, iterations, seconds) -> pd.Data
     cols = {label(k, q[k].display_unit): np.asarray(q[k].to_display(np.asarray(v, dtype=float)), dtype=float)
             for k, v in chunk.items()}
     si = np.where(feasible[:, None], x, np.nan) * problem.x_scale
-    for i, k in enumerate(VARIABLES):
-        cols[label(k, DESIGN_UNITS[k])] = si[:, i] * (1e3 if DESIGN_UNITS[k] == "mm" else 1e-3)
+    for i, (k, unit) in enumerate(_design_units(problem)):
+        cols[label(k, unit)] = si[:, i] * factor(q[k].unit, unit)
     cols.update(feasible=feasible.astype(bool), iterations=iterations.astype(int), seconds=seconds.astype(float))
     return pd.DataFrame(cols)
 
@@ -137,15 +136,22 @@ def sizing_function(scene, warm: bool = True):
     Raises :class:`InputError` if a point has no feasible design (narrow the ranges).
     """
 
+    q = scene.built.quantities
+    units = [(k, u, factor(q[k].unit, u)) for k, u in declaration(scene).UNITS.items()]
+
     def func(columns):
         frame = sizing_sweep(scene, pd.DataFrame(columns), warm=warm, progress=False)
         if not frame["feasible"].all():
             bad = int((~frame["feasible"]).sum())
             raise InputError(f"{bad} sampled point(s) have no feasible design; narrow the ranges")
-        return {"d": frame["d [mm]"].to_numpy() / 1e3, "F_nwl": frame["F_nwl [kN]"].to_numpy() * 1e3,
-                "stroke": frame["stroke [mm]"].to_numpy() / 1e3}
+        return {k: frame[label(k, u)].to_numpy() / f for k, u, f in units}
 
     return func
+
+
+def _design_units(problem) -> list[tuple[str, str]]:
+    """(design variable, the unit a sweep shows it in), in the order of x."""
+    return [(k, problem.sizing.UNITS[k]) for k in problem.variables]
 
 
 def solve_times(frame: pd.DataFrame) -> dict:

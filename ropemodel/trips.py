@@ -24,8 +24,9 @@ time step).  Powers are signed, four-quadrant: > 0 the drive motors, < 0 it brak
   thermal rating: it carries the braking power too);
 * ``W_drum`` = ∫ P_drum dt, the drum's net work (signed): the load's potential energy change plus
   the work of the resistances (the ramps' kinetic energy comes back in the stop);
-* ``stroke_needed`` = the largest tensioner stroke of eq. (19)-(23) over the trip, ramps included
-  (left out when the scene computes no elongation).
+* what the scene's machine adds (its declaration's ``trips``: a winch's ``stroke_needed``, the largest
+  tensioner stroke of eq. (19)-(23) over the trip, ramps included, left out when the scene computes no
+  elongation; :mod:`ropemodel.machines.winch.trips`).
 
 On a piece the forces are constant and u keeps its sign, so P_drum keeps its sign too; where a
 piece's P_drum did cross zero the integration splits it there (η applies on each side), so it stays
@@ -38,32 +39,32 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
-from ropemodel.effects.winch_route import segment_lengths
 from ropemodel.errors import InputError
+from ropemodel.machines import MACHINES
+from ropemodel.machines.base import needing
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
 from ropemodel.scene import Scene, SceneLike, as_scene
 from ropemodel.views.records import TripViews
 
-if TYPE_CHECKING:
-    from ropemodel.effects.winch_braking import Braking
-
 #: samples of the history per phase (the summary does not depend on them)
 SAMPLES = 200
 #: summary keys → unit, in report order (the braking energy is under the scene's ``braking`` key)
 SUMMARY = {"t_trip": "s", "F_C_max": "N", "F_S_min": "N", "P_max": "W", "P_brake_max": "W", "P_rms": "W",
-           "E_trip": "J", "E_regen": "J", "E_dissipated": "J", "W_drum": "J", "stroke_needed": "m"}
+           "E_trip": "J", "E_regen": "J", "E_dissipated": "J", "W_drum": "J",
+           **{k: u for m in MACHINES.values() if m.trips for k, u in m.trips.SUMMARY.items()}}
 
 
 @dataclass(frozen=True)
 class Piece:
     """A stretch of the trip with constant forces: [t0, t1], the load's signed speed u0 → u1 [m/s] (> 0 up
     the slope, toward the drive) at the signed acceleration du_dt [m/s²], the load's position at the
-    middle, the forces and the tensioner stroke (eq. (23)) there."""
+    middle, the forces and the take-up the machine declares there (a winch: the tensioner stroke, eq. (23);
+    NaN where the scene computes none)."""
 
     t0: float
     t1: float
@@ -73,7 +74,7 @@ class Piece:
     x_mid: float
     F_C: float
     F_S: float
-    stroke: float
+    take_up: float
 
     def drum_power(self, t: float) -> float:
         """P_drum [W] at time t in the piece: (F_C − F_S)·u, > 0 motoring, < 0 braking."""
@@ -86,7 +87,7 @@ class Trip(TripViews):
 
     ``phases`` are (t0, t1, v0, a) of the speed profile along the direction of travel; the load starts
     at ``start`` [m] from the drive and moves toward it (``sign`` +1, upward) or away (−1).  ``braking``
-    is the scene's :class:`~ropemodel.effects.winch_braking.Braking` variant (where braking energy goes).
+    is the scene's variant of the ``braking`` effect (where braking energy goes).
     In Jupyter it shows its summary with units; ``to_series()``, ``to_frame()`` (the history) and
     ``plot()`` (the drive's power).
     """
@@ -99,7 +100,7 @@ class Trip(TripViews):
     phases: list[tuple[float, float, float, float]]
     start: float
     sign: float
-    braking: type[Braking]
+    braking: Any                  # the scene's variant (class) of the braking effect
     pieces: list[Piece] = field(default_factory=list)
     summary: dict = field(default_factory=dict)
 
@@ -146,9 +147,7 @@ class Trip(TripViews):
             f"  W drum       {s['W_drum'] / 3.6e6:10.4f} kWh   the drum's net work: the load's potential energy "
             f"change plus friction",
         ]
-        if "stroke_needed" in s:
-            lines.append(f"  stroke needed {s['stroke_needed'] * 1e3:.1f} mm (eq. (23), largest over the trip, "
-                         f"ramps included)")
+        lines += needing("trips", self.scene, "a trip").lines(s)
         return "\n".join(lines)
 
 
@@ -159,8 +158,7 @@ TRIP_EFFECTS = {"dynamics": "trip", "inertia": "rigid", "power": "drive"}
 def prepare(scene: Scene) -> Scene:
     """The scene as a trip needs it (:data:`TRIP_EFFECTS`; a scene that says nothing of them works): read
     again with those effects, every value it was given kept (:meth:`~ropemodel.scene.Scene.with_effects`)."""
-    if scene.model != "winch":
-        raise InputError(f"a trip is for winch scenes; this scene's model is {scene.model!r}")
+    needing("trips", scene, "a trip")
     if all(scene.effects.get(k) == v for k, v in TRIP_EFFECTS.items()):
         return scene
     return scene.with_effects(TRIP_EFFECTS)
@@ -169,7 +167,7 @@ def prepare(scene: Scene) -> Scene:
 def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
     """What a trip of the (prepared) ``scene`` is computed from: the parameters of its forces and stroke in
     both directions, the speed profile and the efficiency; and those it sets itself (name → how)."""
-    forces = [f"{f}_{d}" for f in ("F_C", "F_S", "dF") for d in ("up", "down")]
+    forces = [f"{f}_{d}" for f in needing("trips", scene, "a trip").OUTPUTS for d in ("up", "down")]
     used = scene.built.inputs_of([f for f in forces if f in scene.built.defined_by]) | {"v_pj", "t_ramp", "eta"}
     return used, {"x_m": "the trip moves the load along the whole route",
                   "a_h": "the trip's ramps set the acceleration (v_pj/t_ramp)"}
@@ -228,30 +226,32 @@ def trip(scene: SceneLike, direction: str | None = None) -> Trip:
     if direction not in ("up", "down"):
         raise InputError(f"direction {direction!r}: a trip goes up or down")
     v = scene.parameters
-    problem = Problem(scene)
-    L_u = v["L_u"] if "L_u" in v else sum(segment_lengths(v))
+    problem, machine = Problem(scene), needing("trips", scene, "a trip")
+    L_u = machine.length(v)
     eta = v.get("eta", 1.0)
     if L_u <= 0 or v["v_pj"] <= 0 or v["t_ramp"] <= 0:
         raise InputError("a trip needs a route, a speed and a ramp time > 0")
     phases = rt.trip_phases(L_u, v["v_pj"], v["t_ramp"])
     start, sign = (L_u, 1.0) if direction == "up" else (0.0, -1.0)
     out = Trip(scene, direction, eta, phases, start, sign, _braking(scene))
-    out.pieces = _pieces(problem, out, _cuts(scene, out, L_u))
-    _taut(out, v["F_nwl"])
-    out.summary = summarise(out.pieces, eta, out.braking.energy_key)
+    out.pieces = _pieces(problem, out, _cuts(machine.joints(v), out))
+    _taut(out, machine.remedy(v, min(min(p.F_C, p.F_S) for p in out.pieces)))
+    out.summary = {**summarise(out.pieces, eta, out.braking.energy_key),
+                   **machine.summary([p.take_up for p in out.pieces])}
     return out
 
 
 def _braking(scene):
-    """The scene's ``braking`` variant (a class of :mod:`ropemodel.effects.winch_braking`), from the registry."""
+    """The scene's ``braking`` variant (its class), from the registry."""
     from ropemodel.effects import effects_of
 
     spec = effects_of(scene.model)["braking"]
     return spec.variants[scene.effects.get("braking", spec.default)]
 
 
-def _taut(trip: Trip, F_nwl: float) -> None:
-    """:class:`SolveError` where a rope would have to push somewhere on the trip (it is slack)."""
+def _taut(trip: Trip, remedy: str) -> None:
+    """:class:`SolveError` where a rope would have to push somewhere on the trip (it is slack), saying what
+    keeps it taut (``remedy``: the machine's)."""
     from ropemodel.errors import SolveError
 
     worst = min(trip.pieces, key=lambda p: min(p.F_C, p.F_S))
@@ -261,15 +261,14 @@ def _taut(trip: Trip, F_nwl: float) -> None:
     side = "winding" if worst.F_C <= worst.F_S else "unwinding"
     raise SolveError(f"the {side} rope would have to push ({least / 1e3:.6g} kN) at t = {worst.t0:.6g} s of the "
                      f"{trip.direction}ward trip, the load at x_m = {trip.position(worst.t0):.6g} m: it is slack and "
-                     f"the model no longer holds; every rope stays taut with "
-                     f"F_nwl > {(F_nwl - 2 * least) / 1e3:.6g} kN")
+                     f"the model no longer holds; every rope stays taut with {remedy}")
 
 
-def _cuts(scene, trip: Trip, L_u: float) -> list[float]:
-    """Times of the phase boundaries and of the load crossing a joint of the route, in order."""
+def _cuts(joints, trip: Trip) -> list[float]:
+    """Times of the phase boundaries and of the load crossing a joint of the route (``joints``: their distances
+    from the drive [m]), in order."""
     times = {t for t0, t1, _, _ in trip.phases for t in (t0, t1)}
-    ends = list(np.cumsum(segment_lengths(scene.parameters)))
-    for end in ends[:-1]:
+    for end in joints:
         times.add(rt.time_at_distance(trip.phases, trip.sign * (trip.start - end)))
     return sorted(times)
 
@@ -290,12 +289,12 @@ def _pieces(problem, trip: Trip, cuts) -> list[Piece]:
     wanted = [f"{f}_{direction}" for f in ("F_C", "F_S", "dF") if f"{f}_{direction}" in problem.unknowns]
     out = problem.evaluate(cols, outputs=wanted)
     F_C, F_S = out[f"F_C_{direction}"], out[f"F_S_{direction}"]
-    stroke = out.get(f"dF_{direction}", np.full(len(spans), np.nan))
+    take_up = needing("trips", trip.scene, "a trip").take_up(out, direction, len(spans))
     pieces = []
     for k, ((t0, t1), (p0, _, v_start, a)) in enumerate(zip(spans, phase)):
         v0 = v_start + a * (t0 - p0)
         pieces.append(Piece(t0, t1, s * v0, s * (v0 + a * (t1 - t0)), s * a, float(x[k]), float(F_C[k]),
-                            float(F_S[k]), float(stroke[k])))
+                            float(F_S[k]), float(take_up[k])))
     return pieces
 
 
@@ -330,7 +329,4 @@ def summarise(pieces: list[Piece], eta: float, braking_key: str = "E_regen") -> 
     out = {"t_trip": t_trip, "F_C_max": max(p.F_C for p in pieces), "F_S_min": min(p.F_S for p in pieces),
            "P_max": P_max, "P_brake_max": P_brake_max, "P_rms": math.sqrt(square / t_trip), "E_trip": drawn,
            braking_key: braked, "W_drum": work}
-    stroke = [p.stroke for p in pieces]
-    if all(math.isfinite(x) for x in stroke):   # no elongation effect: no stroke
-        out["stroke_needed"] = max(stroke)
     return {k: float(v) for k, v in out.items()}

@@ -27,7 +27,7 @@ import pandas as pd  # noqa: E402
 from optimisation import discrete  # noqa: E402
 from optimisation.design import size, solve_best  # noqa: E402
 from optimisation.problem import SizingProblem  # noqa: E402
-from optimisation.scenes import random_sizing_scene  # noqa: E402
+from ropemodel.machines.winch.scenes import random_sizing_scene  # noqa: E402
 from ropemodel.papers import en12385 as ropes  # noqa: E402
 from ropemodel.problem import Problem  # noqa: E402
 from ropemodel.scene import from_toml  # noqa: E402

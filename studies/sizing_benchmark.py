@@ -25,7 +25,7 @@ from scipy.optimize import minimize  # noqa: E402
 from optimisation.infeasibility import diagnose  # noqa: E402
 from optimisation.ipopt import solver  # noqa: E402
 from optimisation.problem import SizingProblem  # noqa: E402
-from optimisation.scenes import random_sizing_scene  # noqa: E402
+from ropemodel.machines.winch.scenes import random_sizing_scene  # noqa: E402
 from ropemodel.studykit import cli, output_dir, save_figure  # noqa: E402
 
 NAME = "sizing_benchmark"

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import re
 
-from optimisation.dynamic.manoeuvres import ORDER, WORDS
+from optimisation.dynamic.manoeuvres import WORDS
+from ropemodel.machines.winch.manoeuvres import ORDER
 
 #: every internal name a text output must not show: any ``..._margin...``, an indexed constraint, a peak's key
 #: (F_S_min is also the scene's least tension, a parameter the user writes: the limit of the taut checks)

@@ -13,10 +13,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from optimisation.dynamic.manoeuvres import CHECK, sides
+from optimisation.dynamic.manoeuvres import sides
 from optimisation.dynamic.mesh import P_MAX, P_MIN, richardson, unsafe_part
 from ropemodel.effects.transient.contact import N_SLIP_DYNAMIC
 from ropemodel.effects.transient.rope import MESH_TOL
+from ropemodel.machines.winch import manoeuvres as winch
+from ropemodel.machines.winch.manoeuvres import CHECK
 
 
 @pytest.mark.parametrize("p", [0.6, 1.0, 2.0])
@@ -71,7 +73,7 @@ def test_transient_slip_check_uses_the_dynamic_factor():
         assert np.allclose(CHECK["slip_margin_back"].nlp(o, a), (rho * F_C - n * F_S) / rho, rtol=0, atol=1e-8)
         # the limit the output shows beside the force it judges is n F_C/rho (n F_S/rho), not the bare F_C/rho
         for i in (0, 17, 49):
-            fwd, back = sides("slip_margin_fwd", o, a, i), sides("slip_margin_back", o, a, i)
+            fwd, back = sides(winch, "slip_margin_fwd", o, a, i), sides(winch, "slip_margin_back", o, a, i)
             assert fwd["value"] == pytest.approx(F_S[i]) and fwd["limit"] == pytest.approx(n * F_C[i] / rho[i])
             assert back["value"] == pytest.approx(F_C[i]) and back["limit"] == pytest.approx(n * F_S[i] / rho[i])
 

@@ -16,12 +16,14 @@ from _checks_text import INTERNAL, MANOEUVRES, groups
 from _dynamic_scene import write_scene
 
 from optimisation.dynamic.design import DynamicDesign
-from optimisation.dynamic.manoeuvres import CHECK, CHECKS, sides
+from optimisation.dynamic.manoeuvres import sides
 from optimisation.dynamic.transient import reads, transient_scene
 from optimisation.problem import SizingProblem, load_sizing
 from ropemodel.cli import main
 from ropemodel.cli._size_dynamic import design_text, ramp_text
-from ropemodel.views.checks import MANOEUVRE_WORDS, STATIC_WORDS, factors, manoeuvre_rows, readable
+from ropemodel.machines.winch import manoeuvres as winch
+from ropemodel.machines.winch.manoeuvres import CHECK, CHECKS
+from ropemodel.machines.winch.words import MANOEUVRE_WORDS, STATIC_WORDS, WORDS
 
 KN, MM = 1e3, 1e-3
 
@@ -168,9 +170,9 @@ def test_a_dynamic_slip_factor_shows_when_the_design_carries_it():
              "slip_margin_fwd": "n_slip_dynamic: practice X"}
     scene = SimpleNamespace(parameters={"n_rope": 4.5, "n_slip": 1.25, "n_slip_dynamic": 1.1},
                             check_basis=lambda name: basis.get(name, "-"))
-    assert factors(scene)[-1] == ("n_slip_dynamic = 1.1 (drum grip in the manoeuvres, rho F_S(t) >= n_slip_dynamic "
-                                  "F_C(t) at every instant): practice X")
-    rows = manoeuvre_rows(_manoeuvre("upward start", 1.0), parameters=scene.parameters)
+    assert WORDS.factors(scene)[-1] == ("n_slip_dynamic = 1.1 (drum grip in the manoeuvres, rho F_S(t) >= "
+                                        "n_slip_dynamic F_C(t) at every instant): practice X")
+    rows = WORDS.manoeuvre_rows(_manoeuvre("upward start", 1.0), parameters=scene.parameters)
     assert "drum grip F_S >= n_slip_dynamic F_C/rho" in [r.check for r in rows]
 
 
@@ -208,9 +210,9 @@ def test_no_design_says_its_conflicting_checks_in_words(scene):
 
 
 def test_readable_names():
-    assert readable("route_margin_down @ x_m = 1150 m") == "rope on the route >= F_S_min (steady downward travel, " \
-                                                           "x_m = 1150 m)"
-    assert readable("F_nwl lower bound") == "F_nwl lower bound"
+    assert WORDS.readable("route_margin_down @ x_m = 1150 m") == ("rope on the route >= F_S_min (steady downward "
+                                                                 "travel, x_m = 1150 m)")
+    assert WORDS.readable("F_nwl lower bound") == "F_nwl lower bound"
 
 
 def test_the_shortest_ramp_text_groups_its_checks_too(scene, design, monkeypatch):
@@ -239,7 +241,7 @@ def test_value_and_limit_are_what_the_margin_compares(name):
     a = {"F_min": 1.6e6, "n_rope": 4.5, "n_slip_dynamic": 1.1, "F_S_min": 5e3, "stroke": 3.611}
     margin = np.asarray(CHECK[name].margin(o, a), float)
     i = int(np.argmin(margin))
-    s = sides(name, o, a, i)
+    s = sides(winch, name, o, a, i)
     if name.startswith("safety"):
         assert s["limit"] == pytest.approx(1.6e6 / 4.5, rel=1e-15)
         assert s["limit"] / s["value"] - 1 == pytest.approx(margin[i], rel=1e-12)

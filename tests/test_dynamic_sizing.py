@@ -3,18 +3,22 @@
 from __future__ import annotations
 
 import re
+from types import SimpleNamespace
 
+import numpy as np
 import pytest
 
 import _route3 as route3
 from _dynamic_scene import MANOEUVRES, N_SLIP_DYNAMIC, simulated_failures, write_scene
 
-from optimisation.dynamic.manoeuvres import cases
+from optimisation.dynamic.manoeuvres import cases, manoeuvre_scene
 from optimisation.dynamic.ramp import shortest_ramp
+from optimisation.dynamic.sensitivity import timing_params
 from optimisation.dynamic.transient import reads, transient_scene
 from optimisation.ipopt import solve_continuous
 from optimisation.problem import SizingProblem, load_sizing
 from ropemodel.cli import main
+from ropemodel.dynamics.smooth import smooth_mode
 
 
 @pytest.fixture(scope="module")
@@ -163,3 +167,32 @@ def test_no_catalogue_size_says_the_drum_check_fails_at_the_next_size():
     why_no_size(SimpleNamespace(scene=scene), 0.05296, design)
     assert "the next size up, 54 mm, already fails the static checks" in design.message
     assert "drum_margin" in design.message and f"D >= {ratio * 54:g} mm" in design.message
+
+
+@pytest.mark.parametrize("ramp", ["linear", "scurve"])
+def test_the_ramps_timing_is_read_from_where_its_phases_meet(tmp_path, ramp):
+    """The parameters that get no sensitivity of the dynamic optimum (they move the instant a peak sits at) are
+    those the phases' ends depend on: t_ramp for a linear ramp; for an S-curve also jerk_max and v_pj, through
+    its jerk phases' ends t_ramp s_j and t_ramp (1 - s_j), s_j (1 - s_j) = v_pj/(J t_ramp^2) (written out here:
+    the phase bounds at the scene's numbers are those)."""
+    extra = ("jerk_max",) if ramp == "scurve" else ()
+    path = write_scene(tmp_path, 'jerk_max = "1 m/s^3"' if extra else "")
+    path.write_text(path.read_text().replace('rope_elasticity = "segments"',
+                                             f'ramp = "{ramp}"\nrope_elasticity = "segments"'))
+    sc = transient_scene(load_sizing(path, emit=False))
+    design = {"d": 0.03, "F_nwl": 2e5, "stroke": 3.0}
+    names = ("d", "F_nwl", "stroke", "t_ramp", "v_pj", "G_m", "mu_d", *extra)
+    paths = []
+    for m in cases(sc)[::3][:2]:       # an upward start and an upward stop
+        sm = smooth_mode(manoeuvre_scene(sc, m, design, ("d", "F_nwl", "stroke")), names)
+        paths.append(SimpleNamespace(sm=sm, names=names))
+        t0, t1 = (np.asarray(b, float).ravel() for b in sm.bounds(sm.p0))
+        T = 4.0
+        if ramp == "scurve":
+            sj = (1 - np.sqrt(1 - 4 * 2.5 / (1.0 * T**2))) / 2
+            assert t1[:3] == pytest.approx([T * sj, T * (1 - sj), T], rel=1e-12)
+        else:
+            assert t1[0] == pytest.approx(T, rel=1e-12)
+        assert t1[-1] == pytest.approx(12.0) and t0[0] == 0.0
+    expected = {"t_ramp", "jerk_max", "v_pj"} if ramp == "scurve" else {"t_ramp"}
+    assert timing_params(SimpleNamespace(all_paths=paths)) == expected

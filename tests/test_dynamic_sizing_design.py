@@ -15,7 +15,7 @@ from _dynamic_scene import N_SLIP_DYNAMIC, simulated_failures, write_scene
 from _mesh_checks import failures_with_elements, mesh_record_problems
 
 from optimisation.dynamic import size_dynamic
-from optimisation.dynamic.manoeuvres import CHECK
+from ropemodel.machines.winch.manoeuvres import CHECK
 from optimisation.dynamic.mesh import with_segments
 from optimisation.dynamic.problem import DynamicSizingProblem
 from optimisation.dynamic.refine import solve_refined

@@ -1,13 +1,13 @@
-"""Dynamic sizing: choose d, F_nwl and stroke so that every check holds through the winch's start-up and
-braking in both directions, not only in steady motion.
+"""Dynamic sizing: choose the design so that every check holds through the machine's manoeuvres (a winch: d,
+F_nwl and stroke through its start-up and braking in both directions), not only in steady motion.  The
+manoeuvres and the checks through them, the machine declares (:attr:`ropemodel.machines.Machine.manoeuvres`).
 
 Layout:
 
 * :mod:`.transient` — the transient it sizes through, built from any winch sizing scene (what it cannot
   default asked for, each default stated);
 * :mod:`.positions` — where the load can be when a manoeuvre happens (each segment's ends and middle);
-* :mod:`.manoeuvres` — the four manoeuvres, the cases (a manoeuvre with the load at one place) and the
-  checks through each;
+* :mod:`.manoeuvres` — the cases (a declared manoeuvre with the load at one place), the declaration read;
 * :mod:`.screen` — which cases the NLP integrates (those that govern a check), screened cheaply;
 * :mod:`.shooting` — one manoeuvre's transient inside the NLP (single shooting, cvodes with
   sensitivities; why not collocation: measured in its docstring);

@@ -27,7 +27,7 @@ import numpy as np
 
 from optimisation.design import Design, rounded_up, solve_best
 from optimisation.dynamic.diagnose import diagnose_dynamic
-from optimisation.dynamic.manoeuvres import CHECK
+from optimisation.dynamic.manoeuvres import declared
 from optimisation.dynamic.mesh import converge, segments_of
 from optimisation.dynamic.problem import DynamicSizingProblem
 from optimisation.dynamic.refine import Refinement, solve_refined
@@ -35,7 +35,7 @@ from optimisation.dynamic.start import factored_start, fallback_starts
 from optimisation.dynamic.transient import transient_effects_of
 from optimisation.dynamic.verify import by_manoeuvre, verify
 from optimisation.infeasibility import diagnose
-from optimisation.problem import VARIABLES, SizingProblem, load_sizing
+from optimisation.problem import SizingProblem, load_sizing
 from ropemodel.errors import SolveError
 from ropemodel.numerics.held import held_solver_output
 from ropemodel.papers import en12385 as ropes
@@ -103,7 +103,7 @@ def _margins(problem, xs, manoeuvres) -> dict:
 
 
 def _active(sol, problem, catalogue: bool) -> list[str]:
-    bounds = [f"{VARIABLES[i]} {side} bound" for i, side in sol.active_bounds if not (catalogue and i == 0)]
+    bounds = [f"{problem.variables[i]} {side} bound" for i, side in sol.active_bounds if not (catalogue and i == 0)]
     return list(sol.active) + bounds + (["d (catalogue size)"] if catalogue else [])
 
 
@@ -213,7 +213,7 @@ def _size(scene: Scene, with_sensitivities: bool, say: Callable[[str], None]) ->
         design.message = "no static design exists, so no dynamic one: " + design.diagnosis.text(static.units)
         return design
     design.static = static.to_si(ssol.xs)
-    say("dynamic optimum (the four manoeuvres inside the NLP)")
+    say(f"dynamic optimum ({problem.machine.manoeuvres.TEXT['all']} inside the NLP)")
     t0 = time.perf_counter()
     record = Refinement()
     problem, sol, diagnosis = continuous_optimum(problem, ssol.xs, record, say)
@@ -268,7 +268,8 @@ def _catalogue(problem, sol, design: DynamicDesign, say) -> DynamicDesign:
         design.power = {k: values[k] for k in ("N_p_up", "N_p_down") if k in values}
         if prob.least_drum:
             design.least_drum = values["D"]
-        design.message = "design found; every check holds through the four manoeuvres (verified by simulation)"
+        design.message = (f"design found; every check holds through {prob.machine.manoeuvres.TEXT['all']} "
+                          "(verified by simulation)")
         return design
     design.message = (f"no catalogue diameter from {d_star * 1e3:.4g} mm up keeps every check through the "
                       f"manoeuvres (the largest is {ropes.diameters()[-1] * 1e3:g} mm)")
@@ -298,16 +299,18 @@ def mesh_record(problem, found, n_scene: int, seconds: float) -> dict:
     if found is None:
         return {"segments_scene": None, "segments": None, "note": "the transient's rope has no elements to refine"}
     backed = set(found.errors) | set(problem.backoffs)      # every check the optimum's NLP backs off its own way
+    check = problem.machine.manoeuvres.CHECK
     return {**found.to_dict(), "segments_scene": n_scene, "at": "the continuous optimum", "seconds": seconds,
-            "backoffs": {c: problem.backoff(c) * (problem.F_ref if CHECK[c].unit == "N" else 1.0) for c in backed}}
+            "backoffs": {c: problem.backoff(c) * (problem.F_ref if check[c].unit == "N" else 1.0) for c in backed}}
 
 
 def slip_factors(scene) -> dict:
-    """The static and the dynamic slip factor of ``scene`` (value, and where it comes from) — {} without a
-    drum lining's slip checks."""
+    """The slip factors of ``scene`` (value, the check it applies to and where it comes from), as its machine's
+    manoeuvres declare them (``SLIP_FACTORS``, the static one first) — {} where the scene carries no static one
+    (no lining's slip checks)."""
     out = {}
-    for name, what in (("n_slip", "static: rho F_S >= n_slip F_C in steady motion"),
-                       ("n_slip_dynamic", "dynamic: rho F_S(t) >= n_slip_dynamic F_C(t) through every manoeuvre")):
+    for name, what in declared(scene).SLIP_FACTORS:
         if name in scene.parameters:
             out[name] = {"value": scene.parameters[name], "check": what, "basis": scene.basis(name)}
-    return out if "n_slip" in out else {}
+    first = declared(scene).SLIP_FACTORS[0][0]
+    return out if first in out else {}

@@ -1,39 +1,23 @@
-"""The four manoeuvres of dynamic sizing, where the load is in each, and the checks made through them.
+"""The manoeuvres of dynamic sizing, where the load is in each, and the checks made through them.
 
-A winch starts and stops in both directions: upward start, upward stop, downward start, downward
-stop.  Each manoeuvre is the scene's transient (its ramp, rope model, tensioner, drum friction) with
-``dynamics`` = ``"start"`` or ``"stop"`` and ``travel`` = ``"up"`` or ``"down"``, and it can happen
-with the load anywhere on the route: a *case* (:class:`Manoeuvre`) is one manoeuvre with the load at
-one candidate position (:mod:`.positions`: each segment's ends and middle, or the scene's ``x_m``).
-
-The checks through a manoeuvre (:data:`CHECKS`, each ≥ 0 at every instant; docs/physics.md §2 and §6,
-"Checks through a manoeuvre"):
-
-* rope safety: the rope force at the drum's tangent points against the static check's rope safety,
-  F_min − n_rope·F_C(t) ≥ 0 and the same for F_S(t) (the margin shown as F_min/(n_rope F) − 1);
-* no slip on the drum with the dynamic slip factor n_dyn = ``n_slip_dynamic`` (the static checks use
-  ``n_slip``): ρ F_S(t) ≥ n_dyn F_C(t) and ρ F_C(t) ≥ n_dyn F_S(t), written from the hybrid simulator's
-  switching functions slip_fwd = F_S − F_C/ρ(F_S) and slip_back = F_C − F_S/ρ(F_C) as
-  F_S − n_dyn F_C/ρ = n_dyn slip_fwd − (n_dyn − 1) F_S ≥ 0 and n_dyn slip_back − (n_dyn − 1) F_C ≥ 0 [N]
-  (n_dyn = 1: the switching functions themselves, the onset of slip);
-* unwinding rope taut, F_S(t) − F_S_min ≥ 0, and winding rope taut, F_C(t) − F_S_min ≥ 0 [N], as in
-  static sizing; every element of the rope loop in tension, T_e(t) ≥ 0 [N] (the lumped rope model's
-  validity; the simulator's terminal ``slack`` event);
-* the tensioner within its stroke: stroke − z(t) ≥ 0 and z(t) ≥ 0 [m] (z the take-up, the paper's
-  measure of stroke ΔF, eq. (23)).
+The scene's machine declares its manoeuvres (``Machine.manoeuvres``: a winch's
+:mod:`ropemodel.machines.winch.manoeuvres`): ``ORDER``, the (``dynamics``, ``travel``) of each;
+``CHECKS``, the checks through them (each ≥ 0 at every instant); and ``SIDES``, what each check compares (the
+value and limit the output shows, :func:`sides`).  Each manoeuvre is the scene's transient with
+those two effects set, and it can happen with the load anywhere on the route: a *case* (:class:`Manoeuvre`) is
+one manoeuvre with the load at one candidate position (:mod:`.positions`: each segment's ends and middle, or the
+scene's ``x_m``).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import NamedTuple
-from collections.abc import Callable
 
 import numpy as np
 
 from optimisation.dynamic.positions import Position, candidates
+from ropemodel.machines.base import needing
 
-ORDER = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
 WORDS = {"up": "upward", "down": "downward"}
 
 
@@ -69,94 +53,37 @@ class Manoeuvre:
         return {"dynamics": self.dynamics, "travel": self.travel, "x_m": self.x_m, "where": self.position.text}
 
 
+def declared(scene):
+    """The manoeuvres ``scene``'s machine declares (``ORDER``, ``CHECKS``, ``CHECK``, ``SIDES``, ``EVENTS``,
+    ``values``)."""
+    return needing("manoeuvres", scene, "dynamic sizing")
+
+
 def cases(scene) -> list[Manoeuvre]:
-    """Every case of ``scene``: the four manoeuvres in :data:`ORDER`, each with the load at every candidate
+    """Every case of ``scene``: its machine's manoeuvres in their order, each with the load at every candidate
     position (:func:`~optimisation.dynamic.positions.candidates`)."""
     places = candidates(scene)
-    return [Manoeuvre(dynamics, travel, at) for dynamics, travel in ORDER for at in places]
+    return [Manoeuvre(dynamics, travel, at) for dynamics, travel in declared(scene).ORDER for at in places]
 
 
 def manoeuvre_scene(scene, manoeuvre: Manoeuvre, design: dict, optional=()):
-    """The scene of one case at the SI ``design`` (d, F_nwl, stroke: numbers for the transient's
-    structure and scales; the NLP makes them symbols)."""
+    """The scene of one case at the SI ``design`` (numbers for the transient's structure and scales; the NLP
+    makes them symbols), with what the machine fills in where the scene leaves a dimension out
+    (its manoeuvres' ``completed``)."""
     # t_end: when dynamic sizing chose it, it is an override of the file, set again by with_effects
     sc = scene.with_effects({"dynamics": manoeuvre.dynamics, "travel": manoeuvre.travel},
                             optional=(*optional, "t_end"))
     values = {"x_m": manoeuvre.x_m, **design}
-    if "D" in sc.absent:        # a rigid drum without a diameter: the traction does not depend on it
-        values["D"] = 40.0 * design["d"]
+    values.update(declared(sc).completed(sc, design))
     return sc.with_values(values)
 
 
-class Check(NamedTuple):
-    """A check through a manoeuvre: ``nlp(o, a)`` the constraint (≥ 0, in ``unit`` — N or m — before
-    scaling), ``margin(o, a)`` the margin shown (its own ``shown`` unit); ``o`` the smooth mode's
-    outputs at the samples, ``a`` the design's and scene's values (F_min, n_rope, n_slip_dynamic, F_S_min,
-    stroke)."""
-
-    name: str
-    text: str
-    unit: str
-    shown: str
-    needs: str
-    nlp: Callable
-    margin: Callable
-
-
-def _ratio(force):
-    return lambda o, a: a["F_min"] / (a["n_rope"] * o[force]) - 1
-
-
-def _slip(switch: str, slack: str):
-    """(ρ F_slack − n_dyn F_tight)/ρ [N] from the switching function ``switch`` (F_slack − F_tight/ρ) and the
-    slack side's force ``slack``: F_slack − n_dyn (F_slack − switch) = n_dyn switch − (n_dyn − 1) F_slack."""
-    return lambda o, a: a["n_slip_dynamic"] * o[switch] - (a["n_slip_dynamic"] - 1.0) * o[slack]
-
-
-CHECKS = (
-    Check("safety_margin", "rope safety F_min/F_C(t) >= n_rope", "N", "1", "F_C",
-          lambda o, a: a["F_min"] - a["n_rope"] * o["F_C"], _ratio("F_C")),
-    Check("safety_margin_S", "rope safety F_min/F_S(t) >= n_rope", "N", "1", "F_S",
-          lambda o, a: a["F_min"] - a["n_rope"] * o["F_S"], _ratio("F_S")),
-    Check("slip_margin_fwd", "no slip, drum ahead: rho F_S(t) >= n_slip_dynamic F_C(t)", "N", "N", "slip_fwd",
-          _slip("slip_fwd", "F_S"), _slip("slip_fwd", "F_S")),
-    Check("slip_margin_back", "no slip, rope overruns: rho F_C(t) >= n_slip_dynamic F_S(t)", "N", "N", "slip_back",
-          _slip("slip_back", "F_C"), _slip("slip_back", "F_C")),
-    Check("slack_margin", "unwinding rope taut F_S(t) >= F_S_min", "N", "N", "F_S",
-          lambda o, a: o["F_S"] - a["F_S_min"], lambda o, a: o["F_S"] - a["F_S_min"]),
-    Check("taut_margin", "winding rope taut F_C(t) >= F_S_min", "N", "N", "F_C",
-          lambda o, a: o["F_C"] - a["F_S_min"], lambda o, a: o["F_C"] - a["F_S_min"]),
-    Check("tension_margin", "every rope element in tension T(t) >= 0", "N", "N", "T",
-          lambda o, a: o["T"], lambda o, a: o["T"]),
-    Check("stroke_margin", "take-up within the stroke z(t) <= stroke", "m", "m", "take_up",
-          lambda o, a: a["stroke"] - o["take_up"], lambda o, a: a["stroke"] - o["take_up"]),
-    Check("stroke_start_margin", "carriage off its start stop z(t) >= 0", "m", "m", "take_up",
-          lambda o, a: o["take_up"], lambda o, a: o["take_up"]),
-)
-CHECK = {c.name: c for c in CHECKS}
-
-#: what each check compares at an instant, (the force or take-up judged, its limit) in SI, from the same
-#: series ``o`` and values ``a`` as its margin: the value and limit columns of the output
-#: (:mod:`ropemodel.views.checks`); a slip check's limit is n_slip_dynamic times the switching function's
-#: (n_slip_dynamic F_C/rho, n_slip_dynamic F_S/rho), so that value - limit is the margin :func:`_slip` gives
-SIDES = {
-    "safety_margin": (lambda o, a: o["F_C"], lambda o, a: a["F_min"] / a["n_rope"]),
-    "safety_margin_S": (lambda o, a: o["F_S"], lambda o, a: a["F_min"] / a["n_rope"]),
-    "slip_margin_fwd": (lambda o, a: o["F_S"], lambda o, a: a["n_slip_dynamic"] * (o["F_S"] - o["slip_fwd"])),
-    "slip_margin_back": (lambda o, a: o["F_C"], lambda o, a: a["n_slip_dynamic"] * (o["F_C"] - o["slip_back"])),
-    "slack_margin": (lambda o, a: o["F_S"], lambda o, a: a["F_S_min"]),
-    "taut_margin": (lambda o, a: o["F_C"], lambda o, a: a["F_S_min"]),
-    "tension_margin": (lambda o, a: o["T"], lambda o, a: 0.0),
-    "stroke_margin": (lambda o, a: o["take_up"], lambda o, a: a["stroke"]),
-    "stroke_start_margin": (lambda o, a: o["take_up"], lambda o, a: 0.0),
-}
-
-
-def sides(name: str, o: dict, a: dict, i: int) -> dict:
-    """``{"value", "limit"}`` of check ``name`` at sample ``i`` of the series ``o`` (SI; {} for a check
-    without them)."""
-    if name not in SIDES:
+def sides(declared_manoeuvres, name: str, o: dict, a: dict, i: int) -> dict:
+    """``{"value", "limit"}`` of check ``name`` at sample ``i`` of the series ``o`` (SI), from the ``SIDES`` the
+    machine's manoeuvres declare (what each check compares: the force or take-up judged and its limit, from the
+    same ``o`` and ``a`` as its margin); {} for a check that declares none."""
+    if name not in getattr(declared_manoeuvres, "SIDES", {}):
         return {}
     at = {k: float(np.asarray(v, float).ravel()[i]) for k, v in o.items()}
-    value, limit = SIDES[name]
+    value, limit = declared_manoeuvres.SIDES[name]
     return {"value": float(value(at, a)), "limit": float(limit(at, a))}

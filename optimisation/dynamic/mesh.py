@@ -36,7 +36,6 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 
-from optimisation.dynamic.manoeuvres import CHECK
 from optimisation.dynamic.problem import BACKOFF, DynamicSizingProblem
 from optimisation.dynamic.refine import solve_refined
 from optimisation.dynamic.screen import SCREEN_TOL, all_margins, check_scale
@@ -89,7 +88,7 @@ def margins_at(problem, xs, n: int, p=None) -> dict[int, dict[str, float]]:
     elements per span (the NLP's integrator, no sensitivities)."""
     at = problem if n == segments_of(problem.scene) else \
         DynamicSizingProblem(with_segments(problem.scene, n), selected=problem.selected)
-    scale = {name: check_scale(at, c) for name, c in CHECK.items()}
+    scale = {name: check_scale(at, c) for name, c in problem.machine.manoeuvres.CHECK.items()}
     return {i: {c: v * scale[c] for c, v in m.items()} for i, m in all_margins(at, xs, p).items()}
 
 
@@ -144,7 +143,7 @@ def estimate(g: dict, n: int) -> tuple[dict, dict, dict]:
 
 
 def _scale(check: str, g: dict) -> float:
-    return g["F_ref"] if CHECK[check].unit == "N" else 1.0
+    return g["F_ref"] if g["units"][check] == "N" else 1.0
 
 
 def control(problem, xs, p=None, say=None) -> MeshEstimate | None:
@@ -154,7 +153,8 @@ def control(problem, xs, p=None, say=None) -> MeshEstimate | None:
         return None
     tol = problem.scene.parameters["mesh_tol"]
     n = segments_of(problem.scene)
-    g: dict = {"F_ref": problem.F_ref}
+    units = {c: check.unit for c, check in problem.machine.manoeuvres.CHECK.items()}
+    g: dict = {"F_ref": problem.F_ref, "units": units}
     levels = []
     while True:
         for m in (n, 2 * n, 4 * n):
@@ -163,10 +163,10 @@ def control(problem, xs, p=None, say=None) -> MeshEstimate | None:
                     say(f"mesh: {m} elements per span")
                 g[m] = margins_at(problem, xs, m, p)
         errors, unsafe, orders = estimate(g, n)
-        force = max((e for c, e in errors.items() if CHECK[c].unit == "N"), default=0.0)
+        force = max((e for c, e in errors.items() if units[c] == "N"), default=0.0)
         levels.append({"segments": n, "largest_force_error": force})
         if force <= tol:
-            return MeshEstimate(n, tol, errors, unsafe, orders, {c: CHECK[c].unit for c in errors}, levels)
+            return MeshEstimate(n, tol, errors, unsafe, orders, {c: units[c] for c in errors}, levels)
         if 8 * n > SEGMENTS_MAX:
             raise SolveError(f"the rope's discretisation error is {force:.4g} N at {n} elements per span "
                              f"(Richardson's estimate from {n}, {2 * n} and {4 * n}), above mesh_tol = {tol:.4g} N; "
@@ -177,7 +177,8 @@ def control(problem, xs, p=None, say=None) -> MeshEstimate | None:
 def backoffs(problem, found: MeshEstimate) -> dict[str, float]:
     """Check name → its back-off in the NLP (scaled): :data:`MARGIN` times the unsafe part of its E(n), plus
     :data:`BACKOFF`."""
-    return {c: BACKOFF + MARGIN * e / check_scale(problem, CHECK[c]) for c, e in found.unsafe.items()}
+    check = problem.machine.manoeuvres.CHECK
+    return {c: BACKOFF + MARGIN * e / check_scale(problem, check[c]) for c, e in found.unsafe.items()}
 
 
 def converge(problem, sol, record=None, say=None):

@@ -2,7 +2,7 @@
 
 Same decision variables (d, F_nwl, stroke, scaled as in :class:`optimisation.problem.SizingProblem`),
 same lexicographic objective (least rope mass, then pretension, then stroke), same parameters p and
-every static check; added: the checks of :data:`~optimisation.dynamic.manoeuvres.CHECKS` at every
+every static check; added: the checks of :data:`~ropemodel.machines.winch.manoeuvres.CHECKS` at every
 point of each case's time grid, each case's transient integrated inside the NLP
 (:mod:`optimisation.dynamic.shooting`).  The cases integrated are those that govern a check
 (:mod:`optimisation.dynamic.screen`), out of every manoeuvre with the load at every candidate
@@ -24,7 +24,7 @@ from optimisation.dynamic.manoeuvres import cases, manoeuvre_scene
 from optimisation.dynamic.screen import governing
 from optimisation.dynamic.shooting import Path
 from optimisation.dynamic.transient import transient_scene
-from optimisation.problem import D_OPTIONAL, SIZED, VARIABLES, SizingProblem
+from optimisation.problem import SizingProblem
 from ropemodel.dynamics.assemble import chosen, structural
 
 #: largest step [s] of the first time grid (refinement adds the exact local minima of the checks)
@@ -77,15 +77,15 @@ class DynamicSizingProblem(SizingProblem):
         self._add_paths()
 
     def _path(self, manoeuvre, design, scene=None) -> Path:
-        optional = SIZED + D_OPTIONAL
+        optional = self.variables + self.sizing.D_OPTIONAL
         sc = manoeuvre_scene(scene or self.scene, manoeuvre, design, optional)
         fixed = structural(chosen(sc))
         shared = [k for k in self.params if k in sc.parameters and k not in fixed and k not in FIXED]
-        return Path(manoeuvre, sc, VARIABLES + tuple(shared))
+        return Path(manoeuvre, sc, self.variables + tuple(shared))
 
     def pp_of(self, path, x_si, p):
         """The smooth mode's parameter vector of ``path`` from the design (SI) and the NLP's p."""
-        idx = [self.params.index(k) for k in path.names[len(VARIABLES):]]
+        idx = [self.params.index(k) for k in path.names[len(self.variables):]]
         return ca.vertcat(x_si, *[p[i] for i in idx])
 
     def pp0(self, path, xs=None, p=None) -> np.ndarray:
@@ -98,7 +98,7 @@ class DynamicSizingProblem(SizingProblem):
     def _static_at(self) -> ca.Function:
         x_m = ca.MX.sym("x_m")
         args = {k: self.p[i] for i, k in enumerate(self.params)}
-        args.update({k: self.xs[i] * self.x_scale[i] for i, k in enumerate(VARIABLES)})
+        args.update({k: self.xs[i] * self.x_scale[i] for i, k in enumerate(self.variables)})
         args.update({k: 0.0 for k in self.problem.given})
         out = self.problem.function.call({**args, "x_m": x_m})
         names = [f"{f}_{w}" for f in ("F_C", "F_S") for w in ("up", "down")]
@@ -109,12 +109,8 @@ class DynamicSizingProblem(SizingProblem):
         return {k: float(v) for k, v in self._static_at(x=xs, p=p, x_m=x_m).items()}
 
     def values(self, x_si, p) -> dict:
-        """What the checks read besides the transient: F_min (the catalogue rope's), n_rope, n_slip_dynamic (1
-        without a drum lining: no slip check), F_S_min, stroke."""
-        xs = x_si / ca.DM(self.x_scale)
-        n_dyn = p[self.params.index("n_slip_dynamic")] if "n_slip_dynamic" in self.params else 1.0
-        return {"F_min": self.outputs(x=xs, p=p)["F_min"], "n_rope": p[self.params.index("n_rope")],
-                "n_slip_dynamic": n_dyn, "F_S_min": p[self.params.index("F_S_min")], "stroke": x_si[2]}
+        """What the checks through the manoeuvres read besides the transient (the machine's ``values``)."""
+        return self.machine.manoeuvres.values(self, x_si, p)
 
     def _add_paths(self) -> None:
         x_si = self.xs * ca.DM(self.x_scale)

@@ -3,7 +3,7 @@
 The design (d, F_nwl, stroke: the scene's) is fixed; the drive's ramp time ``t_ramp`` (one value for start
 and stop, the scene's ramp parameter) is the decision variable of an optimal-control problem:
 
-    min t_ramp   s.t.  every check of :data:`~optimisation.dynamic.manoeuvres.CHECKS` ≥ 0 at every instant of
+    min t_ramp   s.t.  every check of :data:`~ropemodel.machines.winch.manoeuvres.CHECKS` ≥ 0 at every instant of
                        the four manoeuvres, t_ramp ≤ t_end,
 
 the same constraints as dynamic sizing (:class:`~optimisation.dynamic.problem.DynamicSizingProblem`: every
@@ -29,7 +29,7 @@ from optimisation.dynamic.problem import BACKOFF, DynamicSizingProblem
 from optimisation.dynamic.refine import add_points, minima
 from optimisation.dynamic.screen import all_margins, uncovered
 from optimisation.dynamic.verify import by_manoeuvre, verify
-from optimisation.problem import VARIABLES, load_sizing
+from optimisation.problem import declaration, load_sizing
 from ropemodel.errors import InputError, SolveError
 from ropemodel.numerics.held import held_solver_output
 from ropemodel.scene import Scene, SceneLike
@@ -63,10 +63,11 @@ class RampAnswer:
 
 
 def _design(scene) -> np.ndarray:
-    missing = [k for k in VARIABLES if k not in scene.parameters or scene.origin.get(k) == "default"]
+    variables = declaration(scene).VARIABLES
+    missing = [k for k in variables if k not in scene.parameters or scene.origin.get(k) == "default"]
     if missing:
         raise InputError(f"--find {RAMP} keeps a given design: the scene must give {', '.join(missing)}")
-    return np.array([scene.parameters[k] for k in VARIABLES], float)
+    return np.array([scene.parameters[k] for k in variables], float)
 
 
 def least_margin(problem, xs, p) -> tuple[float, str]:
@@ -140,7 +141,7 @@ def _shortest(scene: Scene) -> RampAnswer:
         raise SolveError(f"the design is safe down to t_ramp = {scan[0][0]:g} s, the shortest ramp scanned")
     lo, hi = scan[k - 1][0], scan[k][0]
     t, active, problem = _solve(problem, xs, lo, hi)
-    answer = RampAnswer(t, active, scan, design=dict(zip(VARIABLES, map(float, x_si))))
+    answer = RampAnswer(t, active, scan, design=dict(zip(problem.variables, map(float, x_si))))
     answer.verdicts = verify(problem, xs, {RAMP: t})
     bad = [f"{v.manoeuvre}: " + "; ".join(v.failures) for v in answer.verdicts if not v.ok]
     if bad:

@@ -2,17 +2,16 @@
 every check through every case, so that "no design" is not only the local verdict of IPOPT and the
 least-violation problem (:mod:`optimisation.dynamic.diagnose`).
 
-The box and why it is enough, for the design variables the problem declares
-(:data:`optimisation.problem.VARIABLES`, the winch's d, F_nwl, stroke), by their place in x:
+The box is the one the scene's machine declares (its manoeuvres' ``BOX``, a
+:class:`~ropemodel.machines.base.DesignBox`; a winch's: :data:`ropemodel.machines.winch.manoeuvres.BOX`), by the
+names of the design variables:
 
-* the first (d): every catalogue diameter within the sizing bounds (the answer is a catalogue size; the
-  continuous optimum lies between two of them);
-* the second (the pretension F_nwl): :data:`POINTS` values evenly from 0 to a top at which the static checks
-  fail for every catalogue diameter (found by doubling from the thickest rope's F_min / n_rope, and checked
-  there);
-* the third (the stroke): one value, :data:`HELD` (m).  The smooth mode does not depend on the stroke (only the
-  stroke's stops, events that leave it, do) and every check grows with it (the stroke checks are
-  stroke − z ≥ 0, eq. (23)), so a point without a design at this stroke has none at any shorter one.
+* the catalogue variable (the rope diameter): every catalogue diameter within the sizing bounds (the answer is a
+  catalogue size; the continuous optimum lies between two of them);
+* the grid variable (a winch's pretension): :data:`POINTS` values evenly from 0 to a top at which the static checks
+  fail for every catalogue diameter (found by doubling from the declaration's ``top``, and checked there);
+* the held variables (a winch's stroke): one value each, one every check only gains from, so that a point without a
+  design there has none at any smaller value (the declaration says why).
 
 Each point is judged as the NLP judges a design (its scaled margins, before the back-off): the static checks
 (one vectorised call for the whole grid), then, where they hold, each case's checks on the NLP's integrator at
@@ -31,31 +30,29 @@ import numpy as np
 
 from optimisation.dynamic.screen import least_margins
 from optimisation.dynamic.start import DT_DENSE
-from optimisation.problem import VARIABLES
 from ropemodel.papers import en12385 as ropes
 from ropemodel.units import factor
 
-#: values of the second design variable (the pretension) per catalogue diameter
+#: values of the grid variable (a winch's pretension) per catalogue diameter
 POINTS = 64
-#: the third design variable (the stroke, m) at every scan point (see the module: the checks only gain from it)
-HELD = 100.0
 #: doublings of F_top at most
 DOUBLINGS = 12
 
 
 @dataclass
 class Scan:
-    """What a scan of the design box did: its axes (``d`` [m]; ``grid``: the second design variable's values,
-    ``held``: the third's value, both SI), how many points kept the static checks and were integrated
-    (``unintegrable``: where the integrator failed), the designs it found (scaled, lightest first), the cases per
-    point, the time step [s] and the CPU seconds it took; ``quantities``: the design variables' declarations
-    (their units and words)."""
+    """What a scan of the design box did: its axes (``d`` [m], the catalogue variable's; ``grid``: the grid
+    variable's values, ``held``: the held variables' values, both SI), how many points kept the static checks and
+    were integrated (``unintegrable``: where the integrator failed), the designs it found (scaled, lightest first),
+    the cases per point, the time step [s] and the CPU seconds it took; ``names``: the catalogue and the grid
+    variable's names; ``quantities``: the design variables' declarations (their units and words)."""
 
     d: list[float]
     grid: list[float]
-    held: float
+    held: dict
     cases: int
     dt: float
+    names: tuple[str, str] = ("", "")
     quantities: dict = field(default_factory=dict, repr=False)
     static_ok: int = 0
     integrated: int = 0
@@ -71,14 +68,15 @@ class Scan:
         """One sentence: how fine the scan was and what it found (each variable by its name, in its display
         unit)."""
         step = self.grid[1] - self.grid[0] if len(self.grid) > 1 else 0.0
-        name, held = VARIABLES[1], VARIABLES[2]
+        name = self.names[1]
         unit, k = self._display(name)
+        held = ", ".join(f"{h} = {v:g} {self._unit(h)}" for h, v in self.held.items())
         found = (f"{len(self.designs)} keep every check" if self.designs else "none keeps every check through the "
                  "manoeuvres")
         return (f"a scan of the design box backs this: {len(self.d)} catalogue diameters "
                 f"{self.d[0] * 1e3:g}-{self.d[-1] * 1e3:g} mm x {len(self.grid)} values of {name} 0-"
-                f"{self.grid[-1] * k:.4g} {unit} (every {step * k:.4g} {unit}), {held} = {self.held:g} "
-                f"{self._unit(held)} (every check gains from more), {self.cases} cases (each manoeuvre at each place "
+                f"{self.grid[-1] * k:.4g} {unit} (every {step * k:.4g} {unit}), {held} "
+                f"(every check gains from more), {self.cases} cases (each manoeuvre at each place "
                 f"of the load) on a {self.dt:g} s grid: {self.points} points, {self.static_ok} keep the static checks, "
                 f"{found}{self._failed()}")
 
@@ -97,8 +95,9 @@ class Scan:
         return f" ({self.unintegrable} could not be integrated to the NLP's tolerance)" if self.unintegrable else ""
 
     def to_dict(self) -> dict:
-        return {f"{VARIABLES[0]} [m]": self.d, f"{VARIABLES[1]} [{self._unit(VARIABLES[1])}]": self.grid,
-                f"{VARIABLES[2]} [{self._unit(VARIABLES[2])}]": self.held, "points": self.points,
+        catalogue, grid = self.names
+        return {f"{catalogue} [m]": self.d, f"{grid} [{self._unit(grid)}]": self.grid,
+                **{f"{h} [{self._unit(h)}]": v for h, v in self.held.items()}, "points": self.points,
                 "cases": self.cases, "dt [s]": self.dt, "static_ok": self.static_ok, "integrated": self.integrated,
                 "unintegrable": self.unintegrable,
                 "designs_found": len(self.designs), "cpu_seconds": self.seconds}
@@ -111,15 +110,21 @@ def _static_ok(problem, X: np.ndarray, p) -> np.ndarray:
     return np.all(G >= 0.0, axis=0)
 
 
-def _axes(problem, p):
-    """The catalogue diameters in the box and the second design variable's axis, SI (see the module)."""
+def _point(problem, box, catalogue: float, grid: float) -> np.ndarray:
+    """The scaled design with the catalogue and grid variables at these SI values, the held ones at theirs."""
+    at = {**box.held, box.catalogue: catalogue, box.grid: grid}
+    return np.array([at[v] for v in problem.variables]) / problem.x_scale
+
+
+def _axes(problem, box, p):
+    """The catalogue diameters in the box and the grid variable's axis, SI (see the module)."""
     lbx, ubx = problem.bounds()
-    lo, hi = lbx[0] * problem.x_scale[0], ubx[0] * problem.x_scale[0]
+    i = problem.variables.index(box.catalogue)
+    lo, hi = lbx[i] * problem.x_scale[i], ubx[i] * problem.x_scale[i]
     d = [x for x in ropes.diameters() if lo - 1e-12 <= x <= hi + 1e-12]
-    top = problem.evaluate(np.array([d[-1], 0.0, HELD]) / problem.x_scale, p)["F_min"] / \
-        p[problem.params.index("n_rope")]
+    top = box.top(problem, _point(problem, box, d[-1], 0.0), p)
     for _ in range(DOUBLINGS):
-        X = np.array([[x, top, HELD] for x in d]).T / problem.x_scale[:, None]
+        X = np.array([_point(problem, box, x, top) for x in d]).T
         if not _static_ok(problem, X, p).any():
             break
         top *= 2.0
@@ -145,10 +150,12 @@ def scan_box(problem, p=None) -> Scan:
     parameters ``p``: every check at every point (see the module)."""
     t0 = time.process_time()
     p = problem.p0 if p is None else np.asarray(p, float)
-    d, grid = _axes(problem, p)
+    box = problem.machine.manoeuvres.BOX
+    d, grid = _axes(problem, box, p)
     quantities = problem.scene.built.quantities
-    scan = Scan(d, grid, HELD, len(problem.cases), DT_DENSE, {k: quantities[k] for k in VARIABLES if k in quantities})
-    X = np.array([[x, f, HELD] for x in d for f in grid]).T / problem.x_scale[:, None]
+    scan = Scan(d, grid, dict(box.held), len(problem.cases), DT_DENSE, (box.catalogue, box.grid),
+                {k: quantities[k] for k in problem.variables if k in quantities})
+    X = np.array([_point(problem, box, x, f) for x in d for f in grid]).T
     ok = _static_ok(problem, X, p)
     scan.static_ok = int(ok.sum())
     order = list(problem.selected) + [i for i in range(len(problem.cases)) if i not in problem.selected]

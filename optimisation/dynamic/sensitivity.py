@@ -15,13 +15,14 @@ than variables) the KKT system needs the Lagrangian's second derivatives through
 :func:`optimisation.sensitivity.sensitivities` computes it exactly (slower).
 
 Parameters that fix the transient's structure (the route's geometry, where the load is, the
-transient's duration t_end) are not symbols of the transient and get no sensitivity.  Nor do the ramp's
-timing parameters (:data:`RAMP_TIMING`): they move where the ramp's pieces meet, and a peak force sits at
-such a joint (the linear ramp's acceleration steps at its end), where g has a kink in t and the envelope
-argument above fails.  Measured on the tests' scene (4 s linear ramp): ∂F_nwl*/∂t_ramp from the active
-set was −9157 N/s against −8569 N/s from central differences of re-solves (7 %), ∂stroke*/∂t_ramp 0.0648 m/s
-against 0.0747 m/s (15 %); so none is given rather than a wrong one.  A re-solve (``sweep --sizing --dynamic
---vary t_ramp=...``) answers it.
+transient's duration t_end) are not symbols of the transient and get no sensitivity.  Nor do the
+parameters that move where a manoeuvre's phases meet (:func:`timing_params`, read from each smooth mode's
+phase bounds: the ramp's ``t_ramp``, an S-curve's ``jerk_max`` and ``v_pj``, whatever a machine's profile
+makes its phases' ends of): a peak force sits at such a joint (the linear ramp's acceleration steps at its end),
+where g has a kink in t and the envelope argument above fails.  Measured on the tests' scene (4 s linear ramp):
+∂F_nwl*/∂t_ramp from the active set was −9157 N/s against −8569 N/s from central differences of re-solves
+(7 %), ∂stroke*/∂t_ramp 0.0648 m/s against 0.0747 m/s (15 %); so none is given rather than a wrong one.  A
+re-solve (``sweep --sizing --dynamic --vary t_ramp=...``) answers it.
 """
 
 from __future__ import annotations
@@ -30,10 +31,6 @@ import casadi as ca
 import numpy as np
 
 from optimisation.ipopt import Solution
-from optimisation.problem import VARIABLES
-
-#: the ramp's timing: where its pieces meet moves with these (s = t/t_ramp; the S-curve's jerk phases)
-RAMP_TIMING = ("t_ramp", "jerk_max")
 
 
 def symbolic_params(problem) -> list[str]:
@@ -42,14 +39,26 @@ def symbolic_params(problem) -> list[str]:
     return [k for k in problem.params if k in shared]
 
 
+def timing_params(problem) -> set[str]:
+    """The parameters that move where the phases of any manoeuvre meet: those the smooth modes' phase bounds
+    (t0, t1 of each phase, the profile's) depend on."""
+    out: set[str] = set()
+    for path in problem.all_paths:
+        bounds = path.sm.bounds
+        cols = set(bounds.sparsity_jac(0, 0).get_col()) | set(bounds.sparsity_jac(0, 1).get_col())
+        out |= {path.names[i] for i in cols}
+    return out
+
+
 def sensitivities(problem, sol: Solution, p=None) -> dict[str, dict[str, float]]:
-    """∂{d, F_nwl, stroke}*/∂p_j in SI units for every parameter of :func:`symbolic_params` but the ramp's
-    timing (:data:`RAMP_TIMING`)."""
+    """∂x*/∂p_j (x the machine's design variables) in SI units for every parameter of :func:`symbolic_params`
+    but those that move where a manoeuvre's phases meet (:func:`timing_params`)."""
     p = problem.p0 if p is None else np.asarray(p, float)
-    names = [k for k in symbolic_params(problem) if k not in RAMP_TIMING]
+    timing = timing_params(problem)
+    names = [k for k in symbolic_params(problem) if k not in timing]
     idx = [problem.constraints.index(c) for c in sol.active]
     fixed = [i for i, _ in sol.active_bounds]
-    if len(idx) + len(fixed) != len(VARIABLES):
+    if len(idx) + len(fixed) != len(problem.variables):
         from optimisation.sensitivity import sensitivities as kkt
 
         full = kkt(problem, sol, p)      # {} where the optimum is not regular: no number made up
@@ -60,8 +69,8 @@ def sensitivities(problem, sol: Solution, p=None) -> dict[str, dict[str, float]]
     jac = ca.Function("jac_active", [problem.xs, problem.p],
                       [ca.jacobian(active, problem.xs), ca.jacobian(active, problem.p)])
     Jx, Jp = (np.asarray(a) for a in jac(sol.xs, p))
-    E = np.eye(len(VARIABLES))[fixed, :]
+    E = np.eye(len(problem.variables))[fixed, :]
     A = np.vstack([Jx, E]) if fixed else Jx
     rhs = -np.vstack([Jp[:, cols], np.zeros((len(fixed), len(cols)))])
     dx = np.linalg.solve(A, rhs) * problem.x_scale[:, None]
-    return {name: {v: float(dx[i, j]) for i, v in enumerate(VARIABLES)} for j, name in enumerate(names)}
+    return {name: {v: float(dx[i, j]) for i, v in enumerate(problem.variables)} for j, name in enumerate(names)}

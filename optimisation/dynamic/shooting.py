@@ -5,7 +5,7 @@ its ramp) is integrated phase by phase of the drive profile — restarted at eve
 hybrid simulator does, so no step of the drive's acceleration is stepped over — in scaled time
 t = t0 + (t1 − t0)·τ, τ ∈ [0, 1], so that a phase's end may be a decision variable (``t_ramp`` for the
 shortest ramp).  The integrator returns the state on the grid of τ; the checks
-(:data:`~optimisation.dynamic.manoeuvres.CHECKS`) are evaluated there.  Exact derivatives: CasADi
+(:data:`~ropemodel.machines.winch.manoeuvres.CHECKS`) are evaluated there.  Exact derivatives: CasADi
 differentiates through the integrator by forward sensitivities (the Jacobian) and
 forward-over-adjoint ones (the Hessian of the Lagrangian), under cvodes' own error control.
 
@@ -39,7 +39,7 @@ import casadi as ca
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from optimisation.dynamic.manoeuvres import CHECKS, Manoeuvre
+from optimisation.dynamic.manoeuvres import Manoeuvre, declared
 from ropemodel.dynamics import smooth_mode
 
 #: cvodes tolerances of the NLP's integration: relative, and absolute in the states' units (m, m/s, J)
@@ -64,7 +64,8 @@ class Path:
         self.n_elements = self.sm.out.size1_out("T")
         # an inextensible rope has no element and no take-up (its carriage does not move): no tension or take-up
         # check to make through a manoeuvre (the static stroke check, eq. (23), stays)
-        self.checks = [c for c in CHECKS if c.needs in outs and (c.needs not in ("T", "take_up") or self.n_elements)]
+        self.checks = [c for c in declared(scene).CHECKS
+                       if c.needs in outs and (c.needs not in ("T", "take_up") or self.n_elements)]
         self._dae = []
         tau, pp, x = ca.SX.sym("tau"), ca.SX.sym("pp", len(self.names)), ca.SX.sym("x", self.sm.layout.nx)
         ends = ca.SX.sym("ends", 2)

@@ -25,12 +25,13 @@ import dataclasses
 from optimisation.design import solve_best
 from optimisation.dynamic.manoeuvres import Manoeuvre, manoeuvre_scene
 from optimisation.dynamic.positions import candidates
-from optimisation.problem import D_OPTIONAL, SIZED, SizingProblem, rope_problem
+from optimisation.problem import SizingProblem, declaration, rope_problem
 from optimisation.problem import reads as static_reads
 from ropemodel.dynamics.assemble import chosen, transient_parts
 from ropemodel.dynamics.smooth import slowest_period
 from ropemodel.effects.transient.base import transient_effects
 from ropemodel.errors import InputError
+from ropemodel.machines.base import machine_of
 
 #: the effects dynamic sizing sets itself
 EFFECTS = {"dynamics": "start", "travel": "up", "inertia": "none"}
@@ -42,11 +43,31 @@ X_M_NOTE = ("not given: each manoeuvre with the load at every candidate position
             "segment), the worst of them governs")
 
 
+def _design(scene) -> tuple[str, ...]:
+    """The design variables of ``scene``'s machine (its sizing's: a sizing scene may leave them out)."""
+    return tuple(declaration(scene).VARIABLES)
+
+
+def _sized(scene) -> tuple[str, ...]:
+    """What a sizing scene of ``scene``'s machine may leave out: its design and the dimensions its sizing
+    frees."""
+    return _design(scene) + tuple(declaration(scene).D_OPTIONAL)
+
+
+def _optional(scene) -> tuple[str, ...]:
+    """What the transient scene may leave out: :func:`_sized`'s and ``t_end`` (dynamic sizing sets it)."""
+    return _sized(scene) + ("t_end",)
+
+
 def missing(scene) -> list[str]:
     """What the transient dynamic sizing builds on ``scene`` needs and the scene does not give, one line each
-    (e.g. ``t_ramp``), to be named together with the scene's other problems."""
+    (e.g. ``t_ramp``), to be named together with the scene's other problems (none for a machine that is not
+    sized: the scene's other problems say so)."""
+    machine = machine_of(scene)
+    if machine is None or machine.sizing is None:
+        return []
     try:
-        scene.with_effects(EFFECTS, optional=SIZED + D_OPTIONAL + ("t_end",))
+        scene.with_effects(EFFECTS, optional=_optional(scene))
     except InputError as e:
         return [f"dynamic sizing: {p}" for p in e.problems]
     return []
@@ -62,9 +83,9 @@ def transient_scene(scene):
     problems += missing(scene)
     if problems:
         raise InputError(problems=problems) from None
-    sc = scene.with_effects(EFFECTS, optional=SIZED + D_OPTIONAL + ("t_end",))
+    sc = scene.with_effects(EFFECTS, optional=_optional(scene))
     read = reads(sc)[0] | {"x_m"}      # a default nothing reads is no default used (an inextensible rope's damping)
-    defaults = {k: why for k, why in sc.defaults.items() if k not in SIZED and k in read}
+    defaults = {k: why for k, why in sc.defaults.items() if k not in _design(scene) and k in read}
     if "x_m" in defaults:
         defaults["x_m"] = X_M_NOTE
     if "t_end" in sc.parameters:
@@ -86,7 +107,7 @@ def transient_scene(scene):
 def _made(scene) -> bool:
     """Whether ``scene`` is already in the form :func:`transient_scene` returns."""
     return (all(scene.effects.get(k) == v for k, v in EFFECTS.items()) and "t_end" in scene.parameters
-            and not set(scene.defaults) & set(SIZED) and scene.defaults.get("x_m", X_M_NOTE) == X_M_NOTE)
+            and not set(scene.defaults) & set(_design(scene)) and scene.defaults.get("x_m", X_M_NOTE) == X_M_NOTE)
 
 
 def transient_effects_of(scene) -> dict:
@@ -129,5 +150,5 @@ def horizon(scene) -> float | None:
     design = static.to_si(sol.xs if sol.feasible else static.x0())
     periods = [period for at in candidates(scene)
                for period in [slowest_period(manoeuvre_scene(scene, Manoeuvre("stop", "up", at), design,
-                                                              SIZED + D_OPTIONAL))] if period is not None]
+                                                              _sized(scene)))] if period is not None]
     return max(periods) if periods else None

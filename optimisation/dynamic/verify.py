@@ -17,18 +17,14 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass, field
 
-import casadi as ca
 import numpy as np
 
-from optimisation.dynamic.manoeuvres import CHECK, manoeuvre_scene, sides
-from optimisation.problem import D_OPTIONAL, SIZED
+from optimisation.dynamic.manoeuvres import declared, manoeuvre_scene, sides
+from optimisation.problem import declaration
 from ropemodel.dynamics import simulate
-from ropemodel.effects.transient.contact import traction_of
 
 SIM_RTOL = 1e-10
 SIM_DT = 1e-3
-#: events that leave the smooth mode
-EVENTS = ("slip_fwd", "slip_back", "stroke_end", "stroke_start", "slack", "torque_limit")
 
 
 @dataclass
@@ -37,8 +33,8 @@ class Verdict:
     ``where`` (readable), whether the NLP integrated it (``in_nlp``); ``ok``; ``failures`` (readable); ``least``
     check → (least margin in the check's own unit, time [s]), ``sides`` check → the value and limit it compares
     there (SI) and ``scaled`` check → its least margin in the NLP's form and scale (comparable between checks);
-    ``peaks`` (SI): F_C_max, F_S_min, take_up_max, dynamic_factor,
-    t_F_C_max."""
+    ``peaks`` (SI): what the machine's manoeuvres record of a simulation (``peaks(sim)``; a winch's F_C_max,
+    F_S_min, take_up_max, dynamic_factor, t_F_C_max)."""
 
     manoeuvre: str
     x_m: float
@@ -50,6 +46,8 @@ class Verdict:
     scaled: dict = field(default_factory=dict)
     peaks: dict = field(default_factory=dict)
     sides: dict = field(default_factory=dict)
+    #: peak → ``max`` or ``min``, which of two values is the worse (the machine's ``PEAKS``)
+    worst: dict = field(default_factory=dict, repr=False)
 
     def to_dict(self) -> dict:
         return {"manoeuvre": self.manoeuvre, "x_m": self.x_m, "where": self.where, "in_nlp": self.in_nlp,
@@ -61,7 +59,8 @@ class Verdict:
 
 def simulation_scene(scene, manoeuvre, design: dict, values: dict | None = None):
     """The scene of one manoeuvre at ``design`` (SI), with the simulator at :data:`SIM_RTOL`, :data:`SIM_DT`."""
-    sc = manoeuvre_scene(scene, manoeuvre, design, SIZED + D_OPTIONAL)
+    sizing = declaration(scene)
+    sc = manoeuvre_scene(scene, manoeuvre, design, tuple(sizing.VARIABLES) + tuple(sizing.D_OPTIONAL))
     if values:
         sc = sc.with_values(values)
     return dataclasses.replace(sc, numerics={**sc.numerics, "sim_rtol": SIM_RTOL, "sim_dt": SIM_DT})
@@ -70,7 +69,7 @@ def simulation_scene(scene, manoeuvre, design: dict, values: dict | None = None)
 def verify(problem, xs, values: dict | None = None) -> list[Verdict]:
     """Simulate every case of ``problem`` (each manoeuvre, the load at each candidate position) at scaled
     design ``xs`` (``values``: SI parameters that replace the scene's) and judge every check
-    (:data:`~optimisation.dynamic.manoeuvres.CHECKS`)."""
+    (:data:`~ropemodel.machines.winch.manoeuvres.CHECKS`)."""
     design = problem.to_si(xs)
     p = problem.p_of(values or {})
     a = {k: float(v) for k, v in problem.values(np.asarray(xs, float) * problem.x_scale, p).items()}
@@ -79,52 +78,32 @@ def verify(problem, xs, values: dict | None = None) -> list[Verdict]:
 
 
 def verdict(sim, manoeuvre, a: dict, F_ref: float, in_nlp: bool = True) -> Verdict:
-    """The checks of one simulated case (``a``: F_min, n_rope, F_S_min, stroke; ``F_ref`` [N]: the NLP's
-    scale of a force)."""
+    """The checks of one simulated case (``a``: the values the checks read, the machine's ``values``; ``F_ref``
+    [N]: the NLP's scale of a force), on the series the machine's manoeuvres take from the simulation
+    (``series(sim)``)."""
     h = sim.history
     out = Verdict(manoeuvre.label, manoeuvre.x_m, manoeuvre.where, in_nlp, True)
+    machine = declared(sim.scene)
     for ev in sim.events:
-        if ev.name in EVENTS:
+        if ev.name in machine.EVENTS:     # an event that leaves the smooth mode
             out.failures.append(f"{ev.name} at t = {ev.t:.4f} s")
     smooth = sim.system.smooth_mode()
     for part in sim.system.parts:
         if part.column and (h[part.column] != smooth[part.effect]).any():
             out.failures.append(f"{part.column} leaves the {smooth[part.effect]} mode")
     t = h["t [s]"].to_numpy()
-    o = _series(sim)
-    for c in (c for c in CHECK.values() if c.needs in o):
+    o = machine.series(sim)
+    for c in (c for c in machine.CHECKS if c.needs in o):
         name, series = c.name, np.asarray(c.margin(o, a), float).ravel()
         i = int(np.argmin(series))
         out.least[name] = (float(series[i]), float(t[i]))
-        out.sides[name] = sides(name, o, a, i)
+        out.sides[name] = sides(machine, name, o, a, i)
         out.scaled[name] = float(np.min(np.asarray(c.nlp(o, a), float))) / (F_ref if c.unit == "N" else 1.0)
         if series[i] < 0:
             out.failures.append(f"{name} {series[i]:.6g} at t = {t[i]:.4f} s")
-    s = sim.summary
-    out.peaks = {"F_C_max": s["F_C_max"], "F_S_min": s["F_S_min"], "take_up_max": float(h["take_up [m]"].max()),
-                 "dynamic_factor": s["dynamic_factor"], "t_F_C_max": float(t[int(np.argmax(h["F_C [N]"]))])}
+    out.peaks, out.worst = machine.peaks(sim), dict(machine.PEAKS)
     out.ok = not out.failures
     return out
-
-
-def _series(sim) -> dict:
-    """What the checks read, over the history (SI)."""
-    h = sim.history
-    o = {"F_C": h["F_C [N]"].to_numpy(), "F_S": h["F_S [N]"].to_numpy()}
-    if not sim.setup.chain.rigid:      # an inextensible rope: no element, no take-up (as the NLP's checks)
-        o.update({"take_up": h["take_up [m]"].to_numpy(), "T": h["T_min [N]"].to_numpy()})
-    ratio = traction_of(sim.setup)
-    if ratio is not None:
-        v = h["v_drum [m/s]"].to_numpy()
-        o["slip_fwd"] = o["F_S"] - o["F_C"] / _rho(ratio, o["F_S"], v)
-        o["slip_back"] = o["F_C"] - o["F_S"] / _rho(ratio, o["F_C"], v)
-    return o
-
-
-def _rho(ratio, force, speed) -> np.ndarray:
-    """The lining's traction ratio at each sample (floats; a CasADi expression evaluated point by point)."""
-    values = [ratio(float(f), float(v)) for f, v in zip(force, speed)]
-    return np.array([float(ca.evalf(x)) if isinstance(x, (ca.SX, ca.MX)) else float(x) for x in values])
 
 
 def all_ok(verdicts) -> bool:
@@ -134,9 +113,9 @@ def all_ok(verdicts) -> bool:
 def by_manoeuvre(verdicts) -> list[dict]:
     """Each manoeuvre over every place of the load: ``ok``, where it is governed (``x_m`` [m], ``where``: the
     place of the least scaled margin of any check), each check's least margin with its instant and place and
-    the value and limit it compares there (``least_margins``), the worst peaks (F_C_max, take_up_max and
-    dynamic_factor the largest, F_S_min the least, each with its ``x_m``), the ``failures`` (with their place)
-    and every case (``positions``)."""
+    the value and limit it compares there (``least_margins``), the worst peaks (each of the machine's ``PEAKS``
+    the largest or the least, with its ``x_m``), the ``failures`` (with their place) and every case
+    (``positions``)."""
     out = []
     for label in dict.fromkeys(v.manoeuvre for v in verdicts):
         mine = [v for v in verdicts if v.manoeuvre == label]
@@ -147,7 +126,7 @@ def by_manoeuvre(verdicts) -> list[dict]:
             least[name] = {"margin": v.least[name][0], "t": v.least[name][1], "x_m": v.x_m, "where": v.where,
                            **v.sides.get(name, {})}
         peaks = {}
-        for key, pick in (("F_C_max", max), ("F_S_min", min), ("take_up_max", max), ("dynamic_factor", max)):
+        for key, pick in mine[0].worst.items():
             v = pick(mine, key=lambda v: v.peaks[key])
             peaks[key], peaks[f"x_m_{key}"] = v.peaks[key], v.x_m
         out.append({"manoeuvre": label, "ok": all(v.ok for v in mine), "x_m": worst.x_m, "where": worst.where,

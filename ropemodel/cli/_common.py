@@ -147,20 +147,22 @@ def sizing_scene_from_args(args, dynamic: bool | None = False, declared_ok: bool
     no starting design needed (d, F_nwl, stroke, and D on a rigid drum), design checks on; its warnings on
     stderr.  ``dynamic``: sized through its transients, with the transient dynamic sizing builds (None: when
     ``--dynamic`` is given or the scene says ``[numerics] sizing = "dynamic"``, as ``size`` decides).
-    ``declared_ok``: a model that declares its sizing (not the winch) is accepted (``size``); else refused."""
+    ``declared_ok``: a machine whose sizing is a :class:`~ropemodel.machines.sizing.Declaration` (an integer
+    enumerated, one NLP each) is accepted (``size``); else refused."""
     from optimisation.problem import D_OPTIONAL, SIZED, prepare, reads
-    from ropemodel.effects.sizing import declared
+    from ropemodel.machines import machine_of
+    from ropemodel.machines.sizing import declared
 
     given = scene_from_args(args, optional=SIZED + D_OPTIONAL, announce=False)
     if dynamic is None:
         dynamic = bool(getattr(args, "dynamic", False)) or given.numerics.get("sizing") == "dynamic"
-    if not declared_ok and declared(given.model) is not None:
-        raise InputError(f"--sizing sizes a winch at every point; a {given.model} is sized by `ropemodel size` (its "
-                         f"sizing at many points is not built yet)")
-    if dynamic and declared(given.model) is not None:
-        raise InputError(f"--dynamic sizes a winch through its start-ups and stops; a {given.model} scene with a "
-                         f"braking transient (dynamics = \"braking\", e.g. koepe_braking) is sized through it by "
-                         f"`ropemodel size` without --dynamic")
+    if not declared_ok and declared(given) is not None:
+        raise InputError(f"--sizing sizes at every point a machine sized in one NLP; a {given.model} is sized by "
+                         f"`ropemodel size` (its sizing at many points is not built yet)")
+    if dynamic and declared(given) is not None and getattr(machine_of(given), "manoeuvres", None) is None:
+        raise InputError(f"--dynamic sizes a machine through the manoeuvres it declares, and a {given.model} declares "
+                         f"none; `ropemodel size` without --dynamic sizes it through the transients its sizing "
+                         f"simulates (a scene with dynamics = \"braking\")")
     try:
         scene = prepare(given)
     except InputError as exc:             # a dynamic sizing names what its transient lacks in the same error

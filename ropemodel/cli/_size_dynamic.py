@@ -12,7 +12,7 @@ import json
 import textwrap
 
 from ropemodel.progress import status
-from ropemodel.views.checks import check_groups, factors, in_words, manoeuvre_rows, mesh_text, readable
+from ropemodel.machines.base import declared_machine
 
 #: what ``--find`` can ask for with ``--dynamic``
 FINDS = ("t_ramp",)
@@ -25,19 +25,19 @@ def _row(name, values, q) -> str:
     return f"{name:<12}{cells}  {q[name].display_unit}"
 
 
-def _header(m: dict) -> str:
-    """A manoeuvre's title line: its worst peaks over every place of the load."""
-    pk = m["peaks"]
-    return (f"{m['manoeuvre']}: peak F_C {pk['F_C_max'] * 1e-3:.4g} kN (dynamic factor {pk['dynamic_factor']:.3g}), "
-            f"least F_S {pk['F_S_min'] * 1e-3:.4g} kN, largest take-up {pk['take_up_max'] * 1e3:.4g} mm"
-            + ("" if m.get("ok", True) else "  FAILS"))
+def _header(m: dict, peak_text) -> str:
+    """A manoeuvre's title line: its worst peaks over every place of the load (``peak_text``: the machine's
+    manoeuvres' words for them)."""
+    return f"{m['manoeuvre']}: {peak_text(m['peaks'])}" + ("" if m.get("ok", True) else "  FAILS")
 
 
-def checks_lines(groups, manoeuvres, places: int) -> list[str]:
-    """The checks table (:func:`ropemodel.views.checks.check_groups`): a title line per manoeuvre (its peaks)
-    and steady travel, one row per check in words with value, limit, margin, instant and the load's place."""
+def checks_lines(groups, manoeuvres, places: int, scene) -> list[str]:
+    """The checks table (:meth:`ropemodel.views.checks.Vocabulary.check_groups`): a title line per manoeuvre
+    (its peaks) and steady travel, one row per check in words with value, limit, margin, instant and the load's
+    place."""
     width = max((len(r.check) for _, rows in groups for r in rows), default=0) + 2
-    titles = {m["manoeuvre"]: _header(m) for m in manoeuvres}
+    peak_text = declared_machine(scene).manoeuvres.peak_text
+    titles = {m["manoeuvre"]: _header(m, peak_text) for m in manoeuvres}
     lines = ["", f"checks, each at its least over the load's {places} place{'s' if places != 1 else ''} and "
                  "every instant of the manoeuvre",
              f"  {'check':<{width}}{'value':>11}{'limit':>12}{'margin':>14}{'at t':>10}  load at"]
@@ -48,12 +48,18 @@ def checks_lines(groups, manoeuvres, places: int) -> list[str]:
     return lines
 
 
-def _active_lines(active, parameters) -> list[str]:
-    return ["", "what fixes the design (active):"] + [f"  {readable(a, parameters)}" for a in active]
+def _words(scene):
+    """The checks of ``scene``'s machine in words (its declaration's ``words``)."""
+    return declared_machine(scene).words
+
+
+def _active_lines(active, scene) -> list[str]:
+    return ["", "what fixes the design (active):"] + [f"  {_words(scene).readable(a, scene.parameters)}"
+                                                      for a in active]
 
 
 def _factor_lines(scene) -> list[str]:
-    return [""] + [ln for i, x in enumerate(factors(scene))
+    return [""] + [ln for i, x in enumerate(_words(scene).factors(scene))
                    for ln in textwrap.wrap(x, WIDTH, initial_indent="factors: " if i == 0 else " " * 9,
                                            subsequent_indent=" " * 11)]
 
@@ -63,7 +69,8 @@ def _transient_lines(design) -> list[str]:
     if design.transient.get("rope_elasticity", ("",))[0] == "segments":
         effects += f" with {design.mesh.get('segments') or design.scene.numerics['segments']} elements per span"
     lines = ["", *textwrap.wrap(f"transient: {effects}", WIDTH, subsequent_indent="  ")]
-    lines += textwrap.wrap(mesh_text(design.mesh, design.scene.parameters), WIDTH, subsequent_indent="  ")
+    lines += textwrap.wrap(_words(design.scene).mesh_text(design.mesh, design.scene.parameters), WIDTH,
+                           subsequent_indent="  ")
     if design.defaults:
         lines += ["", "defaults used"] + [ln for k, why in design.defaults.items()
                                           for ln in textwrap.wrap(f"{k}: {why}", WIDTH, initial_indent="  ",
@@ -76,19 +83,21 @@ def design_text(design) -> str:
     checks table grouped by manoeuvre in words and units (internal names only in ``--json``), the factors and
     their rules, the transient and the defaults it took."""
     q = design.scene.built.quantities
-    lines = [f"{design.scene.name}: dynamic sizing (start and stop in both directions, verified by simulation)"]
+    kinds = declared_machine(design.scene).manoeuvres.TEXT["kinds"]
+    lines = [f"{design.scene.name}: dynamic sizing ({kinds}, verified by simulation)"]
     if design.continuous:
         lines += ["", f"{'':<12}{'catalogue':>14}{'continuous':>14}{'static':>14}"]
-        for k in ("d", "F_nwl", "stroke"):
+        for k in declared_machine(design.scene).sizing.VARIABLES:
             lines.append(_row(k, [design.design[k] if design.design else None, design.continuous[k],
                                   (design.static or {}).get(k)], q))
     if design.feasible:
         places = len(design.manoeuvres[0]["positions"]) if design.manoeuvres else 0
-        lines += _active_lines(design.active, design.scene.parameters)
-        lines += checks_lines(check_groups(design), design.manoeuvres, places)
+        lines += _active_lines(design.active, design.scene)
+        lines += checks_lines(_words(design.scene).check_groups(design), design.manoeuvres, places,
+                              design.scene)
         lines += _factor_lines(design.scene)
     lines += _transient_lines(design)
-    lines += ["", in_words(design.message, design.scene.parameters)]
+    lines += ["", _words(design.scene).in_words(design.message, design.scene.parameters)]
     return "\n".join(lines)
 
 
@@ -97,18 +106,20 @@ def ramp_text(scene, answer) -> str:
 
     manoeuvres = by_manoeuvre(answer.verdicts)
     places = len(manoeuvres[0]["positions"]) if manoeuvres else 0
-    fails = "; ".join(readable(a, scene.parameters) for a in answer.active) or "a check"
+    words = _words(scene)
+    fails = "; ".join(words.readable(a, scene.parameters) for a in answer.active) or "a check"
     lines = [f"{scene.name}: the shortest start and stop ramp that keeps the design safe",
              "design: " + ", ".join(f"{k} = {scene.built.quantities[k].to_display(v):.6g} "
                                     f"{scene.built.quantities[k].display_unit}" for k, v in answer.design.items()),
              "", f"t_ramp = {answer.t_ramp:.6g} s  (verified by simulation: it holds; a shorter ramp fails {fails})"]
-    groups = [(m["manoeuvre"], manoeuvre_rows(m, parameters=scene.parameters)) for m in manoeuvres]
-    return "\n".join(lines + checks_lines(groups, manoeuvres, places) + _factor_lines(scene))
+    groups = [(m["manoeuvre"], words.manoeuvre_rows(m, parameters=scene.parameters)) for m in manoeuvres]
+    return "\n".join(lines + checks_lines(groups, manoeuvres, places, scene) + _factor_lines(scene))
 
 
 def main(scene, args, to_json) -> int:
     """Run ``size --dynamic`` on the prepared ``scene``; ``to_json`` turns a dict into JSON-safe numbers."""
     from optimisation.dynamic import size_dynamic
+    from optimisation.dynamic.manoeuvres import declared
     from optimisation.dynamic.ramp import shortest_ramp
     from ropemodel.errors import InputError
 
@@ -123,7 +134,7 @@ def main(scene, args, to_json) -> int:
         print(json.dumps(to_json(answer.to_dict()), indent=2, allow_nan=False) if args.json
               else ramp_text(scene, answer))
         return 0
-    with status(f"dynamic sizing {scene.name}: rope, pretension and stroke through four manoeuvres") as line:
+    with status(f"dynamic sizing {scene.name}: {declared(scene).OBJECTIVE}") as line:
         design = size_dynamic(scene, with_sensitivities=True,
                               progress=lambda step: line.update(f"dynamic sizing {scene.name}: {step}"))
     print(json.dumps(to_json(design.to_dict()), indent=2, allow_nan=False) if args.json else design_text(design))

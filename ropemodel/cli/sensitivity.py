@@ -35,7 +35,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--seed", type=int, default=None, help="seed of the Sobol sequence scrambling, 0 to 2**32 - 1")
     add_at_argument(parser)
     parser.add_argument("--sizing", action="store_true",
-                        help="Sobol indices of the sizing optimum (d, F_nwl, stroke) instead of the outputs")
+                        help="Sobol indices of the sizing optimum (the design the scene's machine declares) instead "
+                             "of the outputs")
 
 
 def _num(v):
@@ -58,7 +59,9 @@ def main(args) -> int:
             raise InputError("--parameters chooses the inputs of elasticities; with --sobol the inputs are the "
                              "--sobol ranges: leave --parameters out")
         if args.sizing and outputs:
-            raise InputError("--sizing analyses d, F_nwl and stroke; it takes no --outputs")
+            from ropemodel.machines.base import design_words
+
+            raise InputError(f"--sizing analyses the design ({design_words()}); it takes no --outputs")
         args.samples = 1024 if args.samples is None else args.samples
         args.seed = 0 if args.seed is None else args.seed
         check_samples(args.samples, len(ranges))

@@ -6,9 +6,9 @@ from ropemodel.cli._common import add_scene_arguments, scene_from_args
 from ropemodel.errors import InputError
 
 NAME = "simulate"
-HELP = ("simulate the start-up or braking of a winch scene, or a whole trip (dynamics = \"start\", \"stop\" "
-        "or \"trip\"); the braking or start of a Koepe hoist with elastic ropes (dynamics = \"braking\" or "
-        "\"start\")")
+HELP = ("simulate the transient the scene's dynamics effect chooses: a start-up (dynamics = \"start\"), a stop or "
+        "a braking (\"stop\", \"braking\"; with elastic ropes where the scene's machine has them) or a whole trip "
+        "(\"trip\"), as the scene's machine offers them")
 
 
 def add_arguments(parser) -> None:

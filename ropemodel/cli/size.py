@@ -19,8 +19,8 @@ from ropemodel.errors import InputError
 from ropemodel.progress import status
 
 NAME = "size"
-HELP = ("size the machine: a winch's least rope d, then pretension F_nwl, then stroke; a Koepe's head ropes "
-        "(number, catalogue diameter), tail ropes and wheel of least suspended rope mass; every check met")
+HELP = ("size the scene's machine: the lightest rope, then the rest of the design its machine declares, every check "
+        "met")
 
 
 def add_arguments(parser) -> None:
@@ -47,12 +47,13 @@ def _num(v):
 def _rope_lines(design, q) -> list[str]:
     """The rope's EA and q_lw at the design and the elongation method the stroke comes from."""
     from ropemodel.effects import REGISTRY
+    from ropemodel.machines.base import declared_machine
 
     lines = [f"{k:<12}{q[k].to_display(v):>14.6g}  {q[k].display_unit}" for k, v in design.rope.items()]
     variant = design.scene.effects.get("elongation")
     if variant:
         spec = REGISTRY[design.scene.built.name]["elongation"].variants[variant]
-        lines.append(f"stroke from elongation = \"{variant}\": {spec.description}")
+        lines.append(f"{declared_machine(design.scene).sizing.ELONGATION} = \"{variant}\": {spec.description}")
     return lines
 
 
@@ -78,7 +79,7 @@ def _text(design) -> str:
     if design.continuous:
         lines.append("")
         lines.append(f"{'':<12}{'catalogue':>14}{'continuous':>14}")
-        for k in design.continuous:     # the design variables (the winch's d, F_nwl, stroke; a Koepe's n_head, ...)
+        for k in design.continuous:     # the design variables
             cat = f"{q[k].to_display(design.design[k]):>14.6g}" if design.design else f"{'-':>14}"
             lines.append(f"{k:<12}{cat}{q[k].to_display(design.continuous[k]):>14.6g}  "
                          f"{'-' if q[k].display_unit == '1' else q[k].display_unit}")
@@ -120,6 +121,7 @@ def _text(design) -> str:
 
 def main(args) -> int:
     from optimisation.design import DEFAULT_DISCRETE, size
+    from ropemodel.machines.base import declared_machine
 
     scene = sizing_scene_from_args(args, dynamic=None, declared_ok=True)
     if args.dynamic or scene.numerics.get("sizing") == "dynamic":
@@ -128,7 +130,7 @@ def main(args) -> int:
         return _size_dynamic.main(scene, args, _num)
     if args.find is not None:
         raise InputError("--find needs --dynamic (size --dynamic --find t_ramp)")
-    with status(f"sizing {scene.name}: rope, pretension and stroke"):
+    with status(f"sizing {scene.name}: {declared_machine(scene).sizing.CHOOSES}"):
         design = size(scene, method=args.discrete or DEFAULT_DISCRETE)
     if args.json:
         print(json.dumps(_num(design.to_dict()), indent=2, allow_nan=False))

@@ -47,9 +47,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--restart", action="store_true",
                         help="discard an unfinished sweep instead of resuming, or recompute a finished one")
     parser.add_argument("--sizing", action="store_true",
-                        help="at every point, the sizing optimum (d, F_nwl, stroke) instead of the outputs; "
-                             "each optimisation warm-starts from its neighbour (not resumable; with --dynamic: in "
-                             "chunks of --chunk-size points, default 8, resumable)")
+                        help="at every point, the sizing optimum (the design the scene's machine declares) instead of "
+                             "the outputs; each optimisation warm-starts from its neighbour (not resumable; with "
+                             "--dynamic: in chunks of --chunk-size points, default 8, resumable)")
     parser.add_argument("--cold", action="store_true", help="with --sizing: no warm start")
     parser.add_argument("--dynamic", action="store_true",
                         help="with --sizing: the dynamic optimum (every check through start and stop in both "
@@ -145,7 +145,10 @@ def _sizing(vary, points, args) -> int:
     from ropemodel.sweeps.files import OutputLock, check_output, write_frame
 
     if args.given or args.find or args.outputs:
-        raise InputError("--sizing computes d, F_nwl and stroke; it takes no --given, --find or --outputs")
+        from ropemodel.machines.base import design_words
+
+        raise InputError(f"--sizing computes the design ({design_words()}); it takes no --given, --find or "
+                         "--outputs")
     chunked = ("chunk_size", "restart") if args.dynamic else ()
     for flag in ("chunk_size", "threads", "backend", "si", "mark_failures", "restart"):
         if getattr(args, flag) not in (None, False) and flag not in chunked:

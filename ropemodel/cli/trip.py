@@ -7,7 +7,8 @@ from ropemodel.errors import InputError
 
 NAME = "trip"
 HELP = ("a whole trip along the route: forces, drive power (> 0 motoring, < 0 braking), energy drawn while "
-        "motoring and returned (or dissipated) while braking, RMS power, stroke needed")
+        "motoring and returned (or dissipated) while braking, RMS power, and what the scene's machine adds (the "
+        "tensioner's travel needed)")
 
 
 def add_arguments(parser) -> None:

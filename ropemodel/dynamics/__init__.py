@@ -1,4 +1,5 @@
-"""Time-domain transients of a winch scene: start-up and braking.
+"""Time-domain transients of a scene: start-up and braking (what each machine declares:
+:class:`ropemodel.machines.Transient`).
 
 ``simulate(scene)`` assembles the transient from the variants the scene picks (each a
 :class:`~ropemodel.effects.transient.base.TransientSubmodel` of :mod:`ropemodel.effects.transient`,
@@ -11,7 +12,6 @@ parameters (for dynamic sizing).  Modules: :mod:`.assemble` (the scene's variant
 (integration and event location), :mod:`.history` (results), :mod:`.smooth` (the symbolic smooth mode).
 """
 
-from ropemodel.dynamics import koepe as _koepe  # noqa: F401 - registers the Koepe's simulate
 from ropemodel.dynamics.history import Simulation
 from ropemodel.dynamics.simulate import simulate
 from ropemodel.dynamics.smooth import SmoothMode, smooth_mode

@@ -3,17 +3,16 @@
 from __future__ import annotations
 
 import json
-import math
 
 import numpy as np
 import pandas as pd
 
 from ropemodel.errors import SolveError
-from ropemodel.views.records import SimulationViews
+from ropemodel.views.records import SimulationViews, finite_summary
 
 
 class Simulation(SimulationViews):
-    """A simulated start-up or braking of a winch scene.
+    """A simulated start-up or braking (the result of a machine that declares no result of its own).
 
     Attributes
     ----------
@@ -114,13 +113,3 @@ class Simulation(SimulationViews):
         lines += [f"  moving masses: {masses}",
                   f"  energy balance residual {s['energy_residual']:.2e} of the drum's work"]
         return "\n".join(lines + [line for p in self.system.parts for line in p.ending(s)])
-
-
-def finite_summary(obj):
-    if isinstance(obj, float) and not math.isfinite(obj):
-        raise ValueError(f"non-finite value {obj} in a simulation summary")
-    if isinstance(obj, dict):
-        return {k: finite_summary(v) for k, v in obj.items()}
-    if isinstance(obj, list):
-        return [finite_summary(v) for v in obj]
-    return obj

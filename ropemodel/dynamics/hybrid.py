@@ -98,7 +98,7 @@ class HybridIntegrator:
             if now.terminal or t >= t_end * (1 - 1e-14):
                 return events
             if len(events) > MAX_EVENTS:
-                raise SolveError(f"more than {MAX_EVENTS} events by t = {t:.6g} s: the slip or stroke state "
+                raise SolveError(f"more than {MAX_EVENTS} events by t = {t:.6g} s: a slip or end-stop mode "
                                  f"chatters; refine the model or check the traction")
             while t >= self.phases[k].t1 * (1 - 1e-14) and k + 1 < len(self.phases):
                 k += 1

@@ -1,17 +1,14 @@
-"""Simulate the transient of a winch scene: assemble it from the variants the scene picks, integrate it."""
+"""Simulate the transient of a scene: assemble it from the variants the scene picks and what its machine declares
+(:class:`ropemodel.machines.Transient`), integrate it."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 
-from ropemodel.dynamics.assemble import build
+from ropemodel.dynamics.assemble import build, declared
 from ropemodel.dynamics.history import Simulation
 from ropemodel.dynamics.hybrid import HybridIntegrator
 from ropemodel.scene import SceneLike, as_scene
-
-#: model → the simulate of a machine that has its own result (registered by its module; the winch's is below)
-SIMULATORS: dict[str, Callable] = {}
-
 
 def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | None = None) -> Simulation:
     """Simulate the transient of a scene with a transient (``dynamics`` "start", "stop" or "trip").
@@ -19,7 +16,8 @@ def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | N
     Parameters
     ----------
     scene : Scene or str or Path
-        A winch scene whose ``dynamics`` effect is not ``"none"``.
+        A scene of a machine with a transient whose ``dynamics`` effect makes one (a winch: "start", "stop"
+        or "trip"; a Koepe hoist: "braking" or "start").
         A TOML scene file or a built-in scene's name is loaded first (:func:`ropemodel.load_scene`).
     values : dict, optional
         Scene parameters to override (SI numbers or strings with units).
@@ -30,7 +28,8 @@ def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | N
     Returns
     -------
     Simulation
-        ``history`` (DataFrame, SI, units in the column names: ``t [s]``, ``F_C [N]``, ...), ``summary``,
+        (or the machine's own result) ``history`` (DataFrame, SI, units in the column names: ``t [s]``,
+        ``F_C [N]``, ...), ``summary``,
         ``events``.
 
     Raises
@@ -53,16 +52,15 @@ def simulate(scene: SceneLike, values: Mapping | None = None, progress: bool | N
     from ropemodel.progress import status
 
     scene = as_scene(scene)
-    if scene.model in SIMULATORS:
-        return SIMULATORS[scene.model](scene, values, progress)
+    transient = declared(scene)
     if values:
         scene = scene.with_values(values)
     with status(f"simulating {scene.name}: building the transient", progress):
         system = build(scene)
         x0, mode = system.initial()
-    num, nums = scene.numerics, system.setup.numbers
-    atol = num["sim_rtol"] * 1e-1 * max(nums["L_u"] * nums["q_lw"] * system.setup.f_scale, 1e-9)
-    return integrate(Simulation(scene, system), system, x0, mode, atol, progress)
+    atol = scene.numerics["sim_rtol"] * 1e-1 * max(transient.length(system), 1e-9)
+    result = transient.result or Simulation
+    return integrate(result(scene, system), system, x0, mode, atol, progress)
 
 
 def integrate(sim, system, x0, mode, atol: float, progress: bool | None):

@@ -33,15 +33,14 @@ loop's slowest free oscillation from the same equations (how long dynamic sizing
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import casadi as ca
 import numpy as np
 
 from ropemodel.core.compile import forward_of
-from ropemodel.dynamics.assemble import bind, chosen, structural, transient_parts
+from ropemodel.dynamics.assemble import bind, chosen, declared, structural, transient_parts
 from ropemodel.effects.transient.base import Layout, Setup
-from ropemodel.effects.transient.profile import Profile
 from ropemodel.errors import InputError
 from ropemodel.problem import run
 
@@ -91,8 +90,9 @@ def smooth_mode(scene, params) -> SmoothMode:
     static = run(scene)
     setup = Setup(_symbolic_values(scene, params, p), dict(static.values), dict(scene.numerics),
                   {q.effect: q for q in parts}, submodels)
-    system = bind(setup, parts)
-    profile = next(q for q in parts if isinstance(q, Profile))
+    transient = declared(scene)
+    system = bind(setup, parts, transient)
+    profile: Any = next(q for q in parts if isinstance(q, transient.profile))   # the declared profile class
     f, out = _functions(system, profile.whole(), p, "")
     pieces = tuple(Piece(*_functions(system, ph, p, f"_{k}")) for k, ph in enumerate(setup.phases))
     x0, _ = system.initial()

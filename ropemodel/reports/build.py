@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from ropemodel.errors import RopeModelError, require
 from ropemodel.reports import page
 from ropemodel.reports.context import Context
-from ropemodel.reports.registry import sections
+from ropemodel.reports.registry import declared, sections
 from ropemodel.reports.sections.document import running_header, title
 from ropemodel.reports.sections.scene import stamp, version
 from ropemodel.scene import SceneLike
@@ -83,7 +83,7 @@ def build(ctx: Context) -> Report:
     report, parts = Report(""), []
     for s in sections():
         try:
-            if not s.applies(ctx):
+            if not (declared(s.name, ctx.scene) and s.applies(ctx)):
                 continue
             html = page.markup(s.render(ctx))   # a section's HTML is kept as it is (it escapes what it quotes)
         except RopeModelError as exc:
@@ -104,7 +104,7 @@ def verdicts(ctx: Context) -> list[str]:
     out = []
     try:
         values = ctx.result.values
-        names = margins_of(ctx.result.outputs)
+        names = margins_of(ctx.result.outputs, ctx.scene)
     except RopeModelError:
         names = []
     if names:

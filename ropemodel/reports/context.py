@@ -12,6 +12,7 @@ from datetime import datetime, UTC
 
 from ropemodel.errors import RopeModelError, SolveError
 from ropemodel.scene import Scene, SceneLike
+from ropemodel.machines import machine_of
 
 
 def once(fn):
@@ -35,14 +36,11 @@ def once(fn):
 
 
 def sizes(scene: Scene) -> bool:
-    """True for a scene the report sizes: a winch with a catalogue rope (``rope`` not ``"given"``), or a model that
-    declares its sizing (:mod:`ropemodel.effects.sizing`) in a scene without a transient (sizing through one
-    simulates every trial design: ``ropemodel size`` does it)."""
-    from ropemodel.effects.sizing import declared
-
-    if declared(scene.model) is not None:
-        return scene.effects.get("dynamics", "none") == "none"
-    return scene.model == "winch" and scene.effects.get("rope", "given") != "given"
+    """True for a scene the report sizes: its machine declares a sizing, and the sizing says the report sizes the
+    scene (its ``reported``: a winch with a catalogue rope, ``rope`` not ``"given"``; a Koepe without a transient,
+    since sizing through one simulates every trial design: ``ropemodel size`` does it)."""
+    sizing = getattr(machine_of(scene), "sizing", None)
+    return sizing is not None and sizing.reported(scene)
 
 
 class Context:

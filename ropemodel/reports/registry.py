@@ -2,13 +2,17 @@
 
 Sections are registered with :func:`section` when their module is imported; the modules are imported
 in the order of :data:`ropemodel.reports.sections.MODULES`, so the page shows the sections in that
-order (and, within a module, in the order they are defined).
+order (and, within a module, in the order they are defined).  A section a machine declares
+(:attr:`ropemodel.machines.Machine.sections`) is a section of that machine's scenes only (:func:`declared`);
+a section no machine declares is every scene's.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from collections.abc import Callable
+
+from ropemodel.machines import MACHINES
 
 
 def always(ctx) -> bool:
@@ -40,6 +44,13 @@ class Section:
 
 #: every registered section, in page order
 SECTIONS: list[Section] = []
+
+
+def declared(name: str, scene) -> bool:
+    """Whether section ``name`` may show for ``scene``: a section some machine declares, for a scene of such a
+    machine; any other section, for every scene."""
+    owners = [m.model for m in MACHINES.values() if name in m.sections]
+    return not owners or scene.model in owners
 
 
 def section(name: str, title: str, when: Callable = always, reads: Callable | None = None):

@@ -21,7 +21,7 @@ DISPLAY = {"N": "kN", "W": "kW", "J": "kWh"}
 SIMULATION_UNITS = {"x_m": "m", "stroke_used": "m", "stroke": "m", "slip_distance": "m", "t_end": "s",
                     "t_slack": "s", "dynamic_factor": "1", "traction_ratio": "1", "energy_residual": "1",
                     "n_nodes": "1",
-                    # a Koepe transient's (ropemodel.dynamics.koepe_history)
+                    # a Koepe transient's (ropemodel.machines.koepe.simulation)
                     **dict.fromkeys(("t_T_L_max", "t_T_L_min", "t_T_E_max", "t_T_E_min", "t_T_min", "t_worst",
                                      "t_rest", "t_stopped"), "s"),
                     **dict.fromkeys(("y_start", "travel_nominal", "reel", "overwind", "run"), "m"),
@@ -166,3 +166,14 @@ class SweepFileViews:
         cols = html.table(("column",), [(c,) for c in self.columns], "columns", numeric=())
         return html.page(f"sweep {self.status}: {self.path} ({self.rows} points x {len(self.columns)} columns)",
                          cols, notes=["to_frame() reads it"])
+
+
+def finite_summary(obj):
+    """``obj`` (a summary: dicts, lists, numbers) as it is; :class:`ValueError` naming a non-finite number."""
+    if isinstance(obj, float) and not math.isfinite(obj):
+        raise ValueError(f"non-finite value {obj} in a simulation summary")
+    if isinstance(obj, dict):
+        return {k: finite_summary(v) for k, v in obj.items()}
+    if isinstance(obj, list):
+        return [finite_summary(v) for v in obj]
+    return obj

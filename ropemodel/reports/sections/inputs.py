@@ -3,8 +3,8 @@ derived; the defaults used and why; unused parameters; warnings."""
 
 from __future__ import annotations
 
-from ropemodel.effects.winch_rope import RopeCatalogue
 from ropemodel.errors import RopeModelError
+from ropemodel.machines import machine_of
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
 
@@ -21,8 +21,9 @@ def origin(scene, name: str) -> str:
 
 
 def catalogue_rope(model):
-    """The catalogue rope submodel of ``model`` (an EN 12385-4 construction), or None."""
-    return next((sm for sm in model.submodels if isinstance(sm, RopeCatalogue)), None)
+    """The catalogue rope submodel of ``model`` (an EN 12385-4 construction: its machine's ``ropes``), or None."""
+    ropes = getattr(machine_of(model.name), "ropes", ())
+    return next((sm for sm in model.submodels if isinstance(sm, ropes)), None)
 
 
 def derived(model) -> list[str]:

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import re
 
-from ropemodel.effects.winch_checks import CHECKS, margin_names
 from ropemodel.errors import RopeModelError
+from ropemodel.machines import default, machine_of
 from ropemodel.reports import figures, page
 from ropemodel.reports.registry import section
 from ropemodel.reports.sections.inputs import derived_note
@@ -20,10 +20,16 @@ SHOWN_ELSEWHERE = ("design checks",)
 ZERO = 1e-9
 
 
-def margins_of(names) -> list[str]:
-    """The margin outputs among ``names``: the winch's checks (report order), then any other ``*_margin*``."""
+def _machine(scene):
+    """``scene``'s machine (the default machine's order and words for no scene, or a model that declares none)."""
+    return (machine_of(scene) if scene is not None else None) or default()
+
+
+def margins_of(names, scene=None) -> list[str]:
+    """The margin outputs among ``names``: the checks of ``scene``'s machine (its report order), then any other
+    ``*_margin*``."""
     names = list(names)
-    known = margin_names(names)
+    known = _machine(scene).checks(names)
     return known + [n for n in names if "_margin" in n and n not in known]
 
 
@@ -49,7 +55,7 @@ def _pairs(outputs) -> tuple[list[str], list[str]]:
 def results(ctx):
     result = ctx.result
     model, values, q = result.model, result.values, result.model.quantities
-    outputs = [o for o in result.outputs if o not in set(margins_of(result.outputs))]
+    outputs = [o for o in result.outputs if o not in set(margins_of(result.outputs, ctx.scene))]
     singles, bases = _pairs(outputs)
     html = page.fragment("<p>In the paper's units{{ at }}; equation numbers as in the papers.</p>",
                          at=", at the recommended design" if ctx.at_design else "")
@@ -115,9 +121,9 @@ def check_rows(margins: dict, quantities: dict, scene=None, where: dict | None =
     """(rows, row classes, failed names) of a checks table: margin name, check, direction, margin, verdict,
     the rule the check applies (its factor's provenance in ``scene``) and, with ``where`` (margin → text),
     where the margin is least."""
-    text = {base: t for base, t, _ in CHECKS}
+    text = _machine(scene).check_text
     rows, classes, failed = [], [], []
-    for n in margins_of(margins):
+    for n in margins_of(margins, scene):
         v = margins[n]
         base, way = (n.rsplit("_", 1) if _DIR.match(n) else (n, "-"))
         ok = v >= 0
@@ -149,9 +155,9 @@ def checks_html(margins: dict, quantities: dict, scene=None, where: dict | None 
 
 def _has_checks(ctx) -> bool:
     try:
-        return bool(margins_of(ctx.result.outputs))
+        return bool(margins_of(ctx.result.outputs, ctx.scene))
     except RopeModelError:
-        return bool(margins_of(ctx.scene.built.outputs))
+        return bool(margins_of(ctx.scene.built.outputs, ctx.scene))
 
 
 @section("checks", "Design checks", when=_has_checks)
@@ -163,8 +169,8 @@ def checks(ctx):
     html = page.fragment("<p>Every check {{ w }}: a margin ≥ 0 passes. Ratio margins are fractions "
                          "(0.1: 10 % to spare), the others in the quantity's unit.{{ e }}</p>", w=where,
                          e=_span(result))
-    return html + checks_html({n: result.values[n] for n in margins_of(result.outputs)}, result.model.quantities,
-                              result.scene, result.where)
+    margins = {n: result.values[n] for n in margins_of(result.outputs, ctx.scene)}
+    return html + checks_html(margins, result.model.quantities, result.scene, result.where)
 
 
 def _span(result) -> str:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ropemodel.machines.base import declared_machine
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
 
@@ -13,9 +14,8 @@ HEAD = """<dl class="head">
 <dt>SHA-256 of the file</dt><dd><code>{{ scene.digest or "none (no file)" }}</code></dd>
 <dt>ropemodel version</dt><dd>{{ version }}</dd>
 <dt>date</dt><dd>{{ date }}</dd>
-{% if ctx.sizing %}<dt>sizing</dt><dd>yes: {% if scene.effects.get("rope") %}a winch with a catalogue rope (rope =
-"{{ scene.effects.rope }}"){% else %}the {{ scene.model }}'s declared sizing{% endif %}; design checks switched
-on</dd>{% endif %}
+{% if ctx.sizing %}<dt>sizing</dt><dd>yes: {{ sized }}; design
+checks switched on</dd>{% endif %}
 </dl>"""
 
 
@@ -34,7 +34,9 @@ def stamp(ctx) -> str:
 def scene(ctx):
     s = ctx.scene
     description = s.raw.get("scene", {}).get("description", "") if isinstance(s.raw.get("scene"), dict) else ""
-    html = page.fragment(HEAD, scene=s, description=description, version=version(), date=stamp(ctx), ctx=ctx)
+    sized = page.fragment(declared_machine(s).sizing.SCENE_TEXT, scene=s) if ctx.sizing else ""
+    html = page.fragment(HEAD, scene=s, description=description, version=version(), date=stamp(ctx), ctx=ctx,
+                         sized=sized)
     html += page.fragment("<h3>Effects (the submodels chosen)</h3>")
     built = s.built.built_effects
     rows = [[sm.effect, sm.variant, sm.description] for sm in s.built.submodels if sm.effect in built]

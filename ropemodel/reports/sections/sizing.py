@@ -7,9 +7,9 @@ from ropemodel.envelope import where_text
 from ropemodel.reports import page
 from ropemodel.reports.registry import section
 from ropemodel.reports.sections.results import checks_html
+from ropemodel.machines.base import declared_machine
 
-INTRO = """<p>The lightest catalogue rope, then the least pretension, then the least stroke, with every design check
-met in both directions of travel (<code>ropemodel size</code>; catalogue diameter by {{ method }}).</p>"""
+INTRO = """<p>{{ objective }} (<code>ropemodel size</code>; catalogue diameter by {{ method }}).</p>"""
 #: a declared sizing's introduction: what it minimises and what it enumerates
 DECLARED = """<p>Minimised: {{ o.text }}, with every design check met (<code>ropemodel size</code>; catalogue size by
 {{ method }}; {{ o.integer }} enumerated over {{ o.enumerated[0] }} to {{ o.enumerated[-1] }}, one continuous NLP
@@ -17,7 +17,7 @@ each, the lightest feasible kept): {{ "%.6g" % o.value }} kg at the design.</p>"
 
 
 def design_text(design) -> str:
-    """``d = 38 mm, F_nwl = 43.6 kN, stroke = 4763 mm`` of a feasible design."""
+    """``d = 38 mm, F_nwl = 43.6 kN, stroke = 4763 mm`` of a feasible design (its design variables)."""
     q = design.scene.built.quantities
     return ", ".join(f"{k} = {q[k].show(design.design[k])}" for k in design.continuous or design.design)
 
@@ -34,7 +34,8 @@ def sizing(ctx):
     design = ctx.design
     q = design.scene.built.quantities
     o = getattr(design, "objective", None)
-    html = page.fragment(DECLARED, method=design.method, o=o) if o else page.fragment(INTRO, method=design.method)
+    html = (page.fragment(DECLARED, method=design.method, o=o) if o else
+            page.fragment(INTRO, method=design.method, objective=declared_machine(ctx.scene).sizing.INTRO))
     if design.continuous:
         rows = [[k, page.show(q[k], design.design[k]) if design.design else "-",
                  page.show(q[k], design.continuous[k]), q[k].description] for k in design.continuous]
@@ -47,8 +48,8 @@ def sizing(ctx):
         return html + page.fragment("<pre>{{ m }}</pre>", m=design.message)
     html += page.verdict(True, f"Design found: {design_text(design)}.")
     if not o:
-        html += page.fragment("<p>Rounded up to practical steps (F_nwl to 0.1 kN, the stroke to 1 mm where the "
-                              "checks allow); every check holds at the printed values.</p>")
+        html += page.fragment("<p>{{ r }}; every check holds at the printed values.</p>",
+                              r=declared_machine(ctx.scene).sizing.ROUNDED)
     html += page.fragment("<h3>Active constraints</h3><p>What fixes the design (at the recommended design):</p>"
                           "<ul>{% for a in active %}<li><code>{{ a }}</code></li>{% endfor %}</ul>",
                           active=design.active)

@@ -14,15 +14,12 @@ from __future__ import annotations
 from ropemodel.effects import effects_of
 from ropemodel.effects.transient.profile import Profile, Trip
 from ropemodel.effects.transient.rope import RopeRigid
+from ropemodel.machines.base import declared_machine
 from ropemodel.reports import figures, page
 from ropemodel.reports.registry import section
 
 #: units of the history's columns drawn, one panel each: forces, speeds, lengths
 UNITS = ("N", "m/s", "m")
-RIGID = ('<p class="note">rope_elasticity = "{{ r }}": an inextensible rope has no elongation, so the tensioner '
-         "does not move in this transient and the take-up is not shown; the stroke the rope needs is eq. (23)'s "
-         '(under "Results"{{ trip }}). The dynamic factor is the rigid-body inertia of the ramp alone (no rope '
-         "oscillation).</p>")
 
 
 def _variant(scene, effect: str) -> type:
@@ -68,7 +65,7 @@ def transient(ctx):
     if rigid:
         from ropemodel.reports.sections.trip import has_trip
 
-        html += page.fragment(RIGID, r=ctx.scene.effects["rope_elasticity"],
+        html += page.fragment(declared_machine(ctx.scene).transient.rigid_note, r=ctx.scene.effects["rope_elasticity"],
                               trip=' and "Trip"' if has_trip(ctx) else "")
     uri = figures.panels(history, x, UNITS, title=f"{ctx.scene.name}: histories")
     if uri:

@@ -1,8 +1,8 @@
 """Section "trip": a whole trip up and down the route (``ropemodel trip``): forces, drive power and
 energy, exactly piece by piece (:mod:`ropemodel.trips`), with the route's profile when it has segments.
 
-Shown for a winch scene about trips (``dynamics = "trip"`` or a route of ``[[route]]`` segments) that
-gives the speed ``v_pj`` and the ramp time ``t_ramp``.
+Shown for a scene about trips (``dynamics = "trip"`` or a route of ``[[route]]`` segments), of a machine that
+makes trips, that gives the speed ``v_pj`` and the ramp time ``t_ramp``.
 """
 
 from __future__ import annotations
@@ -11,9 +11,10 @@ import math
 
 from ropemodel.reports import figures, page
 from ropemodel.reports.registry import section
+from ropemodel.machines import machine_of
 
-#: summary key → (label, unit shown, factor from SI); the braking energy's label comes from the scene's
-#: ``braking`` variant (returned to the supply or dissipated)
+#: summary key → (label, unit shown, factor from SI), then the keys the machine adds (its ``trips.ROWS``); the
+#: braking energy's label comes from the scene's ``braking`` variant (returned to the supply or dissipated)
 ROWS = {"t_trip": ("trip time", "s", 1.0), "F_C_max": ("largest winding-rope force F_C", "kN", 1e-3),
         "F_S_min": ("least unwinding-rope force F_S", "kN", 1e-3),
         "P_max": ("largest motoring drive power (> 0)", "kW", 1e-3),
@@ -22,16 +23,17 @@ ROWS = {"t_trip": ("trip time", "s", 1.0), "F_C_max": ("largest winding-rope for
         "E_trip": ("energy drawn while motoring", "kWh", 1 / 3.6e6),
         "E_regen": ("energy returned to the supply while braking", "kWh", 1 / 3.6e6),
         "E_dissipated": ("energy dissipated in the braking resistor while braking", "kWh", 1 / 3.6e6),
-        "W_drum": ("net work of the drum (the load's potential energy change plus friction)", "kWh", 1 / 3.6e6),
-        "stroke_needed": ("tensioner stroke needed, eq. (23)", "mm", 1e3)}
+        "W_drum": ("net work of the drum (the load's potential energy change plus friction)", "kWh", 1 / 3.6e6)}
 #: history columns drawn, one panel per unit
 UNITS = ("m/s", "N", "W")
 
 
 def has_trip(ctx) -> bool:
-    """A winch scene about trips that gives the speed and the ramp time (used by its effects or not)."""
+    """A scene of a machine that makes trips (:attr:`ropemodel.machines.Machine.trips`), about trips, that
+    gives the speed and the ramp time (used by its effects or not)."""
     e, given = ctx.scene.effects, {**ctx.scene.parameters, **ctx.scene.unused_values}   # a trip uses v_pj, t_ramp
-    return (ctx.scene.model == "winch" and (e.get("dynamics") == "trip" or e.get("route") == "segments")
+    trips = getattr(machine_of(ctx.scene), "trips", None)
+    return (trips is not None and (e.get("dynamics") == "trip" or e.get("route") == "segments")
             and "v_pj" in given and "t_ramp" in given)
 
 
@@ -55,8 +57,9 @@ def trip(ctx):
                          at=", at the recommended design" if ctx.at_design else "",
                          where=braking.destination, variant=braking.variant)
     head = ["quantity", "upward", "downward", "unit"]
+    shown = {**ROWS, **machine_of(ctx.scene).trips.ROWS}
     rows = [[label, *(f"{runs[d].summary[k] * f:.6g}" for d in ("up", "down")), unit]
-            for k, (label, unit, f) in ROWS.items() if all(k in run.summary for run in runs.values())]
+            for k, (label, unit, f) in shown.items() if all(k in run.summary for run in runs.values())]
     html += page.table(head, rows, kinds=["", "num", "num", ""])
     profile = _profile(ctx)
     if profile:

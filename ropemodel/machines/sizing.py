@@ -1,15 +1,18 @@
 """Sizing declarations: what ``ropemodel size`` chooses for a model, and what it must keep.
 
-A model other than the winch declares its sizing here as data and functions that build CasADi expressions
-(:class:`Declaration`); the generic driver (:mod:`optimisation.declared`) turns a declaration into the same NLP
+A machine whose design includes an integer enumerated (a Koepe hoist's number of head ropes) declares its sizing
+as a :class:`Declaration` (a subclass, its instance the machine's ``sizing``: data and functions that build
+CasADi expressions); the generic driver (:mod:`optimisation.declared`) turns a declaration into the same NLP
 machinery the winch uses (IPOPT with exact derivatives, a catalogue step, the diagnosis of no design in the
-user's terms).  A declaration imports nothing above the effects: it knows its physics, not its solver.
+user's terms).  A declaration imports nothing above the machines' layer: it knows its physics, not its solver.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Any, ClassVar
+
+from ropemodel.machines.base import machine_of
 
 
 @dataclass(frozen=True)
@@ -47,7 +50,8 @@ class Transient:
 
 
 class Declaration:
-    """The sizing of one model (a subclass per model, registered with :func:`declare`).
+    """The sizing of one machine (a subclass per machine; its instance is the ``sizing`` of the machine's
+    :class:`~ropemodel.machines.Machine`).
 
     The first of :attr:`variables` is chosen from a catalogue (:meth:`catalogue`, next size up); the
     integer :attr:`integer` is enumerated over :meth:`counts` (one continuous NLP each, the lightest feasible
@@ -65,6 +69,26 @@ class Declaration:
     allowances: ClassVar[tuple[str, ...]] = ()
     #: what the objective is, in words (the output says it)
     objective_text: ClassVar[str] = ""
+    #: what sizing chooses, in words (``ropemodel size``'s status line)
+    CHOOSES: ClassVar[str] = "the design"
+    #: dimensions a scene may leave out besides the design (none)
+    D_OPTIONAL: ClassVar[tuple[str, ...]] = ()
+    #: what a scene the report sizes is (a Jinja2 template of ``scene``)
+    SCENE_TEXT: ClassVar[str] = "the {{ scene.model }}'s declared sizing"
+
+    @property
+    def VARIABLES(self) -> tuple[str, ...]:
+        """The design variables' names: the integer enumerated, then the continuous ones."""
+        return (self.integer, *(x.name for x in self.variables))
+
+    def rope_problem(self, scene) -> str | None:
+        """Why sizing cannot choose the scene's ropes, or None (a declaration chooses them from its catalogue)."""
+        return None
+
+    def reported(self, scene) -> bool:
+        """Whether the report sizes ``scene``: a scene without a transient (sizing through one simulates every
+        trial design: ``ropemodel size`` does it)."""
+        return scene.effects.get("dynamics", "none") == "none"
 
     def prepare(self, scene):
         """The scene as sizing reads it (its checks switched on)."""
@@ -120,15 +144,9 @@ class Declaration:
         raise NotImplementedError
 
 
-DECLARATIONS: dict[str, Declaration] = {}
-
-
-def declare(declaration: Declaration) -> Declaration:
-    """Register ``declaration`` for its model."""
-    DECLARATIONS[declaration.model] = declaration
-    return declaration
-
-
-def declared(model: str) -> Declaration | None:
-    """The sizing declaration of ``model``, or None (the winch's sizing is :mod:`optimisation.problem`'s own)."""
-    return DECLARATIONS.get(model)
+def declared(model) -> Declaration | None:
+    """The sizing of ``model`` (a scene or a model's name) when its machine declares it as a :class:`Declaration`
+    (sized by :mod:`optimisation.declared`), else None (a sizing module such as the winch's, sized by
+    :class:`optimisation.problem.SizingProblem`, or no sizing)."""
+    sizing = getattr(machine_of(model), "sizing", None)
+    return sizing if isinstance(sizing, Declaration) else None

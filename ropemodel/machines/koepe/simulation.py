@@ -8,10 +8,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ropemodel.dynamics.history import finite_summary
 from ropemodel.errors import SolveError
 from ropemodel.views.plotting import axes, finish
-from ropemodel.views.records import SimulationViews
+from ropemodel.views.records import SimulationViews, finite_summary
 
 #: the instant's columns named in the summary at the worst instant
 INSTANT = {"T_L [N]": "T_L", "T_E [N]": "T_E", "v_rope [m/s]": "v_rope", "a_rope [m/s^2]": "a_rope",

@@ -35,7 +35,7 @@ import math
 from ropemodel.effects import koepe_states as st
 from ropemodel.effects.koepe import MODEL
 from ropemodel.effects.koepe_brake import DIRECTIONS
-from ropemodel.effects.sizing import Check, Declaration, Transient, Variable, declare
+from ropemodel.machines.sizing import Check, Declaration, Transient, Variable
 from ropemodel.papers import en12385 as ropes
 from ropemodel.papers import koepe as kp
 from ropemodel.papers import koepe_slip as ks
@@ -118,6 +118,7 @@ class KoepeSizing(Declaration):
     allowances = tuple(f"brake_allowance_{d}" for d in DIRECTIONS)
     objective_text = ("the suspended rope mass n_head q_head (2 H_head + H) + n_tail q_tail (H + 2 h_loop), "
                       "then the least wheel")
+    CHOOSES = "head ropes, tail ropes and wheel"
     remedies = {
         "head_safety_margin": (("m_payload", "max"), ("n_safety_head", "max")),
         "tail_safety_margin": (("F_min_tail", "min"), ("n_safety_tail", "max")),
@@ -210,5 +211,3 @@ class KoepeSizing(Declaration):
         chosen["n_head"] = f"the sizing enumerates it over {COUNTS[0]} to {COUNTS[-1]}"
         return scene.built.inputs_of(), chosen
 
-
-declare(KoepeSizing())
