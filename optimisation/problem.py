@@ -51,8 +51,8 @@ def declaration(scene):
 
 
 class _Reads(dict):
-    """Outputs as symbols made when read, remembering which are (what a declaration's ``nlp_form`` writes a check
-    from)."""
+    """Outputs as symbols, each made when first read: its keys are what a declaration's ``nlp_form`` writes a
+    check from."""
 
     def __missing__(self, key):
         self[key] = ca.MX.sym(key)
@@ -212,9 +212,7 @@ class SizingProblem:
         m_at = ca.Function("m", [xs, p], [out[sizing.PRIMARY]])
         self.m_ref = float(m_at(ca.DM.ones(n), self.p0))
         self.f_primary = out[sizing.PRIMARY] / self.m_ref
-        self.f = self.f_primary
-        for i, w in enumerate(sizing.WEIGHTS):       # the others in order, far below the primary
-            self.f = self.f + w * xs[1 + i]
+        self.f = self._objective(self.f_primary)
         self.output_names = list(self.problem.unknowns)
         every = fun.call({**args, **self.cases[0].values(ChainMap(args, scene.parameters))})
         self.outputs = ca.Function("outputs", [xs, p], [every[n] for n in self.output_names],
@@ -262,10 +260,15 @@ class SizingProblem:
         args = {**dict(zip(self.params, self.p0.tolist())), **{k: x_si[i] for i, k in enumerate(self.variables)},
                 **{k: 0.0 for k in self.problem.given}}
         _, g, _, out = self._constraints(model, self.problem.function, args, self.p, x_si)
-        f = out[self.sizing.PRIMARY] / self.m_ref
+        return self.nlp(f=self._objective(out[self.sizing.PRIMARY] / self.m_ref),
+                        g=ca.vertcat(*g) / ca.DM(self.g_scale))
+
+    def _objective(self, primary):
+        """The primary objective (scaled), then the other variables in order, far below it."""
+        f = primary
         for i, w in enumerate(self.sizing.WEIGHTS):
             f = f + w * self.xs[1 + i]
-        return self.nlp(f=f, g=ca.vertcat(*g) / ca.DM(self.g_scale))
+        return f
 
     def envelope(self, xs, p=None) -> Envelope:
         """Every output of the scene at scaled ``xs`` in every case, each at its worst
