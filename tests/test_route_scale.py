@@ -16,6 +16,10 @@ import pytest
 from test_trip import LOAD, _by_distance
 
 import ropemodel as rm
+from optimisation import design as sizing
+from optimisation import ipopt
+from optimisation.problem import SizingProblem, load_sizing
+from ropemodel import budget
 from ropemodel.core import evaluate as ev
 from ropemodel.problem import Problem
 from ropemodel.trips import trip
@@ -89,3 +93,40 @@ def test_folded_constants_give_what_the_map_gives(monkeypatch):
     for k, v in mapped.items():
         np.testing.assert_array_equal(folded[k], v, err_msg=k)
     assert np.ptp(folded["G_l"]) == 0.0 and np.ptp(folded["F_C_up"]) > 0.0
+
+
+SIZING = ('[effects]\nroute = "segments"\nrope = "6x36-IWRC"\nlining = "rigid"\ndynamics = "trip"\n'
+          '[parameters]\nmu_pm = 0.05\nmu_pl = 0.05\nG_m = "467 kN"\nv_pj = "2.5 m/s"\nt_ramp = "5 s"\n'
+          'rope_grade = "1770 N/mm^2"\nrope_E = "100 kN/mm^2"\nmu_d = 0.2\nalpha_d = "540 deg"\nn_slip = 1.25\n'
+          'n_rope = 4.5\nF_S_min = "5 kN"\n')
+
+
+@pytest.mark.slow      # several seconds: three sizings of a 20-segment route
+def test_sizing_a_profile_equals_its_tables_and_the_parametric_nlp(tmp_path):
+    """20 segments of 10 to 60 m: ``size`` on the profile file equals ``size`` on the same route as [[route]]
+    tables to 1e-12 (design, continuous optimum, sensitivities), and IPOPT on the NLP with the scene's values
+    folded in (what ``size`` solves) finds the optimum of the parametric NLP (a second method) to 1e-10."""
+    rng = np.random.default_rng(11)
+    segments = list(zip(rng.uniform(10.0, 60.0, 20), rng.uniform(2.0, 25.0, 20)))
+    (tmp_path / "route.csv").write_text("length [m],inclination [deg]\n"
+                                        + "".join(f"{float(L)!r},{float(a)!r}\n" for L, a in segments))
+    head, params = SIZING.split("[parameters]\n")
+    (tmp_path / "profile.toml").write_text(head + '[route_profile]\nfile = "route.csv"\n[parameters]\n' + params)
+    (tmp_path / "tables.toml").write_text(head + "".join(f'[[route]]\nlength = "{float(L)!r} m"\ninclination = '
+                                                         f'"{float(a)!r} deg"\n' for L, a in segments)
+                                          + "[parameters]\n" + params)
+    with budget.lifted():
+        profile, tables = (sizing.size(str(tmp_path / f"{k}.toml")) for k in ("profile", "tables"))
+        problem = SizingProblem(load_sizing(str(tmp_path / "tables.toml"), emit=False))
+    assert profile.design == tables.design
+    for k, v in tables.continuous.items():
+        assert profile.continuous[k] == pytest.approx(v, rel=1e-12), k
+    for p, column in tables.sensitivities.items():
+        for k, v in column.items():
+            assert profile.sensitivities[p][k] == pytest.approx(v, rel=1e-12, abs=1e-15), (p, k)
+    lbx, ubx = problem.bounds()
+    args = dict(x0=problem.x0(), p=problem.p0, lbx=lbx, ubx=ubx, lbg=0.0, ubg=np.inf)
+    parametric = np.asarray(ipopt.solver(problem)(**args)["x"]).ravel()
+    folded = np.asarray(ipopt.solver(problem, at_scene=True)(**args)["x"]).ravel()
+    np.testing.assert_allclose(folded, parametric, rtol=1e-10)
+    assert problem.to_si(folded)["d"] == pytest.approx(tables.continuous["d"], rel=1e-8)
