@@ -70,18 +70,19 @@ class Start:
     lam_g: np.ndarray
 
 
-_SOLVERS: dict[tuple[int, bool], tuple[SizingProblem, ca.Function]] = {}
+_SOLVERS: dict[tuple[int, bool, bool], tuple[SizingProblem, ca.Function]] = {}
 
 
-def solver(problem: SizingProblem, warm: bool = False) -> ca.Function:
+def solver(problem: SizingProblem, warm: bool = False, at_scene: bool = False) -> ca.Function:
     """IPOPT on ``problem``'s NLP (built once per problem; ``warm``: with :data:`WARM_OPTIONS`; a problem's own
-    ``ipopt_options``, if it has any, last)."""
-    key = (id(problem), warm)
+    ``ipopt_options``, if it has any, last; ``at_scene``: the NLP with the scene's parameters folded in, for
+    ``p = p0`` only, where the problem has it)."""
+    key = (id(problem), warm, at_scene)
     hit = _SOLVERS.get(key)
     if hit is None or hit[0] is not problem:
         options = {**IPOPT_OPTIONS, **(WARM_OPTIONS if warm else {}), **getattr(problem, "ipopt_options", {})}
-        hit = _SOLVERS[key] = (problem, ca.nlpsol("sizing_warm" if warm else "sizing", "ipopt", problem.nlp(),
-                                                  options))
+        nlp = problem.at_scene if at_scene and hasattr(problem, "at_scene") else problem.nlp()
+        hit = _SOLVERS[key] = (problem, ca.nlpsol("sizing_warm" if warm else "sizing", "ipopt", nlp, options))
     return hit[1]
 
 
@@ -98,11 +99,12 @@ def solve_continuous(problem: SizingProblem, p=None, x0=None, d_range=None, fix_
     lbx, ubx = problem.bounds(d_range)
     if fix_d is not None:
         lbx[0] = ubx[0] = fix_d / problem.x_scale[0]
+    at_scene = bool(np.array_equal(p, problem.p0))
     if start is not None:
-        ipopt = solver(problem, warm=True)
+        ipopt = solver(problem, warm=True, at_scene=at_scene)
         args = {"x0": start.x, "lam_x0": start.lam_x, "lam_g0": start.lam_g}
     else:
-        ipopt = solver(problem)
+        ipopt = solver(problem, at_scene=at_scene)
         x0 = problem.x0() if x0 is None else np.asarray(x0, dtype=float)
         args = {"x0": np.clip(x0, lbx, np.where(np.isfinite(ubx), ubx, x0))}
     t0 = time.perf_counter()

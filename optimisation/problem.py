@@ -25,12 +25,14 @@ from __future__ import annotations
 import math
 from collections import ChainMap
 from functools import cached_property
+from typing import Any
 
 import casadi as ca
 import numpy as np
 
+from ropemodel.core.evaluate import reordered
 from ropemodel.envelope import Envelope, LoadCase, envelope, free, load_cases
-from ropemodel.envelope.cases import depends_on, distinct
+from ropemodel.envelope.cases import depends_on, distinct, joint_ends
 from ropemodel.envelope.prune import prune
 from ropemodel.machines import default
 from ropemodel.machines.base import declared_machine, needing
@@ -46,6 +48,39 @@ D_OPTIONAL = default().sizing.D_OPTIONAL
 def declaration(scene):
     """The sizing declaration of ``scene``'s machine; :class:`InputError` for a machine that cannot be sized."""
     return needing("sizing", scene, "sizing")
+
+
+class _Reads(dict):
+    """Outputs as symbols, each made when first read: its keys are what a declaration's ``nlp_form`` writes a
+    check from."""
+
+    def __missing__(self, key):
+        self[key] = ca.MX.sym(key)
+        return self[key]
+
+
+def _nlp_function(fun: ca.Function, checks, sizing, args) -> ca.Function:
+    """``fun`` with only the outputs the NLP reads (each check in its ``nlp_form``, the primary objective): a
+    route's model has an output per segment, and every derivative of the NLP would carry them."""
+    out = _Reads()
+    for c in checks:
+        sizing.nlp_form(c, out, args)
+    wanted = {sizing.PRIMARY, *checks, *out}
+    return reordered(fun, fun.name_in(), [k for k in fun.name_out() if k in wanted])
+
+
+def _vector_model(fun: ca.Function, variables, params, free, given) -> ca.Function:
+    """``fun`` (one scalar input per known) as a Function of three vectors: the design ``x`` (SI, in the order of
+    ``variables``), the NLP's parameters ``p`` (``params``) and the case inputs ``c`` (``free``); the ``given``
+    outputs 0.  Each case of the NLP is one call of it, not a node per parameter (a route has thousands), and its
+    derivatives are those of one SX Function."""
+    sym: Any = ca.SX.sym if fun.is_a("SXFunction") else ca.MX.sym
+    x, p, c = sym("x", len(variables)), sym("p", len(params)), sym("c", len(free))
+    env = {**{k: p[i] for i, k in enumerate(params)}, **{k: c[i] for i, k in enumerate(free)},
+           **{k: x[i] for i, k in enumerate(variables)}, **{k: 0.0 for k in given}}
+    out = fun.call({k: env[k] for k in fun.name_in() if k in env})
+    return ca.Function("nlp_model", [x, p, c], [out[k] for k in fun.name_out()], ["x", "p", "c"],
+                       list(fun.name_out()))
 
 
 def _label(check: str, case: LoadCase, inputs, params) -> str:
@@ -163,42 +198,77 @@ class SizingProblem:
         args.update({k: x_si[i] for i, k in enumerate(self.variables)})
         args.update({k: 0.0 for k in self.problem.given})   # a check held at 0 where its dimension is a result
         self.xs, self.p = xs, p
-        out = self._constraints(fun, args)
+        checks = self.machine.checks(self.problem.unknowns)
+        self._nlp_model = _vector_model(_nlp_function(fun, checks, sizing, args), self.variables, self.params,
+                                        self.free, self.problem.given)
+        self.constraints, self._g, self._margin_exprs, out = self._constraints(self._nlp_model, fun, args, p, x_si)
+        unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
+        q = scene.built.quantities
+        self.units = {c: sizing.unit(c, q[_base(c)].unit) for c in self.constraints}
+        self.g_scale = np.array([unit_scale[self.units[c]] for c in self.constraints])
         self.g = ca.vertcat(*self._g) / ca.DM(self.g_scale)
         # reference of the primary objective: its value at x = 1 in scaled units (fixed number: the weights are
         # constants; a winch: the rope mass per metre at d = 10 mm)
         m_at = ca.Function("m", [xs, p], [out[sizing.PRIMARY]])
         self.m_ref = float(m_at(ca.DM.ones(n), self.p0))
         self.f_primary = out[sizing.PRIMARY] / self.m_ref
-        self.f = self.f_primary
-        for i, w in enumerate(sizing.WEIGHTS):       # the others in order, far below the primary
-            self.f = self.f + w * xs[1 + i]
+        self.f = self._objective(self.f_primary)
         self.output_names = list(self.problem.unknowns)
-        self.outputs = ca.Function("outputs", [xs, p], [out[n] for n in self.output_names],
+        every = fun.call({**args, **self.cases[0].values(ChainMap(args, scene.parameters))})
+        self.outputs = ca.Function("outputs", [xs, p], [every[n] for n in self.output_names],
                                    ["x", "p"], self.output_names)
 
-    def _constraints(self, fun, args) -> dict:
+    def _constraints(self, model: ca.Function, fun: ca.Function, args, p, x_si) -> tuple[list, list, list, dict]:
         """Every check in every case it can differ in (a check that depends only on the manoeuvre once per
-        manoeuvre, one that depends on neither once): the constraints g, their labels, units and scales.
-        The cases' places and accelerations follow the NLP's parameters (a segment's length moves x_m).
-        Returns the outputs at the first case."""
-        q, scene = self.scene.built.quantities, self.scene
-        values = ChainMap(args, scene.parameters)
+        manoeuvre, one that depends on neither once): their labels, the constraints g and the margins.
+        The cases' places and accelerations follow the NLP's parameters ``p`` (a segment's length moves x_m).
+        ``model``: :func:`_vector_model` or the same at ``p0``; ``fun``: the model with one input per known;
+        ``args``: each known's value; ``x_si``: the design in SI.  Returns (labels, g, margins, the outputs at
+        the first case)."""
+        values = ChainMap(args, self.scene.parameters)
+        ends = joint_ends(values) if self.scene.route else None
+
+        def at_case(i: int) -> dict:
+            case = self.cases[i].values(values, ends)     # an input a case leaves alone: 0, as CasADi's default
+            given = {"x": x_si, "p": p, "c": ca.vertcat(*[case.get(k, 0.0) for k in self.free])}
+            return model.call({k: given[k] for k in model.name_in()})
+
         margins = self.machine.checks(self.problem.unknowns)
         depends = depends_on(fun, margins)
         at: dict[int, dict] = {}
-        self.constraints, self._g, self._margin_exprs = [], [], []
+        labels, g, exprs = [], [], []
         for c in margins:
             for i in distinct(self.cases, depends[c]):
                 if i not in at:
-                    at[i] = fun.call({**args, **self.cases[i].values(values)})
-                self.constraints.append(_label(c, self.cases[i], depends[c], scene.parameters))
-                self._g.append(self.sizing.nlp_form(c, at[i], args))
-                self._margin_exprs.append(at[i][c])
-        unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
-        self.units = {c: self.sizing.unit(c, q[_base(c)].unit) for c in self.constraints}
-        self.g_scale = np.array([unit_scale[self.units[c]] for c in self.constraints])
-        return at.get(0) or fun.call({**args, **self.cases[0].values(values)})
+                    at[i] = at_case(i)
+                labels.append(_label(c, self.cases[i], depends[c], self.scene.parameters))
+                g.append(self.sizing.nlp_form(c, at[i], args))
+                exprs.append(at[i][c])
+        return labels, g, exprs, (at[0] if 0 in at else at_case(0))
+
+    @cached_property
+    def at_scene(self) -> dict:
+        """The NLP (:meth:`nlp`) at the scene's parameters ``p0``, folded into its expressions (a route's sums are
+        numbers; the NLP's ``p`` is still there, unused): what IPOPT solves when ``p`` is ``p0``, its derivatives no
+        longer carrying every segment's parameters."""
+        if not self._nlp_model.is_a("SXFunction"):
+            return self.nlp()
+        x, c = (ca.SX.sym(k, self._nlp_model.size1_in(k)) for k in ("x", "c"))
+        model = ca.Function("nlp_model_p0", [x, c], self._nlp_model.call([x, ca.DM(self.p0), c]),
+                            ["x", "c"], self._nlp_model.name_out())
+        x_si = self.xs * ca.DM(self.x_scale)
+        args = {**dict(zip(self.params, self.p0.tolist())), **{k: x_si[i] for i, k in enumerate(self.variables)},
+                **{k: 0.0 for k in self.problem.given}}
+        _, g, _, out = self._constraints(model, self.problem.function, args, self.p, x_si)
+        return self.nlp(f=self._objective(out[self.sizing.PRIMARY] / self.m_ref),
+                        g=ca.vertcat(*g) / ca.DM(self.g_scale))
+
+    def _objective(self, primary):
+        """The primary objective (scaled), then the other variables in order, far below it."""
+        f = primary
+        for i, w in enumerate(self.sizing.WEIGHTS):
+            f = f + w * self.xs[1 + i]
+        return f
 
     def envelope(self, xs, p=None) -> Envelope:
         """Every output of the scene at scaled ``xs`` in every case, each at its worst

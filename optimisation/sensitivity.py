@@ -27,21 +27,26 @@ import numpy as np
 from optimisation.ipopt import Solution
 from optimisation.problem import SizingProblem
 
-#: the KKT matrices' Function of each problem, built once (kept while the problem lives)
-_KKT: weakref.WeakKeyDictionary[SizingProblem, ca.Function] = weakref.WeakKeyDictionary()
+#: the KKT matrices' Functions of each problem, built once (kept while the problem lives)
+_KKT: weakref.WeakKeyDictionary[SizingProblem, tuple[ca.Function, ca.Function]] = weakref.WeakKeyDictionary()
 
 
-def _functions(problem: SizingProblem) -> ca.Function:
+def _functions(problem: SizingProblem) -> tuple[ca.Function, ca.Function]:
+    """The KKT matrix's parts in x (H, J_x), and the weighted parameter derivative w_x ∂(∇_x L)/∂p + w_g ∂g/∂p:
+    the few rows of ∂x*/∂p wanted, by as many adjoint sweeps (a route has thousands of parameters: their full
+    Jacobians cost a forward sweep each)."""
     kkt = _KKT.get(problem)
     if kkt is None:
-        lam = ca.MX.sym("lam", problem.g.numel())
-        L = problem.f + ca.dot(lam, problem.g)
-        grad_L = ca.gradient(L, problem.xs)
-        kkt = _KKT[problem] = ca.Function(
-            "kkt", [problem.xs, problem.p, lam],
-            [ca.jacobian(grad_L, problem.xs), ca.jacobian(grad_L, problem.p),
-             ca.jacobian(problem.g, problem.xs), ca.jacobian(problem.g, problem.p)],
-            ["x", "p", "lam"], ["H", "Lxp", "Jx", "Jp"])
+        n, m = problem.xs.numel(), problem.g.numel()
+        lam, w_x, w_g = ca.MX.sym("lam", m), ca.MX.sym("w_x", n, n), ca.MX.sym("w_g", n, m)
+        grad_L = ca.gradient(problem.f + ca.dot(lam, problem.g), problem.xs)
+        weighted = ca.mtimes(w_x, grad_L) + ca.mtimes(w_g, problem.g)
+        kkt = _KKT[problem] = (
+            ca.Function("kkt", [problem.xs, problem.p, lam], [ca.jacobian(grad_L, problem.xs),
+                                                               ca.jacobian(problem.g, problem.xs)],
+                        ["x", "p", "lam"], ["H", "Jx"]),
+            ca.Function("kkt_p", [problem.xs, problem.p, lam, w_x, w_g], [ca.jacobian(weighted, problem.p)],
+                        ["x", "p", "lam", "w_x", "w_g"], ["dW"]))
     return kkt
 
 
@@ -53,9 +58,9 @@ def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, di
     depends): the derivatives do not exist there, and no number is made up for them.
     """
     p = problem.p0 if p is None else np.asarray(p, dtype=float)
-    kkt = _functions(problem)
+    kkt, kkt_p = _functions(problem)
     out = kkt(x=sol.xs, p=p, lam=sol.lam_g)
-    H, Lxp, Jx, Jp = (np.asarray(out[k]) for k in ("H", "Lxp", "Jx", "Jp"))
+    H, Jx = (np.asarray(out[k]) for k in ("H", "Jx"))
     idx = [problem.constraints.index(c) for c in sol.active]
     fixed = [i for i, _ in sol.active_bounds]
     n, na, nb = 3, len(idx), len(fixed)
@@ -66,11 +71,15 @@ def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, di
     K[:n, n + na:] = E.T
     K[n:n + na, :n] = Jx[idx, :]
     K[n + na:, :n] = E
-    rhs = -np.vstack([Lxp, Jp[idx, :], np.zeros((nb, len(problem.params)))])
+    # ∂x/∂p = −Z [∂(∇_x L)/∂p; ∂g_A/∂p; 0], Z the first n rows of K⁻¹ (solved from Kᵀ)
     try:
-        dx = np.linalg.solve(K, rhs)[:n, :] * problem.x_scale[:, None]
+        Z = np.linalg.solve(K.T, np.eye(n + na + nb)[:, :n]).T
     except np.linalg.LinAlgError:
         return {}
+    w_g = np.zeros((n, Jx.shape[0]))
+    np.add.at(w_g.T, idx, Z[:, n:n + na].T)
+    dW = np.asarray(kkt_p(x=sol.xs, p=p, lam=sol.lam_g, w_x=Z[:, :n], w_g=w_g)["dW"])
+    dx = -dW * problem.x_scale[:, None]
     if not np.all(np.isfinite(dx)):
         return {}
     return {name: {v: float(dx[i, j]) for i, v in enumerate(problem.variables)}

@@ -105,8 +105,9 @@ class Problem:
         # floats; an array given in ``values`` passes through as it is
         out: dict[str, Any] = {k: self.scene.parameters[k] for k in self.knowns if k in self.scene.parameters}
         out.update(self.given_values)
+        knowns = set(self.knowns)
         for k, v in (values or {}).items():
-            if k not in self.knowns:
+            if k not in knowns:
                 raise InputError(f"{k} is not an input of this problem; inputs: {', '.join(self.knowns)}")
             out[k] = v if isinstance(v, np.ndarray) else self.model.quantities[k].to_si(v, "si")
         missing = [k for k in self.knowns if k not in out]
@@ -147,8 +148,9 @@ class Problem:
                 raise SolveError(why)
         return Result(self.scene, self.model, values_all, self.given, self.find)
 
-    def evaluate(self, columns: dict[str, np.ndarray], parallel: int = 1) -> dict[str, np.ndarray]:
-        """Vectorised solve: arrays of SI inputs (missing ones from the scene) → arrays of unknowns.
+    def evaluate(self, columns: dict[str, np.ndarray], parallel: int = 1, outputs=None) -> dict[str, np.ndarray]:
+        """Vectorised solve: arrays of SI inputs (missing ones from the scene) → arrays of unknowns (every one,
+        or only ``outputs``).
 
         Evaluated in chunks by :func:`ropemodel.core.evaluate.evaluate_columns` (``Function.map``, or
         the same Function compiled to C; ``parallel`` threads), so memory stays bounded and the
@@ -162,8 +164,8 @@ class Problem:
         arrays.update({k: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for k, v in
                        self.scene.rule_values({**base, **arrays}, arrays).items()})
         constants = {k: base[k] for k in self.knowns if k not in arrays}
-        out = evaluate_columns(self.function, arrays, constants, threads=parallel)
-        return {u: out[u] for u in self.unknowns}
+        out = evaluate_columns(self.function, arrays, constants, threads=parallel, outputs=outputs)
+        return {u: out[u] for u in (self.unknowns if outputs is None else outputs)}
 
     def _unlimited(self, name: str, value: float, x: dict) -> bool:
         """An infinite output is allowed where it follows from an unlimited input (e.g. no stroke given)."""

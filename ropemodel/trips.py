@@ -286,7 +286,8 @@ def _pieces(problem, trip: Trip, cuts) -> list[Piece]:
     cols = {"a_h": np.array([q[3] for q in phase])}
     if "x_m" in problem.knowns:
         cols["x_m"] = x
-    out = problem.evaluate(cols)
+    wanted = [f"{f}_{direction}" for f in ("F_C", "F_S", "dF") if f"{f}_{direction}" in problem.unknowns]
+    out = problem.evaluate(cols, outputs=wanted)
     F_C, F_S = out[f"F_C_{direction}"], out[f"F_S_{direction}"]
     take_up = needing("trips", trip.scene, "a trip").take_up(out, direction, len(spans))
     pieces = []

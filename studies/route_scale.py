@@ -2,14 +2,17 @@
 
 A 2 km incline (10 deg on average with a 700 m undulation of +-15 m, falling away from the drive) surveyed at
 n points is written as a profile file (``[route_profile]``, ``distance [m],height [m]``) and each command
-runs on it in a fresh process, timed (wall clock, imports included) with its peak memory (max RSS).  The
-peer, measured in the same run: a plain numpy evaluation of the steady rope forces at the drum with the load
-at every joint of the route, both directions (docs/physics.md §4, the closed forms of the sums over segments,
-written out here), whose worst ``F_C_up`` each ``run`` must equal to 1e-12.
+runs on it in a fresh process, timed (wall clock and CPU time, imports included) with its peak memory (max
+RSS).  The peer, measured in the same run: a plain numpy evaluation of the steady rope forces at the drum with
+the load at every joint of the route, both directions (docs/physics.md §4, the closed forms of the sums over
+segments, written out here), whose worst ``F_C_up`` each ``run`` must equal to 1e-12.
 
-Printed: time and memory per command and n, the time relative to the smallest n (growth) and to the numpy
-peer.  ``--fast``: n = 10, 30, 100 (what the test runs); full: n = 10, 30, 100, 300, 1000, 3000, 10 000
-(``size`` up to 100).
+Printed: time (wall, CPU) and memory per command and n, the time relative to the smallest n (growth) and to
+the numpy peer.  ``--fast``: n = 10, 30, 100 (what the test runs); full: n = 10, 30, 100, 300, 1000, 3000,
+10 000 (``size`` up to 1000).
+
+The numbers measured before and after issue 22.4's second part (1000 to 10 000 points) and what is left are in
+studies/README.md, "Routes at survey scale".
 """
 
 from __future__ import annotations
@@ -62,9 +65,9 @@ n_slip = 1.25
 n_rope = 4.5
 F_S_min = "5 kN"
 """
-#: the largest profile ``size`` runs on, fast or full: its cost grows fastest (the sensitivities of the design to
-#: every segment's parameters; see the README)
-SIZE_UP_TO = 100
+#: the largest profile ``size`` runs on, fast or full: its cost grows fastest (the NLP checks every place that
+#: can govern through the whole route; see studies/README.md)
+SIZE_UP_TO = 1000
 COMMANDS = {"run": (RUN, ["run", "--json"]), "trip": (RUN, ["trip", "--json"]),
             "size": (SIZE, ["size", "--json", "--no-limit"])}    # above 50 segments: above the route-sizing budget
 #: in a fresh process: the command, then its wall time and peak memory on the last line of stdout
@@ -76,7 +79,8 @@ buf = io.StringIO()
 with redirect_stdout(buf):
     code = main(sys.argv[1:])
 print(buf.getvalue())
-print(code, time.perf_counter() - t0, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
+use = resource.getrusage(resource.RUSAGE_SELF)
+print(code, time.perf_counter() - t0, use.ru_maxrss, use.ru_utime + use.ru_stime)
 """
 
 
@@ -103,14 +107,17 @@ def numpy_forces(x: np.ndarray, h: np.ndarray) -> dict[str, np.ndarray]:
     return out
 
 
-def _probe(folder: Path, argv: list[str]) -> tuple[dict, float, float]:
+def _probe(folder: Path, argv: list[str]) -> tuple[dict, float, float, float]:
+    """The command's JSON, its wall time [s], peak memory [MB] and CPU time [s]."""
     done = subprocess.run([sys.executable, "-c", PROBE, *argv, str(folder / "scene.toml")], capture_output=True,
                           text=True, cwd=folder, check=False)
     *body, last = done.stdout.strip().splitlines()
-    code, seconds, rss_kb = last.split()
+    code, seconds, rss_kb, cpu = last.split()
     if code != "0":
         raise RuntimeError(f"{argv[0]} failed on {folder}: {done.stderr.strip()[-400:]}")
-    return json.loads("\n".join(body)), float(seconds), float(rss_kb) / 1024.0
+    if "WARNING(" in done.stderr:     # CasADi's, e.g. "many inputs"
+        raise RuntimeError(f"{argv[0]} on {folder} printed a solver warning: {done.stderr.strip()[-400:]}")
+    return json.loads("\n".join(body)), float(seconds), float(rss_kb) / 1024.0, float(cpu)
 
 
 def measure(n: int, folder: Path, size_up_to: int) -> list[dict]:
@@ -130,8 +137,9 @@ def measure(n: int, folder: Path, size_up_to: int) -> list[dict]:
         if command == "size" and n > size_up_to:
             continue
         (folder / "scene.toml").write_text(scene)
-        result, seconds, mb = _probe(folder, argv)
-        row = {"points": n, "command": command, "seconds": seconds, "peak_MB": mb, "numpy_seconds": peer}
+        result, seconds, mb, cpu = _probe(folder, argv)
+        row = {"points": n, "command": command, "seconds": seconds, "cpu_seconds": cpu, "peak_MB": mb,
+               "numpy_seconds": peer}
         if command == "run":
             row["F_C_up"], row["F_C_up_numpy"] = result["F_C_up"], float(np.max(forces["F_C_up"]))
         rows.append(row)

@@ -91,7 +91,8 @@ def _explicit_solver(model, structure: Structure, name: str) -> ca.Function | No
         if any(eq.call is not None for eq in eqs):
             return None
         x = ca.vertcat(*[model.symbols[u] for u in block.unknowns])
-        sol = linear_solution(ca.vertcat(*[eq.residual for eq in eqs]), x)
+        sol = _definition(eqs[0].residual, x) if len(eqs) == 1 else None
+        sol = linear_solution(ca.vertcat(*[eq.residual for eq in eqs]), x) if sol is None else sol
         if sol is None:
             return None
         unknowns += [model.symbols[u] for u in block.unknowns]
@@ -100,6 +101,15 @@ def _explicit_solver(model, structure: Structure, name: str) -> ca.Function | No
     by_name = {u: resolved[k] for k, u in enumerate(u for b in structure.blocks for u in b.unknowns)}
     return ca.Function(name, [model.symbols[k] for k in structure.knowns], [by_name[u] for u in structure.unknowns],
                        list(structure.knowns), list(structure.unknowns), MANY_INPUTS)
+
+
+def _definition(res: ca.SX, x: ca.SX) -> ca.SX | None:
+    """``f`` of a definition ``res = x − f`` with ``f`` free of ``x``, else None: what :func:`linear_solution`
+    gives, −(0 − f)/1, which CasADi simplifies to ``f`` itself, without its Jacobian and substitution (a
+    route of thousands of segments defines thousands of coefficients)."""
+    if res.is_scalar() and res.is_op(ca.OP_SUB) and ca.is_equal(res.dep(0), x) and not ca.depends_on(res.dep(1), x):
+        return res.dep(1)
+    return None
 
 
 def linear_solution(res: ca.SX, x: ca.SX) -> ca.SX | None:

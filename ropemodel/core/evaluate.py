@@ -48,6 +48,10 @@ from ropemodel.errors import InputError, SolveError
 BACKENDS = ("auto", "casadi", "compiled")
 BLOCK = 4096  # points per call of the compiled map: its work array stays in cache
 COMPILE_MIN = 20000  # "auto" compiles to C only for at least this many points (gcc takes ~0.3 s)
+#: constant inputs × points above which ``Function.map`` is not given the constants: CasADi's map repeats each
+#: constant input at every point (a 3000-segment route's model evaluated at 3000 places of the load: 18·10^6
+#: numbers), so the constants are folded into the Function first (:func:`folded`)
+FOLD_MIN = 10**6
 
 
 @dataclass
@@ -262,18 +266,53 @@ def reordered(function: ca.Function, order, outputs=None) -> ca.Function:
     syms = {k: ca.MX.sym(k) for k in function.name_in()}
     res = function.call(syms)
     outputs = list(function.name_out()) if outputs is None else list(outputs)
-    out = ca.Function(function.name(), [syms[k] for k in order], [res[o] for o in outputs], list(order), outputs)
-    return out.expand() if function.is_a("SXFunction") else out
+    out = ca.Function(function.name(), [syms[k] for k in order], [res[o] for o in outputs], list(order), outputs,
+                      MANY_INPUTS)
+    return out.expand(function.name(), MANY_INPUTS) if function.is_a("SXFunction") else out
+
+
+def folded(function: ca.Function, n_var: int, constants: list[float]) -> tuple[ca.Function | None, dict[str, float]]:
+    """The SX ``function`` with its inputs after the first ``n_var`` fixed at ``constants``: CasADi does the
+    arithmetic on numbers once, here (the same operations in the same order, so the same results).  Returns the
+    Function of the first ``n_var`` inputs to the outputs that still depend on them (None if none does), and the
+    values of the others (a route's sums, its segments' coefficients: one number each, not one per point)."""
+    syms = [ca.SX.sym(k) for k in function.name_in()[:n_var]]
+    out = function.call(syms + [ca.SX(float(c)) for c in constants])
+    fixed = {k: float(ca.DM(e)) for k, e in zip(function.name_out(), out) if e.is_constant()}
+    moving = [k for k in function.name_out() if k not in fixed]
+    if not moving:
+        return None, fixed
+    return ca.Function(function.name(), syms, [out[function.index_out(k)] for k in moving],
+                       function.name_in()[:n_var], moving, MANY_INPUTS), fixed
+
+
+class _FoldedJob:
+    """A :class:`Job` of a :func:`folded` Function (its constants inside it): evaluated by ``Function.map``,
+    built here and not cached (a Function for one set of constants); the outputs that no longer vary are
+    repeated, not evaluated at every point."""
+
+    def __init__(self, function: ca.Function, varied: list[str], constants: list[float], threads: int):
+        moving, self.fixed = folded(function, len(varied), constants)
+        self.varied = varied
+        self.mapped = None if moving is None else _Mapped(moving, len(varied), threads)
+
+    def __call__(self, inputs: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        n = len(inputs[self.varied[0]])
+        out = {} if self.mapped is None else self.mapped([inputs[k] for k in self.varied], n, [])
+        out.update({k: np.full(n, v) for k, v in self.fixed.items()})
+        return out
 
 
 def evaluate_columns(function: ca.Function, columns: dict, constants: dict, threads: int = 1,
-                     backend: str = "auto", chunk: int = 65536, block: int = BLOCK) -> dict[str, np.ndarray]:
-    """Every output of ``function`` at many points, in chunks: ``columns`` name → SI array (all one
-    length) vary, ``constants`` name → SI float do not; together they name every input.
+                     backend: str = "auto", chunk: int = 65536, block: int = BLOCK,
+                     outputs=None) -> dict[str, np.ndarray]:
+    """Every output of ``function`` (or only ``outputs``) at many points, in chunks: ``columns`` name → SI
+    array (all one length) vary, ``constants`` name → SI float do not; together they name every input.
 
     The same engine as a sweep (compiled once per process, threads, bounded memory), without
     validation or files: a drop-in body for ``Problem.evaluate``.  ``block``: points per call of
-    the compiled map (:class:`Job`).
+    the compiled map (:class:`Job`).  Evaluated by CasADi with many constants at many points (above
+    :data:`FOLD_MIN`), the constants are folded in first (:func:`folded`): memory linear in the points.
     """
     columns = {k: np.ascontiguousarray(v, dtype=float).ravel() for k, v in columns.items()}
     n_points = len(next(iter(columns.values()))) if columns else 1
@@ -287,14 +326,19 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     if any(len(v) != n for v in columns.values()):
         raise InputError(f"input arrays of different lengths: {sorted({len(v) for v in columns.values()})}")
     order = list(columns) + list(constants)
-    missing = [k for k in function.name_in() if k not in order]
+    given = set(order)
+    missing = [k for k in function.name_in() if k not in given]
     if missing:
         raise InputError(f"no value for {', '.join(missing)}")
-    hit = _REORDERED.get((id(function), tuple(order)))
+    key = (id(function), tuple(order), None if outputs is None else tuple(outputs))
+    hit = _REORDERED.get(key)
     if hit is None or hit[0] is not function:
-        hit = _remember(_REORDERED, (id(function), tuple(order)), (function, reordered(function, order)))
+        hit = _remember(_REORDERED, key, (function, reordered(function, order, outputs)))
     fun = hit[1]
-    job = Job(fun, list(columns), constants, backend=backend, threads=threads, block=block)
+    if backend == "casadi" and fun.is_a("SXFunction") and len(constants) * n > FOLD_MIN:
+        job: Job | _FoldedJob = _FoldedJob(fun, list(columns), list(constants.values()), threads)
+    else:
+        job = Job(fun, list(columns), constants, backend=backend, threads=threads, block=block)
     out = {o: np.empty(n) for o in fun.name_out()}
     for s in range(0, n, chunk):
         e = min(n, s + chunk)

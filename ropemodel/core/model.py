@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from functools import cached_property
+
 import casadi as ca
 
 from ropemodel.citations import cite
@@ -35,14 +37,19 @@ class Model:
         defined: dict[str, str] = {}
         #: effect → variant of the submodels that built at least one equation
         self.built_effects: dict[str, str] = {}
+        #: output → the names its equation involves (:meth:`Equation.names`, read once: a route's sums name
+        #: every segment)
+        self.names_of: dict[str, list[str]] = {}
         for sm in self.submodels:
             for eq in sm.equations(self.symbols):
                 self.built_effects[sm.effect] = sm.variant
-                for name in eq.names():
+                names = eq.names()
+                for name in names:
                     self.symbols[name]  # a call equation's names become symbols too
                 if eq.defines in defined:
                     raise RuntimeError(f"{eq.defines} defined by both {defined[eq.defines]} and {sm.effect}")
                 defined[eq.defines] = sm.effect
+                self.names_of[eq.defines] = names
                 self.equations.append(eq)
         self.outputs = [eq.defines for eq in self.equations]
         self.parameters = [n for n in self.symbols if n not in defined]
@@ -70,7 +77,11 @@ class Model:
         return self.symbols[eq.defines] - ca.sum1(ca.sin(args))
 
     def equation_of(self, name: str) -> Equation:
-        return self.equations[self.outputs.index(name)]
+        return self.equations[self._index[name]]
+
+    @cached_property
+    def _index(self) -> dict[str, int]:
+        return {o: i for i, o in enumerate(self.outputs)}
 
     def inputs_of(self, names=None) -> set[str]:
         """The parameters the outputs ``names`` (default: every output) are computed from, through the
@@ -89,7 +100,7 @@ class Model:
                 continue
             seen.add(name)
             if name in self.defined_by:
-                todo += self.equation_of(name).names()
+                todo += self.names_of[name]
             elif name in self.symbols:
                 out.add(name)
         return out

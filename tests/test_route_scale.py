@@ -1,0 +1,132 @@
+"""Routes at survey scale (issue 22, item 4): a profile of a thousand points through ``trip`` and the array evaluator
+with its constants folded in, equal to the same route written as ``[[route]]`` tables and to the exact trip
+written out in numpy.
+
+Truths: the trip integrated in the distance travelled, in closed form on each stretch (``test_trip._by_distance``,
+numpy only, docs/physics.md §4); the same route as ``[[route]]`` tables (a second way in); CasADi's map with the
+constants passed at every point (a second method of the same evaluation).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from test_trip import LOAD, _by_distance
+
+import ropemodel as rm
+from optimisation import design as sizing
+from optimisation import ipopt
+from optimisation.problem import SizingProblem, load_sizing
+from ropemodel import budget
+from ropemodel.core import evaluate as ev
+from ropemodel.problem import Problem
+from ropemodel.trips import trip
+
+F_NWL = 400e3   # keeps both ropes taut through the ramps on every segment of the route below
+
+
+def _segments(n: int, seed: int = 3) -> list[tuple[float, float, float | None]]:
+    """n segments of 1 to 3 m at 2 to 25 deg (a surveyed incline, the survey's noise included), lengths [m],
+    inclinations [deg], the winding rope's coefficient (None: mu_pl)."""
+    rng = np.random.default_rng(seed)
+    return [(float(L), float(a), None) for L, a in zip(rng.uniform(1.0, 3.0, n), rng.uniform(2.0, 25.0, n))]
+
+
+def _scene_files(tmp_path, segments) -> tuple:
+    """The route as a profile file (``length [m],inclination [deg]``) and as ``[[route]]`` tables."""
+    (tmp_path / "route.csv").write_text("length [m],inclination [deg]\n"
+                                        + "".join(f"{L!r},{a!r}\n" for L, a, _ in segments))
+    head = ('[effects]\nroute = "segments"\ndynamics = "trip"\ninertia = "rigid"\npower = "drive"\n'
+            'rope_elasticity = "rigid"\n')
+    params = ("[parameters]\n" + "".join(f"{k} = {v!r}\n" for k, v in LOAD.items() if k in ("mu_pm", "mu_pl", "eta"))
+              + f'G_m = "{LOAD["G_m"]!r} N"\nq_l = "{LOAD["q_l"]!r} N/m"\nq_lw = "5.8 mm/kN"\n'
+              f'v_pj = "{LOAD["v_pj"]!r} m/s"\nt_ramp = "{LOAD["t_ramp"]!r} s"\nF_nwl = "{F_NWL!r} N"\n')
+    profile, tables = tmp_path / "profile.toml", tmp_path / "tables.toml"
+    profile.write_text(head + '[route_profile]\nfile = "route.csv"\n' + params)
+    tables.write_text(head + "".join(f'[[route]]\nlength = "{L!r} m"\ninclination = "{a!r} deg"\n'
+                                     for L, a, _ in segments) + params)
+    return profile, tables
+
+
+@pytest.fixture(scope="module")
+def thousand(tmp_path_factory):
+    """1000 segments as a profile and as tables: (segments, profile scene, tables scene)."""
+    segments = _segments(1000)
+    files = _scene_files(tmp_path_factory.mktemp("thousand"), segments)
+    return (segments, *(rm.load_scene(str(p)) for p in files))
+
+
+@pytest.mark.parametrize("direction", ["up", "down"])
+def test_a_thousand_segment_trip_equals_its_tables_and_the_exact_trip(thousand, direction):
+    """1000 segments (the trip's pieces evaluated with the route's constants folded in: 2000 constants at 1000
+    pieces, above ev.FOLD_MIN): the summary equals the same route as [[route]] tables to 1e-12 and the trip
+    integrated in the distance in numpy to the rounding of a thousand-term sum."""
+    segments, profile, tables = thousand
+    assert 2 * len(segments) * len(segments) > ev.FOLD_MIN
+    got, same = trip(profile, direction).summary, trip(tables, direction).summary
+    assert set(got) == set(same)
+    for k, v in same.items():
+        assert got[k] == pytest.approx(v, rel=1e-12, abs=1e-9), k
+    ref = _by_distance(direction, segments, LOAD["t_ramp"], F_NWL)
+    for k in ("t_trip", "F_C_max", "F_S_min", "P_max", "P_brake_max", "P_rms", "E_trip", "W_drum", "stroke_needed"):
+        assert got[k] == pytest.approx(ref[k], rel=1e-9, abs=1e-6), k
+    assert got["E_regen"] == pytest.approx(ref["E_brake"], rel=1e-9, abs=1e-6)
+
+
+def test_folded_constants_give_what_the_map_gives(monkeypatch):
+    """The model of a 200-segment route at 500 places of the load, with its constants folded into the Function
+    (FOLD_MIN lowered to 0) and passed to CasADi's map at every point (FOLD_MIN above the work): the same
+    numbers to the last bit; an output that does not vary with the place is one number repeated."""
+    raw = dict(rm.load_scene("route_segments").raw)
+    raw["route"] = [{"length": f"{L!r} m", "inclination": f"{a!r} deg"} for L, a, _ in _segments(200, seed=5)]
+    raw["parameters"] = {**raw["parameters"], "F_nwl": "400 kN"}
+    problem = Problem(rm.from_dict(raw, emit=False))
+    x = np.linspace(0.0, sum(L for L, _, _ in _segments(200, seed=5)), 500)
+    columns = {"x_m": x, "a_h": np.where(x < 150.0, 0.5, -0.5)}
+    monkeypatch.setattr(ev, "FOLD_MIN", math.inf)
+    mapped = problem.evaluate(columns)
+    monkeypatch.setattr(ev, "FOLD_MIN", 0)
+    folded = problem.evaluate(columns)
+    assert set(folded) == set(mapped)
+    for k, v in mapped.items():
+        np.testing.assert_array_equal(folded[k], v, err_msg=k)
+    assert np.ptp(folded["G_l"]) == 0.0 and np.ptp(folded["F_C_up"]) > 0.0
+
+
+SIZING = ('[effects]\nroute = "segments"\nrope = "6x36-IWRC"\nlining = "rigid"\ndynamics = "trip"\n'
+          '[parameters]\nmu_pm = 0.05\nmu_pl = 0.05\nG_m = "467 kN"\nv_pj = "2.5 m/s"\nt_ramp = "5 s"\n'
+          'rope_grade = "1770 N/mm^2"\nrope_E = "100 kN/mm^2"\nmu_d = 0.2\nalpha_d = "540 deg"\nn_slip = 1.25\n'
+          'n_rope = 4.5\nF_S_min = "5 kN"\n')
+
+
+@pytest.mark.slow      # several seconds: three sizings of a 20-segment route
+def test_sizing_a_profile_equals_its_tables_and_the_parametric_nlp(tmp_path):
+    """20 segments of 10 to 60 m: ``size`` on the profile file equals ``size`` on the same route as [[route]]
+    tables to 1e-12 (design, continuous optimum, sensitivities), and IPOPT on the NLP with the scene's values
+    folded in (what ``size`` solves) finds the optimum of the parametric NLP (a second method) to 1e-10."""
+    rng = np.random.default_rng(11)
+    segments = list(zip(rng.uniform(10.0, 60.0, 20), rng.uniform(2.0, 25.0, 20)))
+    (tmp_path / "route.csv").write_text("length [m],inclination [deg]\n"
+                                        + "".join(f"{float(L)!r},{float(a)!r}\n" for L, a in segments))
+    head, params = SIZING.split("[parameters]\n")
+    (tmp_path / "profile.toml").write_text(head + '[route_profile]\nfile = "route.csv"\n[parameters]\n' + params)
+    (tmp_path / "tables.toml").write_text(head + "".join(f'[[route]]\nlength = "{float(L)!r} m"\ninclination = '
+                                                         f'"{float(a)!r} deg"\n' for L, a in segments)
+                                          + "[parameters]\n" + params)
+    with budget.lifted():
+        profile, tables = (sizing.size(str(tmp_path / f"{k}.toml")) for k in ("profile", "tables"))
+        problem = SizingProblem(load_sizing(str(tmp_path / "tables.toml"), emit=False))
+    assert profile.design == tables.design
+    for k, v in tables.continuous.items():
+        assert profile.continuous[k] == pytest.approx(v, rel=1e-12), k
+    for p, column in tables.sensitivities.items():
+        for k, v in column.items():
+            assert profile.sensitivities[p][k] == pytest.approx(v, rel=1e-12, abs=1e-15), (p, k)
+    lbx, ubx = problem.bounds()
+    args = dict(x0=problem.x0(), p=problem.p0, lbx=lbx, ubx=ubx, lbg=0.0, ubg=np.inf)
+    parametric = np.asarray(ipopt.solver(problem)(**args)["x"]).ravel()
+    folded = np.asarray(ipopt.solver(problem, at_scene=True)(**args)["x"]).ravel()
+    np.testing.assert_allclose(folded, parametric, rtol=1e-10)
+    assert problem.to_si(folded)["d"] == pytest.approx(tables.continuous["d"], rel=1e-8)
