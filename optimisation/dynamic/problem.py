@@ -154,6 +154,14 @@ class DynamicSizingProblem(SizingProblem):
         return self.backoffs.get(check, BACKOFF)
 
     @cached_property
+    def at_scene(self) -> dict:
+        """The NLP IPOPT solves at the scene's parameters: this problem's own (:meth:`nlp`), the checks through
+        the manoeuvres included.  The static problem's folds ``p0`` into its static checks alone, over its load
+        cases (``cases`` here are the manoeuvres): on this problem it raised AttributeError, which the solver's
+        ``hasattr`` took for "no fold", and had it built it would have dropped every dynamic check."""
+        return self.nlp()
+
+    @cached_property
     def ipopt_options(self) -> dict:
         """IPOPT settings of this NLP (:func:`optimisation.ipopt.solver` adds them): the first barrier
         parameter :data:`MU_INIT`, and the Hessian of the Lagrangian of the objective and the static checks
