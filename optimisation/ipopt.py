@@ -139,9 +139,30 @@ def _active_set(problem, sol, lbx, ubx, p):
     if len(active) > 1:
         from optimisation.activeset import regular_subset
 
-        J = np.asarray(_jac_functions(problem)[0](sol.xs, p)[1])
+        J = jacobian_at(problem, sol.xs, p)[1]
         active = list(regular_subset(active, sol.active_bounds, J, sol.lam_g, len(sol.xs))[0])
     sol.active = [problem.constraints[i] for i in active]
+
+
+#: evaluations of (g, ∂g/∂x) kept per problem (:func:`jacobian_at`)
+KEPT = 4
+
+
+def jacobian_at(problem, xs, p) -> tuple[np.ndarray, np.ndarray]:
+    """(g, ∂g/∂x) of ``problem`` at scaled ``xs`` and parameters ``p`` (numpy, read-only).  The last
+    :data:`KEPT` evaluations are kept: the active set, the polish, the lexicographic test and the warm
+    re-solves (:mod:`optimisation.dynamic.warm`) ask the same point in turn, and through the dynamic NLP's
+    integrators each evaluation integrates every case with its sensitivities."""
+    key = (np.asarray(xs, float).tobytes(), np.asarray(p, float).tobytes())
+    kept = problem.__dict__.setdefault("_jac_kept", {})
+    if key not in kept:
+        g, J = (np.asarray(a, float) for a in _jac_functions(problem)[0](xs, p))
+        g = g.ravel()
+        g.flags.writeable = J.flags.writeable = False
+        kept[key] = (g, J)
+        while len(kept) > KEPT:
+            kept.pop(next(iter(kept)))
+    return kept[key]
 
 
 def _jac_functions(problem):
@@ -159,10 +180,9 @@ def _polish(problem, sol, p, lbx, ubx):
     fixed = [i for i, _ in sol.active_bounds]
     if len(idx) + len(fixed) != 3:
         return
-    jac_g, _ = _jac_functions(problem)
     x, last = sol.xs.copy(), np.inf
     for _ in range(20):
-        g, J = (np.asarray(a) for a in jac_g(x, p))
+        g, J = jacobian_at(problem, x, p)
         r = np.concatenate([g.ravel()[idx], np.zeros(len(fixed))])
         A = np.vstack([J[idx, :], np.eye(3)[fixed, :]]) if fixed else J[idx, :]
         if np.linalg.cond(A) > 1e12:
@@ -174,9 +194,9 @@ def _polish(problem, sol, p, lbx, ubx):
         if size < 1e-15 * max(1.0, np.max(np.abs(x))) or size > 0.5 * last:
             break
         last = size
-    g = np.asarray(jac_g(x, p)[0]).ravel()
+    g = jacobian_at(problem, x, p)[0]
     if np.all(g > -1e-9) and np.all(x >= lbx - 1e-12) and np.all(x <= ubx + 1e-12):
-        sol.xs, sol.g, sol.polished = x, g, True
+        sol.xs, sol.g, sol.polished = x, g.copy(), True
 
 
 def lexicographic_ok(problem, sol, p) -> bool:
@@ -186,9 +206,8 @@ def lexicographic_ok(problem, sol, p) -> bool:
     normals (and active bound normals): then no feasible direction lowers the mass,
     so the weighted optimum respects the lexicographic order.
     """
-    jac_g, grad_f0 = _jac_functions(problem)
-    _, J = jac_g(sol.xs, p)
-    J = np.asarray(J)
+    _, grad_f0 = _jac_functions(problem)
+    J = jacobian_at(problem, sol.xs, p)[1]
     gf = np.asarray(grad_f0(sol.xs, p)).ravel()
     idx = [problem.constraints.index(c) for c in sol.active]
     normals = [J[i, :] for i in idx]
@@ -211,4 +230,4 @@ def design_of(problem: SizingProblem, sol: Solution) -> dict[str, float]:
 
 
 __all__ = ["FEAS_TOL", "IPOPT_OPTIONS", "Solution", "Start", "VARIABLES", "WARM_OPTIONS", "design_of",
-           "solve_continuous", "solver"]
+           "jacobian_at", "solve_continuous", "solver"]

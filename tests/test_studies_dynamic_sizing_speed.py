@@ -12,7 +12,7 @@ What it shows, and what is asserted:
   active set (:mod:`optimisation.dynamic.warm`) make dynamic sizing cheaper than the same sizing with every
   re-solve by IPOPT (its peer, measured in the same run), and both return the same catalogue design.  Reason:
   from the previous optimum IPOPT re-enters the central path (16-19 iterations, each integrating the transients
-  with their sensitivities); Newton on the active set takes two or three Jacobians;
+  with their sensitivities); Newton on the active set takes two Jacobians (chord steps between);
 * each scene gets the answer it has (a design, or none), and every contender costs something (a ratio of
   nothing is no ratio).
 

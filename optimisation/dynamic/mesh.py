@@ -36,9 +36,11 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from optimisation.dynamic.problem import BACKOFF, DynamicSizingProblem
 from optimisation.dynamic.refine import solve_refined
-from optimisation.dynamic.screen import SCREEN_TOL, all_margins, check_scale
+from optimisation.dynamic.screen import SCREEN_TOL, all_margins, check_scale, least_margins
 from ropemodel.errors import SolveError
 
 #: the least and largest order of convergence Richardson's estimate takes (the measured orders were 0.5 to 2.2)
@@ -83,13 +85,20 @@ def with_segments(scene, n: int):
     return dataclasses.replace(scene, raw=raw, numerics={**scene.numerics, "segments": n})
 
 
-def margins_at(problem, xs, n: int, p=None) -> dict[int, dict[str, float]]:
-    """Every check's least margin (SI, before back-offs) in every case at scaled design ``xs`` with ``n``
-    elements per span (the NLP's integrator, no sensitivities)."""
-    at = problem if n == segments_of(problem.scene) else \
-        DynamicSizingProblem(with_segments(problem.scene, n), selected=problem.selected)
-    scale = {name: check_scale(at, c) for name, c in problem.machine.manoeuvres.CHECK.items()}
-    return {i: {c: v * scale[c] for c, v in m.items()} for i, m in all_margins(at, xs, p).items()}
+def margins_at(problem, xs, n: int, p=None, which=None) -> dict[int, dict[str, float]]:
+    """Every check's least margin (SI, before back-offs) in every case (``which``: these, indices) at scaled
+    design ``xs`` with ``n`` elements per span (the NLP's integrator, no sensitivities; the smooth modes of
+    another mesh built at the start design, once: :meth:`DynamicSizingProblem.start_path`)."""
+    scale = {name: check_scale(problem, c) for name, c in problem.machine.manoeuvres.CHECK.items()}
+    if n == segments_of(problem.scene):
+        margins = all_margins(problem, xs, p, which)
+    else:
+        scene = with_segments(problem.scene, n)
+        p = problem.p0 if p is None else p
+        a = {k: float(v) for k, v in problem.values(np.asarray(xs, float) * problem.x_scale, p).items()}
+        indices = range(len(problem.cases)) if which is None else which
+        margins = {i: least_margins(problem, problem.start_path(i, scene), xs, p, a) for i in indices}
+    return {i: {c: v * scale[c] for c, v in m.items()} for i, m in margins.items()}
 
 
 @dataclass
@@ -157,11 +166,10 @@ def control(problem, xs, p=None, say=None) -> MeshEstimate | None:
     g: dict = {"F_ref": problem.F_ref, "units": units}
     levels = []
     while True:
-        for m in (n, 2 * n, 4 * n):
-            if m not in g:
-                if say is not None:
-                    say(f"mesh: {m} elements per span")
-                g[m] = margins_at(problem, xs, m, p)
+        _measure(problem, xs, p, g, n, range(len(problem.cases)), say)
+        near = [i for i, margins in g[n].items() if any(v <= SCREEN_TOL * _scale(c, g) for c, v in margins.items())]
+        for m in (2 * n, 4 * n):        # the finer meshes in the cases where a check can govern (all estimate reads)
+            _measure(problem, xs, p, g, m, near, say)
         errors, unsafe, orders = estimate(g, n)
         force = max((e for c, e in errors.items() if units[c] == "N"), default=0.0)
         levels.append({"segments": n, "largest_force_error": force})
@@ -174,6 +182,15 @@ def control(problem, xs, p=None, say=None) -> MeshEstimate | None:
         n *= 2
 
 
+def _measure(problem, xs, p, g: dict, m: int, cases, say) -> None:
+    """``g[m]`` (case → check → least margin with ``m`` elements per span) filled in for ``cases``."""
+    missing = [i for i in cases if i not in g.setdefault(m, {})]
+    if missing:
+        if say is not None:
+            say(f"mesh: {m} elements per span")
+        g[m].update(margins_at(problem, xs, m, p, missing))
+
+
 def backoffs(problem, found: MeshEstimate) -> dict[str, float]:
     """Check name → its back-off in the NLP (scaled): :data:`MARGIN` times the unsafe part of its E(n), plus
     :data:`BACKOFF`."""
@@ -184,8 +201,10 @@ def backoffs(problem, found: MeshEstimate) -> dict[str, float]:
 def converge(problem, sol, record=None, say=None):
     """The continuous optimum ``sol`` of ``problem`` solved again on the mesh :func:`control` chooses, with
     the back-offs of :func:`backoffs`, until the estimate at the optimum is within the back-offs it was
-    solved with: (problem, solution, :class:`MeshEstimate` or None).  A solution that is not feasible is
-    returned as it is (no design on the finer mesh)."""
+    solved with: (problem, solution, :class:`MeshEstimate` or None).  Each re-solve first tries Newton on the
+    previous optimum's active set (:func:`~optimisation.dynamic.warm.on_active_set`: kept only at a KKT point of
+    the new problem), then IPOPT from it.  A solution that is not feasible is returned as it is (no design on
+    the finer mesh)."""
     for _ in range(ROUNDS):
         found = control(problem, sol.xs, say=say)
         if found is None:
@@ -196,9 +215,10 @@ def converge(problem, sol, record=None, say=None):
             return problem, sol, found
         if say is not None:
             say(f"dynamic optimum on {found.segments} elements per span, checks backed off by their error")
-        scene = with_segments(problem.scene, found.segments)
-        problem = DynamicSizingProblem(scene, selected=problem.selected, backoffs=wanted)
-        problem, sol = solve_refined(problem, sol.xs, record=record)
+        scene, old = with_segments(problem.scene, found.segments), problem
+        problem = DynamicSizingProblem(scene, selected=problem.selected, backoffs=wanted,
+                                       shared_paths=problem.shared_paths)
+        problem, sol = solve_refined(problem, sol.xs, record=record, warm=(old, sol))
         if not sol.feasible:
             return problem, sol, found
     raise SolveError(f"the mesh's error estimates at the optimum kept exceeding the back-offs it was solved with "

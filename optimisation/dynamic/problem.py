@@ -58,23 +58,34 @@ class DynamicSizingProblem(SizingProblem):
     ``paths`` theirs and ``grids`` their time grids (default a uniform grid of step :data:`DT_GRID`).
     ``paths`` given: the smooth modes of a previous problem of the same scene, re-used.  ``backoffs``: check
     name → its back-off in the NLP (scaled; default :data:`BACKOFF`), from the mesh's error estimate
-    (:func:`optimisation.dynamic.mesh.backoffs`).
+    (:func:`optimisation.dynamic.mesh.backoffs`).  ``shared_paths``: the cases' smooth modes built at the start
+    design (:meth:`start_path`), shared by the problems one sizing makes of the same scene (its grids, cases,
+    meshes), so that none is built twice.
     """
 
-    def __init__(self, scene, grids=None, paths=None, selected=None, backoffs=None):
+    def __init__(self, scene, grids=None, paths=None, selected=None, backoffs=None, shared_paths=None):
         super().__init__(transient_scene(scene))
         self.backoffs = dict(backoffs or {})
+        self.shared_paths = {} if shared_paths is None else shared_paths
         self.static_constraints = list(self.constraints)
         self.g_static = self.g
         self.cases = cases(self.scene)
         if paths is None:
-            start = self.to_si(self.x0())
-            paths = [self._path(m, start) for m in self.cases]
+            paths = [self.start_path(i) for i in range(len(self.cases))]
         self.all_paths = paths
         self.selected = tuple(governing(self, self.x0()) if selected is None else selected)
         self.paths = [paths[i] for i in self.selected]
         self.grids = grids or [path.uniform_grid(self.pp0(path), DT_GRID) for path in self.paths]
         self._add_paths()
+
+    def start_path(self, i: int, scene=None) -> Path:
+        """The smooth mode of case ``i`` built at the start design (the scene's), for ``scene`` (default this
+        problem's; another mesh of it: its ``segments``), built once per mesh and shared through ``shared_paths``."""
+        scene = self.scene if scene is None else scene
+        key = (scene.numerics.get("segments"), i)
+        if key not in self.shared_paths:
+            self.shared_paths[key] = self._path(self.cases[i], self.to_si(self.x0()), scene)
+        return self.shared_paths[key]
 
     def _path(self, manoeuvre, design, scene=None) -> Path:
         optional = self.variables + self.sizing.D_OPTIONAL
@@ -143,6 +154,14 @@ class DynamicSizingProblem(SizingProblem):
         return self.backoffs.get(check, BACKOFF)
 
     @cached_property
+    def at_scene(self) -> dict:
+        """The NLP IPOPT solves at the scene's parameters: this problem's own (:meth:`nlp`), the checks through
+        the manoeuvres included.  The static problem's folds ``p0`` into its static checks alone, over its load
+        cases (``cases`` here are the manoeuvres): on this problem it raised AttributeError, which the solver's
+        ``hasattr`` took for "no fold", and had it built it would have dropped every dynamic check."""
+        return self.nlp()
+
+    @cached_property
     def ipopt_options(self) -> dict:
         """IPOPT settings of this NLP (:func:`optimisation.ipopt.solver` adds them): the first barrier
         parameter :data:`MU_INIT`, and the Hessian of the Lagrangian of the objective and the static checks
@@ -177,12 +196,12 @@ class DynamicSizingProblem(SizingProblem):
         for i in self.selected:
             old, new = self.all_paths[i], paths[i]
             if not _same_transient(self.pp0(old, xs, p), old, self.pp0(new, xs, p), new, self.F_ref):
-                return DynamicSizingProblem(self.scene, None, paths, self.selected, self.backoffs)
+                return DynamicSizingProblem(self.scene, None, paths, self.selected, self.backoffs, self.shared_paths)
         return None
 
     def refined(self, grids) -> DynamicSizingProblem:
         """The same problem on other grids (the cases' smooth modes re-used)."""
-        return DynamicSizingProblem(self.scene, grids, self.all_paths, self.selected, self.backoffs)
+        return DynamicSizingProblem(self.scene, grids, self.all_paths, self.selected, self.backoffs, self.shared_paths)
 
     def with_cases(self, selected) -> DynamicSizingProblem:
         """The same problem integrating the cases ``selected`` (indices); a case it already integrates keeps its
@@ -190,7 +209,7 @@ class DynamicSizingProblem(SizingProblem):
         selected = sorted(set(selected))
         kept = dict(zip(self.selected, self.grids))
         grids = [kept.get(i) or self.all_paths[i].uniform_grid(self.pp0(self.all_paths[i]), DT_GRID) for i in selected]
-        return DynamicSizingProblem(self.scene, grids, self.all_paths, selected, self.backoffs)
+        return DynamicSizingProblem(self.scene, grids, self.all_paths, selected, self.backoffs, self.shared_paths)
 
     def screened(self, xs, p=None) -> DynamicSizingProblem:
         """The same problem integrating the cases that govern a check at scaled design ``xs``."""

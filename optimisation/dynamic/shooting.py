@@ -47,6 +47,8 @@ RTOL = 1e-10
 ATOL = 1e-11
 OPTS = {"reltol": RTOL, "abstol": ATOL, "max_num_steps": 100000, "show_eval_warnings": False,
         "disable_internal_warnings": True}
+#: integrators at numbers kept per path (:meth:`Path._integrator`)
+KEPT = 16
 
 
 class Path:
@@ -74,6 +76,7 @@ class Path:
             ode = h * piece.f(x, ends[0] + h * tau, pp)
             self._dae.append({"x": x, "t": tau, "p": ca.vertcat(pp, ends), "ode": ode})
         self._steps: dict = {}
+        self._numeric: dict = {}
 
     # ------------------------------------------------------------------ grids
     def phase_bounds(self, pp) -> np.ndarray:
@@ -110,7 +113,7 @@ class Path:
         for k, (piece, tau) in enumerate(zip(self.sm.pieces, grid)):
             tau = np.asarray(tau, float)
             t0, t1 = t0s[k], t1s[k]
-            integ = ca.integrator(f"{name}_{k}", "cvodes", self._dae[k], 0.0, list(tau[1:]), OPTS)
+            integ = self._integrator(k, tau, name, symbolic)
             X = integ(x0=x, p=ca.vertcat(pp, t0, t1))["xf"]
             X = ca.horzcat(x, X)
             t = t0 + (t1 - t0) * ca.DM(tau).T
@@ -126,6 +129,19 @@ class Path:
             return all_times, result, all_states
         return (np.asarray(all_times).ravel(), {k: np.asarray(v) for k, v in result.items()},
                 np.asarray(all_states))
+
+    def _integrator(self, k: int, tau: np.ndarray, name: str, symbolic: bool) -> ca.Function:
+        """cvodes on phase k with output at ``tau``; at numbers, built once per grid (:data:`KEPT` kept per
+        path): the screening, the refinement's dense reading and the mesh's margins integrate the same grids
+        at design after design."""
+        if symbolic:
+            return ca.integrator(f"{name}_{k}", "cvodes", self._dae[k], 0.0, list(tau[1:]), OPTS)
+        key = (k, tau.tobytes())
+        if key not in self._numeric:
+            self._numeric[key] = ca.integrator(f"{name}_{k}", "cvodes", self._dae[k], 0.0, list(tau[1:]), OPTS)
+            while len(self._numeric) > KEPT:
+                self._numeric.pop(next(iter(self._numeric)))
+        return self._numeric[key]
 
     # ------------------------------------------------------------------ exact minima between samples
     def step(self, k: int) -> ca.Function:

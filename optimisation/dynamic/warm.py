@@ -11,10 +11,11 @@ the multipliers alike (the previous optimum violates the added points by 4e-3: I
 
 :func:`on_active_set` solves the active checks of the next problem (the previous active set, each dynamic
 check moved to its least grid point within :data:`NEAR` of its old instant; d's bound when d is fixed) by
-Newton — two or three Jacobians — and keeps the point only when it is a KKT point of the whole next problem:
-every check holds (to :data:`~optimisation.ipopt.FEAS_TOL`) and the multipliers of the active set are
-nonnegative (the objective's gradient is a nonnegative combination of the active checks' normals, no
-feasible direction lowers it).  Anything else is left to IPOPT.
+Newton — chord steps: usually two Jacobians and a few evaluations of the checks alone — and keeps the point
+only when it is a KKT point of the whole next problem: every check holds (to
+:data:`~optimisation.ipopt.FEAS_TOL`) and the multipliers of the active set are nonnegative (the objective's
+gradient is a nonnegative combination of the active checks' normals, no feasible direction lowers it).
+Anything else is left to IPOPT.
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ import time
 import casadi as ca
 import numpy as np
 
-from optimisation.ipopt import FEAS_TOL, Solution, lexicographic_ok
+from optimisation.ipopt import FEAS_TOL, Solution, jacobian_at, lexicographic_ok
 
 #: a dynamic check's instant may move this far [s] between two problems and still be the same peak
 NEAR = 0.1
@@ -34,13 +35,21 @@ NEWTON_STEPS = 8
 LAM_TOL = 1e-9
 
 
-def _jacobian(problem) -> ca.Function:
-    """(x, p) → (g, ∂g/∂x, ∇f, f) of ``problem``, built once per problem."""
-    if "_warm_jac" not in problem.__dict__:
-        problem.__dict__["_warm_jac"] = ca.Function(
-            "warm_jac", [problem.xs, problem.p],
-            [problem.g, ca.jacobian(problem.g, problem.xs), ca.gradient(problem.f, problem.xs), problem.f])
-    return problem.__dict__["_warm_jac"]
+def _jacobian(problem):
+    """(x, p) → (g, ∂g/∂x, ∇f, f) of ``problem`` (numpy): g and its Jacobian those the IPOPT path evaluates and
+    keeps (:func:`~optimisation.ipopt.jacobian_at`: the active set, the polish and the lexicographic test ask
+    the same points again), the objective's gradient from its own Function, built once per problem."""
+    if "_warm_objective" not in problem.__dict__:
+        problem.__dict__["_warm_objective"] = ca.Function(
+            "warm_objective", [problem.xs, problem.p], [ca.gradient(problem.f, problem.xs), problem.f])
+    objective = problem.__dict__["_warm_objective"]
+
+    def jac(x, p):
+        g, J = jacobian_at(problem, x, p)
+        grad, f = objective(x, p)
+        return g, J, np.asarray(grad), np.asarray(f)
+
+    return jac
 
 
 def _instant(name: str) -> tuple[str, float | None]:
@@ -75,21 +84,38 @@ def _candidates(old_active: list[str], new, g0: np.ndarray) -> list[int]:
     return out
 
 
-def _newton(jac, x, p, rows, fixed, lbx):
-    """Newton on g[rows] = 0 with x[fixed] = lbx[fixed]: the point, or None (singular, not converging)."""
-    last = np.inf
+def _residual(problem) -> ca.Function:
+    """(x, p) → g of ``problem`` alone (its transients integrated without sensitivities), built once per problem."""
+    if "_warm_g" not in problem.__dict__:
+        problem.__dict__["_warm_g"] = ca.Function("warm_g", [problem.xs, problem.p], [problem.g])
+    return problem.__dict__["_warm_g"]
+
+
+def _newton(jac, residual, x, p, rows, fixed, lbx):
+    """Newton on g[rows] = 0 with x[fixed] = lbx[fixed]: the point, or None (singular, not converging).
+
+    Chord steps: the Jacobian of the first point is kept while each step at least halves the last, and taken
+    again where one does not; g alone is evaluated between (through the integrators a tenth of the cost of g
+    with its Jacobian, which needs the sensitivities).  It stops where a step with a fresh Jacobian does not
+    halve either (the noise floor of g through an integrator) or is below rounding."""
+    g, J = (np.asarray(a) for a in jac(x, p)[:2])
+    fresh, last = True, np.inf
     for _ in range(NEWTON_STEPS):
-        g, J, _, _ = (np.asarray(a) for a in jac(x, p))
-        r = np.concatenate([g.ravel()[rows], x[fixed] - lbx[fixed]])
-        A = np.vstack([J[rows, :], np.eye(len(x))[fixed, :]])
-        if np.linalg.cond(A) > 1e12:
-            return None
-        step = np.linalg.solve(A, -r)
-        x = x + step
+        if fresh:
+            A = np.vstack([J[rows, :], np.eye(len(x))[fixed, :]])
+            if np.linalg.cond(A) > 1e12:
+                return None
+        step = np.linalg.solve(A, -np.concatenate([g.ravel()[rows], x[fixed] - lbx[fixed]]))
         size = float(np.max(np.abs(step)))
+        if size > 0.5 * last and not fresh:     # the chord slows: take this point's Jacobian and step again
+            g, J = (np.asarray(a) for a in jac(x, p)[:2])
+            fresh = True
+            continue
+        x = x + step
         if size < 1e-14 * max(1.0, float(np.max(np.abs(x)))) or size > 0.5 * last:
             return x
-        last = size
+        last, fresh = size, False
+        g = np.asarray(residual(x, p))
     return x
 
 
@@ -124,11 +150,11 @@ def on_active_set(old, sol, new, p=None, fix_d: float | None = None) -> Solution
 
 def _kkt(jac, new, x0, p, rows, fixed, lbx, ubx):
     """(x, g, lam_g, lam_x, f) when Newton on ``rows`` and ``fixed`` ends at a KKT point of ``new``, else None."""
-    x = _newton(jac, x0.copy(), p, rows, fixed, lbx)
+    x = _newton(jac, _residual(new), x0.copy(), p, rows, fixed, lbx)
     if x is None or np.any(x < lbx - 1e-12) or np.any(x > ubx + 1e-12):
         return None
     g, J, grad, f = (np.asarray(a) for a in jac(x, p))
-    g = g.ravel()
+    g = g.ravel().copy()        # the kept evaluation is read-only; the solution's own g is not
     if np.any(g < -FEAS_TOL):
         return None
     # ∇f = Σ λ_i ∇g_i + Σ ν_j e_j: λ_i >= 0 for the checks; ν of a bound: its multiplier (sign as IPOPT's lam_x)
