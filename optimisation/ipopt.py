@@ -81,7 +81,9 @@ def solver(problem: SizingProblem, warm: bool = False, at_scene: bool = False) -
     hit = _SOLVERS.get(key)
     if hit is None or hit[0] is not problem:
         options = {**IPOPT_OPTIONS, **(WARM_OPTIONS if warm else {}), **getattr(problem, "ipopt_options", {})}
-        nlp = problem.at_scene if at_scene and hasattr(problem, "at_scene") else problem.nlp()
+        # asked of the class: hasattr on the instance would run the property and hide an AttributeError it raises
+        folds = at_scene and hasattr(type(problem), "at_scene")
+        nlp = problem.at_scene if folds else problem.nlp()
         hit = _SOLVERS[key] = (problem, ca.nlpsol("sizing_warm" if warm else "sizing", "ipopt", nlp, options))
     return hit[1]
 
