@@ -6,6 +6,7 @@ central difference of them), and, for bad input, the list of mistakes typed into
 
 from __future__ import annotations
 
+import html
 import json
 import math
 import subprocess
@@ -141,13 +142,27 @@ def test_the_report_carries_the_koepes_checks():
     from ropemodel.reports.registry import sections
 
     assert {"scene", "inputs", "rules", "equations", "results", "checks", "sensitivity"} <= set(r.shown)
-    winch_only = {"dynamic_sizing", "trip", "transient"}
-    assert winch_only <= {s.name for s in sections()} and not winch_only & set(r.shown)
+    not_here = {"dynamic_sizing", "trip", "transient"}       # no manoeuvres, no trips, no transient in this scene
+    assert not_here <= {s.name for s in sections()} and not not_here & set(r.shown)
     assert "sizing" in r.shown and "sizing: design n_head = 2, d_head = 58 mm" in " ".join(r.verdicts)
     for name in ("head_safety_margin", "tail_safety_margin", "wheel_margin", "brake_margin_hoist", "pull_margin"):
         assert name in r.html
     assert "us-30cfr-57 § 57.19021(b)" in r.html and "loaded at the bottom, the loaded side high" in r.html
     assert "checks at the scene's values: all 9 pass" in r.verdicts
+
+
+@pytest.mark.slow
+def test_the_report_shows_a_braking_through_the_machines_transient_section():
+    """The one transient section shows the Koepe's braking as the Koepe declares it: its words, its summary (the
+    simulation's own report) and the history's columns it names, drawn in two panels (N, m/s)."""
+    from ropemodel.dynamics import simulate
+
+    r = rm.report("koepe_braking")
+    assert "transient" in r.shown and "trip" not in r.shown and r.incomplete == []
+    assert "the head ropes elastic, slip judged at every instant" in r.html
+    first = simulate(rm.load_scene("koepe_braking")).report().splitlines()[0]
+    assert html.escape(first, quote=False) in r.html
+    assert 'alt="histories of the transient"' in r.html and "the margin against slip (kN)" in r.html
 
 
 def test_the_tonne_is_a_unit():

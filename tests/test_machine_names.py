@@ -9,9 +9,8 @@ a machine has to say, it declares in :mod:`ropemodel.machines`, and the drivers 
 
 Not code, so not checked: docstrings and comments (they may name a machine as an example, and run doctests on
 the built-in scenes), and the names of built-in scenes inside strings (``winch_sizing_fig9``: a scene is data).
-The files of :data:`NOT_YET_MOVED` still name a machine, for the reason given (the Koepe's transient section: the
-section's module and predicate are imported by name by an existing test); the test fails when one of them no longer
-does (take it off the list) as well as when any other file does.
+The files of :data:`NOT_YET_MOVED` (none now) would still name a machine, each for the reason given; the test fails
+when one of them no longer does (take it off the list) as well as when any other file does.
 """
 
 from __future__ import annotations
@@ -31,11 +30,7 @@ LAYERS = ("optimisation", "ropemodel/dynamics", "ropemodel/reports", "ropemodel/
 MACHINE_NAMES = ("F_nwl", "stroke", "n_head", "q_head", "d_head", "F_min_head", "n_tail", "q_tail", "h_loop")
 PATTERN = re.compile("|".join(["winch", "koepe", *MACHINE_NAMES]), re.IGNORECASE)
 #: files that still name a machine, and why
-NOT_YET_MOVED = {
-    "ropemodel/reports/sections/koepe_transient.py": "the Koepe's transient section; tests/test_overrides.py imports "
-                                                     "has_koepe_transient from it by this name",
-    "ropemodel/reports/sections/__init__.py": "lists the section module koepe_transient (above) in page order",
-}
+NOT_YET_MOVED: dict[str, str] = {}
 
 
 def _files() -> list[Path]:

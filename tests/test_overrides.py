@@ -343,7 +343,6 @@ def report_reads(scene):
     """What a report's sections read: the union of the commands it runs (a transient reads everything); the
     results, equations and checks are at the scene's own values (its design too, where it gives one)."""
     from ropemodel.reports.context import load as context
-    from ropemodel.reports.sections.koepe_transient import has_koepe_transient
     from ropemodel.reports.sections.transient import has_transient
     from ropemodel.reports.sections.trip import has_trip
 
@@ -353,7 +352,7 @@ def report_reads(scene):
         reads = reads | size_reads(ctx.scene)[1]
     if has_trip(ctx):
         reads = reads | trip_reads(ctx.scene)[1]
-    if has_transient(ctx) or has_koepe_transient(ctx):
+    if has_transient(ctx):
         reads = reads | set(ctx.scene.parameters)
     return ctx.scene, reads, {}
 

@@ -45,7 +45,7 @@ def called_for(scene) -> set[str]:
         out.add("sizing")
     if scene.model == "koepe" and e.get("dynamics", "none") == "none":     # sized (through a transient: by size)
         out.add("sizing")
-    if e.get("dynamics", "none") in ("start", "stop"):
+    if e.get("dynamics", "none") in ("start", "stop", "braking"):      # a winch's or a Koepe hoist's transient
         out.add("transient")
     if (e.get("dynamics") == "trip" or e.get("route") == "segments") and {"v_pj", "t_ramp"} <= set(given):
         out.add("trip")

@@ -15,6 +15,16 @@ from typing import Any, NamedTuple
 from ropemodel.errors import InputError
 
 
+class Figure(NamedTuple):
+    """What the report's transient section draws of a simulation's history: ``columns`` (the first is the
+    abscissa; empty: every column, against ``t [s]``), one panel per unit of ``units`` (SI, as in the column
+    names), and ``caption`` (plain text, before the number of output times)."""
+
+    columns: tuple[str, ...] = ()
+    units: tuple[str, ...] = ("N", "m/s", "m")
+    caption: str = "Forces (kN), speeds (m/s) and lengths (m) against time"
+
+
 @dataclass(frozen=True)
 class Transient:
     """How :func:`ropemodel.dynamics.simulate` assembles and integrates a machine's transient.
@@ -38,6 +48,12 @@ class Transient:
     #: the report's note on a transient with an inextensible rope (a Jinja2 template of ``r``, the rope's
     #: variant, and ``trip``, where else the report shows the rope's stretch)
     rigid_note: str = ""
+    #: ``dynamics`` variants (subclasses of ``profile``) another report section shows (the winch's whole trip)
+    elsewhere: tuple[type, ...] = ()
+    #: what the report's transient section says of it after ``dynamics = "..."`` (plain text)
+    about: str = ""
+    #: the history the report draws: its columns (empty: every column), one panel per unit, and the caption
+    figure: Figure = Figure()
 
 
 @dataclass(frozen=True)

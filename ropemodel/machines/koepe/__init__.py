@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from ropemodel.effects.koepe import MODEL
 from ropemodel.effects.koepe_transient.profile import KoepeProfile
-from ropemodel.machines.base import Machine, Transient, model_order, register
+from ropemodel.machines.base import Figure, Machine, Transient, model_order, register
 from ropemodel.machines.koepe.simulation import KoepeSimulation
 from ropemodel.machines.koepe.sizing import KoepeSizing
 
@@ -32,12 +32,22 @@ def _numbers(values: dict) -> dict:
     return {k: float(v) for k, v in values.items()}
 
 
+#: what the report draws of a braking or start: the tensions and the slip margin at the wheel [N], the speeds [m/s]
+FIGURE = Figure(columns=("t [s]", "T_L [N]", "T_E [N]", "T_min [N]", "slip_margin [N]", "v_rope [m/s]",
+                         "v_wheel [m/s]", "slip_speed [m/s]"),
+                units=("N", "m/s"),
+                caption="The tensions at the wheel, the least tension in the head ropes and the margin against slip "
+                        "(kN); the speeds of the ropes and the wheel (m/s)")
+#: the transient in words (the report's transient section)
+ABOUT = ": the head ropes elastic, slip judged at every instant (docs/physics.md §7, elastic ropes)"
+
+
 MACHINE = register(Machine(
     model=MODEL,
     title="Koepe friction hoist",
     checks=model_order,
     sizing=KoepeSizing(),
     transient=Transient(profile=KoepeProfile, result=KoepeSimulation, scale=_scale, length=_length,
-                        numbers=_numbers, before_bind=True),
-    sections=("sizing", "koepe_transient"),
+                        numbers=_numbers, before_bind=True, about=ABOUT, figure=FIGURE),
+    sections=("sizing", "transient"),
 ))

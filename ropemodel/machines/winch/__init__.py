@@ -11,7 +11,7 @@ for the studies.
 from __future__ import annotations
 
 from ropemodel.effects.transient.base import MODEL
-from ropemodel.effects.transient.profile import Profile
+from ropemodel.effects.transient.profile import Profile, Trip
 from ropemodel.effects.winch_checks import CHECKS, margin_names
 from ropemodel.effects.winch_rope import RopeCatalogue
 from ropemodel.machines.base import Machine, Transient, register
@@ -44,7 +44,8 @@ MACHINE = register(Machine(
     checks=margin_names,
     sizing=sizing,
     manoeuvres=manoeuvres,
-    transient=Transient(profile=Profile, result=None, scale=_scale, length=_length, rigid_note=RIGID),
+    transient=Transient(profile=Profile, result=None, scale=_scale, length=_length, rigid_note=RIGID,
+                        elsewhere=(Trip,)),
     trips=trips,
     sections=("sizing", "transient", "trip", "dynamic_sizing"),
     ropes=(RopeCatalogue,),

@@ -9,8 +9,8 @@ from __future__ import annotations
 import importlib
 
 #: section modules in page order
-MODULES = ("document", "scene", "inputs", "rules", "basis", "equations", "results", "sizing", "transient",
-           "koepe_transient", "trip", "dynamic_sizing", "sensitivity", "references")
+MODULES = ("document", "scene", "inputs", "rules", "basis", "equations", "results", "sizing", "transient", "trip",
+           "dynamic_sizing", "sensitivity", "references")
 
 
 def load_all() -> None:

@@ -1,8 +1,9 @@
-"""Section "transient": the start-up or braking of a winch scene (``dynamics = "start"`` or ``"stop"``), its
-summary and its histories as pictures.  Uses only ``simulate(scene)``, ``.history``, ``.summary`` and
-``.report()``.
+"""Section "transient": the start-up or braking of a machine's scene (the winch's ``dynamics = "start"`` or
+``"stop"``, the Koepe hoist's ``"braking"`` or ``"start"``), its summary and its histories as pictures.  Uses
+only ``simulate(scene)``, ``.history``, ``.summary`` and ``.report()``, and what the machine's transient declares
+(:class:`ropemodel.machines.base.Transient`: what it is, the figure, the variants shown elsewhere).
 
-A whole trip (``dynamics = "trip"``) is the "Trip" section's, computed exactly piece by piece: the
+A winch's whole trip (``dynamics = "trip"``) is the "Trip" section's, computed exactly piece by piece: the
 transient of a trip adds nothing to it, and its ratio of the largest force to the static force at the
 trip's start is the change of segment, not a dynamic factor.  With an inextensible rope
 (``rope_elasticity = "rigid"``) the transient has no elongation, so the tensioner never moves: the
@@ -12,15 +13,10 @@ section leaves the take-up out and says where the stroke is computed (eq. (23)).
 from __future__ import annotations
 
 from ropemodel.effects import effects_of
-from ropemodel.effects.transient.profile import Profile, Trip
 from ropemodel.effects.transient.rope import RopeRigid
-from ropemodel.machines.base import declared_machine
+from ropemodel.machines.base import machine_of
 from ropemodel.reports import figures, page
 from ropemodel.reports.registry import section
-
-#: units of the history's columns drawn, one panel each: forces, speeds, lengths
-UNITS = ("N", "m/s", "m")
-
 
 def _variant(scene, effect: str) -> type:
     """The registered class of the scene's variant of ``effect``."""
@@ -28,12 +24,14 @@ def _variant(scene, effect: str) -> type:
 
 
 def has_transient(ctx) -> bool:
-    """A winch scene with a start-up or a braking to simulate (a whole trip is the "Trip" section's)."""
+    """A scene whose machine has a transient, with a start-up or a braking of it to simulate (not a variant
+    another section shows: the winch's whole trip is the "Trip" section's)."""
     s = ctx.scene
-    if "dynamics" not in s.effects:
+    machine = machine_of(s)
+    if machine is None or machine.transient is None or "dynamics" not in s.effects:
         return False
     profile = _variant(s, "dynamics")
-    return issubclass(profile, Profile) and not issubclass(profile, Trip)
+    return issubclass(profile, machine.transient.profile) and not issubclass(profile, machine.transient.elsewhere)
 
 
 def every_parameter(ctx) -> set[str]:
@@ -51,25 +49,30 @@ def simulated(ctx) -> set[str]:
 @section("transient", "Transient", when=has_transient, reads=simulated)
 def transient(ctx):
     sim = ctx.simulation
-    history = sim.history
+    declared = machine_of(ctx.scene).transient
     text = sim.report()
-    rigid = issubclass(_variant(ctx.scene, "rope_elasticity"), RopeRigid)
+    rigid = "rope_elasticity" in ctx.scene.effects and issubclass(_variant(ctx.scene, "rope_elasticity"), RopeRigid)
     if rigid:       # no take-up to report: the tensioner's own lines are left out
         tensioner = next(p for p in sim.system.parts if p.effect == "tensioner")
         dropped = set(tensioner.report(sim.summary))
         text = "\n".join(line for line in text.splitlines() if line not in dropped)
-    x = "t [s]" if "t [s]" in history.columns else history.columns[0]
-    html = page.fragment("<p>dynamics = \"{{ d }}\"{{ at }}. Summary:</p><pre>{{ r }}</pre>",
-                         d=ctx.scene.effects["dynamics"], r=text,
+    html = page.fragment("<p>dynamics = \"{{ d }}\"{{ at }}{{ about }}. Summary:</p><pre>{{ r }}</pre>",
+                         d=ctx.scene.effects["dynamics"], r=text, about=declared.about,
                          at=", at the recommended design" if ctx.at_design else "")
     if rigid:
         from ropemodel.reports.sections.trip import has_trip
 
-        html += page.fragment(declared_machine(ctx.scene).transient.rigid_note, r=ctx.scene.effects["rope_elasticity"],
+        html += page.fragment(declared.rigid_note, r=ctx.scene.effects["rope_elasticity"],
                               trip=' and "Trip"' if has_trip(ctx) else "")
-    uri = figures.panels(history, x, UNITS, title=f"{ctx.scene.name}: histories")
-    if uri:
-        html += page.fragment('<figure><img src="{{ u }}" alt="histories of the transient"><figcaption>Forces (kN), '
-                              "speeds (m/s) and lengths (m) against time; {{ n }} output times.</figcaption></figure>",
-                              u=uri, n=len(history))
-    return html
+    return html + _figure(ctx.scene.name, sim.history, declared.figure)
+
+
+def _figure(name: str, history, figure) -> str:
+    """The history's columns the machine declares drawn against time, one panel per unit."""
+    frame = history[[c for c in figure.columns if c in history.columns]] if figure.columns else history
+    x = "t [s]" if "t [s]" in frame.columns else frame.columns[0]
+    uri = figures.panels(frame, x, figure.units, title=f"{name}: histories")
+    if not uri:
+        return ""
+    return page.fragment('<figure><img src="{{ u }}" alt="histories of the transient"><figcaption>{{ c }}; '
+                         "{{ n }} output times.</figcaption></figure>", u=uri, c=figure.caption, n=len(frame))
