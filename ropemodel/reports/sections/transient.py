@@ -18,6 +18,7 @@ from ropemodel.machines.base import machine_of
 from ropemodel.reports import figures, page
 from ropemodel.reports.registry import section
 
+
 def _variant(scene, effect: str) -> type:
     """The registered class of the scene's variant of ``effect``."""
     return effects_of(scene.model)[effect].variants[scene.effects[effect]]
