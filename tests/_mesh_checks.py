@@ -24,15 +24,16 @@ def failures_with_elements(scene_with: Callable[[int], object], design, n: int, 
     """The catalogue design simulated with ``n`` rope elements per span (``scene_with(n)``: the scene so
     meshed): what fails, the dynamic slip factor included.  ``everywhere``: every manoeuvre at every place of
     the load, else each manoeuvre with the load where it is governed at the scene's mesh (a fine mesh on a
-    long route costs ~10 CPU-s a simulation)."""
-    scene = scene_with(n)
+    long route costs ~10 CPU-s a simulation).  Each manoeuvre is followed as long as the sizing followed it (a
+    scene without a transient gives no ``t_end``: the sizing's default)."""
+    scene, t_end = scene_with(n), design.scene.parameters["t_end"]
     if everywhere:
-        return simulated_failures(scene, design.design, slip_factor=N_SLIP_DYNAMIC)
+        return simulated_failures(scene, design.design, t_end=t_end, slip_factor=N_SLIP_DYNAMIC)
     labels = [f"{'upward' if travel == 'up' else 'downward'} {dynamics}" for dynamics, travel in MANOEUVRES]
     assert [m["manoeuvre"] for m in design.manoeuvres] == labels
     return [f for m, manoeuvre in zip(design.manoeuvres, MANOEUVRES)
             for f in simulated_failures(scene, design.design, where=[m["x_m"]], manoeuvres=[manoeuvre],
-                                        slip_factor=N_SLIP_DYNAMIC)]
+                                        t_end=t_end, slip_factor=N_SLIP_DYNAMIC)]
 
 
 def lighter_that_holds(scene, design) -> list[str]:
@@ -44,7 +45,8 @@ def lighter_that_holds(scene, design) -> list[str]:
     x, holds = design.continuous, []
     for k in VARIABLES:
         lighter = {**x, k: 0.97 * x[k]}
-        failures = simulated_failures(scene, lighter, where=where, slip_factor=N_SLIP_DYNAMIC)
+        failures = simulated_failures(scene, lighter, where=where, t_end=design.scene.parameters["t_end"],
+                                      slip_factor=N_SLIP_DYNAMIC)
         if not failures:
             problem = DynamicSizingProblem(scene)
             margins = problem.margins(np.array([lighter[v] for v in VARIABLES]) / problem.x_scale)
