@@ -174,7 +174,7 @@ class CaseError:
     """One check in one case at the chosen mesh n: its least ``margin`` there (SI, before back-offs), its
     Richardson ``error`` E(n) and observed ``order``, the ``unsafe`` part of E(n) (:func:`unsafe_part`), and
     ``coarse``: how much lower the least margin was on a coarser mesh from the scene's (≥ 0; the design must
-    keep the check there too, :func:`need`)."""
+    keep the check there too, :attr:`need`)."""
 
     margin: float
     error: float
@@ -251,7 +251,7 @@ def control(problem, xs, p=None, say=None, coarsest: int | None = None) -> MeshE
         near = within_reach(g, n, limits)
         for m in (2 * n, 4 * n):        # the finer meshes only in the cases within reach (all estimate reads)
             _measure(problem, xs, p, g, m, near, say)
-        found = estimate({k: v for k, v in g.items() if k <= 4 * n}, n, near, tags)
+        found = estimate(g, n, near, tags)
         force = max((e.error for (_, c), e in found.items() if units[c] == "N"), default=0.0)
         levels.append({"segments": n, "largest_force_error": force})
         if force <= tol:
