@@ -9,7 +9,7 @@ from typing import Any, cast
 import numpy as np
 
 
-from optimisation import discrete
+from optimisation import discrete, generation
 from optimisation.infeasibility import Diagnosis, diagnose
 from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import SizingProblem, load_sizing
@@ -164,6 +164,40 @@ def solve_best(problem: SizingProblem, p=None, x0=None) -> Solution:
     return sol
 
 
+def _solve(problem: SizingProblem, method: str):
+    """The continuous optimum and the catalogue design of ``problem`` (the latter None where the former is not
+    feasible)."""
+    sol = solve_best(problem)
+    if not sol.feasible:   # confirm independently: every catalogue size, F_nwl and stroke found with d fixed
+        probe = discrete.next_size_up(problem, 0.0)
+        if probe.solution is not None:
+            sol = solve_best(problem, x0=probe.solution.xs)
+    if not sol.feasible:
+        return sol, None
+    if method == "bonmin":
+        return sol, discrete.bonmin_with_timeout(problem, BONMIN_TIMEOUT, x0=sol.xs)
+    return sol, discrete.next_size_up(problem, problem.to_si(sol.xs)["d"])
+
+
+def _generated(scene: Scene, method: str):
+    """(problem, continuous optimum, catalogue design) by constraint generation (:mod:`optimisation.generation`):
+    solved on the cases that can be least, those a design found leaves below zero added until the continuous
+    optimum and the catalogue design hold every check at every candidate; after :data:`generation.ROUNDS`
+    rounds, the NLP of every candidate."""
+    problem = SizingProblem(scene, generate=True)
+    for _ in range(generation.ROUNDS):
+        sol, disc = _solve(problem, method)
+        designs = [sol.xs] if sol.feasible else []
+        if disc is not None and disc.solution is not None:
+            designs.append(rounded_up(problem, disc.solution.xs))
+        more = generation.uncovered(problem, designs)
+        if not more:
+            return problem, sol, disc
+        problem = problem.with_cases(more)
+    problem = SizingProblem(scene)
+    return (problem, *_solve(problem, method))
+
+
 def _size_declared(scene: Scene, method: str) -> Design:
     """The sizing of a model that declares it (:mod:`optimisation.declared`)."""
     from optimisation.declared import size_declared
@@ -221,13 +255,8 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     scene = load_sizing(scene, emit=False)
     if declared(scene.model) is not None:           # a model that declares its sizing (not the winch)
         return _size_declared(scene, method)
-    problem = SizingProblem(scene)
+    problem, sol, disc = _generated(scene, method)
     design = Design(problem.scene, False, method=method, units=dict(problem.units))
-    sol = solve_best(problem)
-    if not sol.feasible:   # confirm independently: every catalogue size, F_nwl and stroke found with d fixed
-        probe = discrete.next_size_up(problem, 0.0)
-        if probe.solution is not None:
-            sol = solve_best(problem, x0=probe.solution.xs)
     if not sol.feasible:
         design.diagnosis = diagnose(problem)
         if design.diagnosis.feasible:   # IPOPT failed on a feasible problem: say so, do not guess
@@ -243,10 +272,6 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     if with_sensitivities:
         design.sensitivities = with_rule_terms(problem.scene, sensitivities(problem, sol))
     d_star = design.continuous["d"]
-    if method == "bonmin":
-        disc = discrete.bonmin_with_timeout(problem, BONMIN_TIMEOUT, x0=sol.xs)
-    else:
-        disc = discrete.next_size_up(problem, d_star)
     if disc.solution is None:
         cat = ropes.diameters()
         above = [dk for dk in cat if dk >= d_star - 1e-9]
