@@ -66,6 +66,9 @@ class Design(DesignViews):
     verified: list[dict] = field(default_factory=list)
     #: the model solved at a declared sizing's design
     result: Any = None
+    #: the load cases: every one the worst is taken over (``cases``), those that can govern, where each design is
+    #: checked (``candidates``), and those the NLP made its checks in (``in_nlp``, :mod:`optimisation.generation`)
+    load_cases: dict[str, int] = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         """The JSON contract of ``ropemodel size --json`` (SI numbers)."""
@@ -93,6 +96,8 @@ class Design(DesignViews):
                 infeasible["scan"] = self.diagnosis.scan
             out["infeasible"] = infeasible
         out["message"] = self.message
+        if self.load_cases:
+            out["load_cases"] = self.load_cases
         out.update(self.rope)
         if self.objective:
             out["objective"] = self.objective
@@ -256,7 +261,9 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     if declared(scene.model) is not None:           # a model that declares its sizing (not the winch)
         return _size_declared(scene, method)
     problem, sol, disc = _generated(scene, method)
-    design = Design(problem.scene, False, method=method, units=dict(problem.units))
+    design = Design(problem.scene, False, method=method, units=dict(problem.units),
+                    load_cases={"cases": len(problem.all_cases), "candidates": len(problem.candidates),
+                                "in_nlp": len(problem.cases)})
     if not sol.feasible:
         design.diagnosis = diagnose(problem)
         if design.diagnosis.feasible:   # IPOPT failed on a feasible problem: say so, do not guess

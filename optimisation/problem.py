@@ -26,14 +26,13 @@ import copy
 import math
 from collections import ChainMap
 from functools import cached_property
-from typing import Any
 
 import casadi as ca
 import numpy as np
 
-from ropemodel.core.evaluate import reordered
+from optimisation.nlp_parts import Ends, depends, nlp_function, vector_model
 from ropemodel.envelope import Envelope, LoadCase, envelope, free, load_cases
-from ropemodel.envelope.cases import depends_on, distinct, joint_ends
+from ropemodel.envelope.cases import distinct, joint_ends
 from ropemodel.envelope.prune import prune
 from ropemodel.machines import default
 from ropemodel.machines.base import declared_machine, needing
@@ -49,39 +48,6 @@ D_OPTIONAL = default().sizing.D_OPTIONAL
 def declaration(scene):
     """The sizing declaration of ``scene``'s machine; :class:`InputError` for a machine that cannot be sized."""
     return needing("sizing", scene, "sizing")
-
-
-class _Reads(dict):
-    """Outputs as symbols, each made when first read: its keys are what a declaration's ``nlp_form`` writes a
-    check from."""
-
-    def __missing__(self, key):
-        self[key] = ca.MX.sym(key)
-        return self[key]
-
-
-def _nlp_function(fun: ca.Function, checks, sizing, args) -> ca.Function:
-    """``fun`` with only the outputs the NLP reads (each check in its ``nlp_form``, the primary objective): a
-    route's model has an output per segment, and every derivative of the NLP would carry them."""
-    out = _Reads()
-    for c in checks:
-        sizing.nlp_form(c, out, args)
-    wanted = {sizing.PRIMARY, *checks, *out}
-    return reordered(fun, fun.name_in(), [k for k in fun.name_out() if k in wanted])
-
-
-def _vector_model(fun: ca.Function, variables, params, free, given) -> ca.Function:
-    """``fun`` (one scalar input per known) as a Function of three vectors: the design ``x`` (SI, in the order of
-    ``variables``), the NLP's parameters ``p`` (``params``) and the case inputs ``c`` (``free``); the ``given``
-    outputs 0.  Each case of the NLP is one call of it, not a node per parameter (a route has thousands), and its
-    derivatives are those of one SX Function."""
-    sym: Any = ca.SX.sym if fun.is_a("SXFunction") else ca.MX.sym
-    x, p, c = sym("x", len(variables)), sym("p", len(params)), sym("c", len(free))
-    env = {**{k: p[i] for i, k in enumerate(params)}, **{k: c[i] for i, k in enumerate(free)},
-           **{k: x[i] for i, k in enumerate(variables)}, **{k: 0.0 for k in given}}
-    out = fun.call({k: env[k] for k in fun.name_in() if k in env})
-    return ca.Function("nlp_model", [x, p, c], [out[k] for k in fun.name_out()], ["x", "p", "c"],
-                       list(fun.name_out()))
 
 
 def _label(check: str, case: LoadCase, inputs, params, ends=None) -> str:
@@ -168,6 +134,10 @@ class SizingProblem:
     outputs: a Function (x_SI, p) → every scene output (for reports: N_p, margins).
     """
 
+    #: the NLP is the checks of its load cases alone: its derivatives in x at ``p0`` may be taken of
+    #: :attr:`at_scene` (the same NLP, the scene's values folded in), those in p of :meth:`nlp_of`
+    STATIC = True
+
     def __init__(self, scene: Scene, prune_places: bool = True, generate: bool = False):
         scene = prepare(scene)
         self.scene = scene
@@ -199,14 +169,14 @@ class SizingProblem:
         self.xs, self.p = ca.MX.sym("x", len(self.variables)), ca.MX.sym("p", len(self.params))
         self._args = self._knowns(self.p, self.xs * ca.DM(self.x_scale))
         self.checks = self.machine.checks(self.problem.unknowns)
-        self._nlp_model = _vector_model(_nlp_function(fun, self.checks, sizing, self._args), self.variables,
+        self._nlp_model = vector_model(nlp_function(fun, self.checks, sizing, self._args), self.variables,
                                         self.params, self.free, self.problem.given)
         unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
         q = scene.built.quantities
         #: each check's scale in the NLP (g = its NLP form over this)
         self.check_scale = {c: unit_scale[sizing.unit(c, q[c].unit)] for c in self.checks}
         #: the case inputs each check depends on (a check the same in every case is made once)
-        self.depends = depends_on(fun, self.checks)
+        self.depends = depends(self._nlp_model, self.checks, self.free)
         self.cases = self.candidates
         if generate:
             from optimisation.generation import first_cases
@@ -234,11 +204,12 @@ class SizingProblem:
     def _build_nlp(self) -> None:
         """The NLP of :attr:`cases`: its constraints, their units and scales, the objective; what was derived
         from a previous NLP (folded NLP, Jacobians, solvers) is dropped."""
-        for k in ("at_scene", "g_function", "margin_function", "_jac_kept", "_jac_g", "_grad_f0"):
+        for k in ("at_scene", "folded_primary", "g_function", "margin_function", "_jac_kept", "_jac_g", "_grad_f0",
+                  "_jac_folded"):
             self.__dict__.pop(k, None)
         sizing, xs, p = self.sizing, self.xs, self.p
-        self.constraints, self._g, self._margin_exprs, out = self._constraints(self._nlp_model, self.problem.function,
-                                                                               self._args, p)
+        self.constraints, self._g, self._margin_exprs, out, self._made = self._constraints(self._nlp_model, self._args,
+                                                                                           p)
         self.units = {c: sizing.unit(c, self.scene.built.quantities[_base(c)].unit) for c in self.constraints}
         self.g_scale = np.array([self.check_scale[_base(c)] for c in self.constraints])
         self.g = ca.vertcat(*self._g) / ca.DM(self.g_scale)
@@ -258,16 +229,16 @@ class SizingProblem:
         return ca.Function("outputs", [self.xs, self.p], [every[n] for n in self.output_names],
                            ["x", "p"], self.output_names)
 
-    def _constraints(self, model: ca.Function, fun: ca.Function, args, p) -> tuple[list, list, list, dict]:
+    def _constraints(self, model, args, p, only=None) -> tuple[list, list, list, dict, list]:
         """Every check in every case it can differ in (a check that depends only on the manoeuvre once per
-        manoeuvre, one that depends on neither once): their labels, the constraints g and the margins.
-        The cases' places and accelerations follow the NLP's parameters ``p`` (a segment's length moves x_m).
-        ``model``: :func:`_vector_model`, or a Function (x, c) → its outputs: the same at ``p0``, or a
-        Function (c) → a Function (x) → its outputs, each case folded in; ``fun``: the model with one input per
-        known; ``args``: each known's value (the design in SI among them).  Returns (labels, g, margins, the
-        outputs at the first case)."""
+        manoeuvre, one that depends on neither once), or the (check, case index) pairs ``only``: their labels, the
+        constraints g, the margins, the outputs at the first case and the pairs made.  The cases' places and
+        accelerations follow the NLP's parameters ``p`` (a segment's length moves x_m).  ``model``: the NLP's model
+        (:func:`~optimisation.nlp_parts.vector_model`, or one of some checks alone), or a Function (c) → a Function
+        (x) → its outputs, each case and the scene's values folded in; ``args``: each known's value (the design in
+        SI among them)."""
         values = ChainMap(args, self.scene.parameters)
-        ends = joint_ends(values) if self.scene.route else None
+        ends = self._ends(values, p) if self.scene.route else None
         x_si = ca.vertcat(*[args[k] for k in self.variables])
 
         def at_case(i: int) -> dict:
@@ -279,16 +250,40 @@ class SizingProblem:
             return model.call({k: given[k] for k in model.name_in()})
 
         labelled = ends if ends is None else [float(e) for e in joint_ends(self.scene.parameters)]
+        made = only if only is not None else [(c, i) for c in self.checks
+                                              for i in distinct(self.cases, self.depends[c])]
         at: dict[int, dict] = {}
         labels, g, exprs = [], [], []
-        for c in self.checks:
-            for i in distinct(self.cases, self.depends[c]):
-                if i not in at:
-                    at[i] = at_case(i)
-                labels.append(_label(c, self.cases[i], self.depends[c], self.scene.parameters, labelled))
-                g.append(self.sizing.nlp_form(c, at[i], args))
-                exprs.append(at[i][c])
-        return labels, g, exprs, (at[0] if 0 in at else at_case(0))
+        for c, i in made:
+            if i not in at:
+                at[i] = at_case(i)
+            labels.append(_label(c, self.cases[i], self.depends[c], self.scene.parameters, labelled))
+            g.append(self.sizing.nlp_form(c, at[i], args))
+            exprs.append(at[i][c])
+        first = at[min(at)] if at else at_case(0)     # the objective: the same in every case
+        return labels, g, exprs, first, made
+
+    def nlp_of(self, taken) -> tuple:
+        """(f, g_S) of the NLP (parametric) with the constraints S = ``taken`` (indices into :attr:`constraints`)
+        alone, from a model of their checks alone: a route's least tensions, which the other checks need, are
+        then left out of the derivatives in the parameters (:mod:`optimisation.sensitivity`)."""
+        made = [self._made[i] for i in taken]
+        checks = list(dict.fromkeys(c for c, _ in made))
+        model = vector_model(nlp_function(self.problem.function, checks, self.sizing, self._args), self.variables,
+                              self.params, self.free, self.problem.given)
+        _, g, _, out, _ = self._constraints(model, self._args, self.p, only=made)
+        g_s = ca.vertcat(*g) / ca.DM(self.g_scale[list(taken)]) if taken else ca.MX(0, 1)
+        return self._objective(out[self.sizing.PRIMARY] / self.m_ref), g_s
+
+    def _ends(self, values, p):
+        """The places' x_m (:func:`ropemodel.envelope.cases.joint_ends`): numbers where ``values`` are, else each
+        a sum of the NLP's parameters ``p`` (one operation per place, not a chain through every segment)."""
+        ends = joint_ends(self.scene.parameters)
+        if all(isinstance(values[f"L_{i}"], float) for i in range(1, len(ends))):
+            return joint_ends(values)
+        where = {k: i for i, k in enumerate(self.params)}
+        lengths = [where[f"L_{i}"] for i in range(1, len(ends))]
+        return Ends(p, lengths)
 
     @cached_property
     def at_scene(self) -> dict:
@@ -305,12 +300,13 @@ class SizingProblem:
 
         args = self._knowns(ca.DM(self.p0), self.xs * ca.DM(self.x_scale))
         args = {k: float(v) if isinstance(v, ca.DM) else v for k, v in args.items()}
-        _, g, _, out = self._constraints(case, self.problem.function, args, self.p)
-        return self.nlp(f=self._objective(out[self.sizing.PRIMARY] / self.m_ref),
-                        g=ca.vertcat(*g) / ca.DM(self.g_scale))
+        _, g, _, out, _ = self._constraints(case, args, self.p)
+        self.__dict__["folded_primary"] = out[self.sizing.PRIMARY] / self.m_ref
+        return self.nlp(f=self._objective(self.__dict__["folded_primary"]), g=ca.vertcat(*g) / ca.DM(self.g_scale))
 
     def folded_model(self) -> ca.Function:
-        """:func:`_vector_model` at the scene's parameters ``p0`` (SX, folded): a Function (x SI, c)."""
+        """The NLP's model (:func:`~optimisation.nlp_parts.vector_model`) at the scene's parameters ``p0`` (SX,
+        folded): a Function (x SI, c)."""
         if "_folded" not in self.__dict__:
             x, c = (ca.SX.sym(k, self._nlp_model.size1_in(k)) for k in ("x", "c"))
             self.__dict__["_folded"] = ca.Function("nlp_model_p0", [x, c],

@@ -35,6 +35,7 @@ from __future__ import annotations
 import casadi as ca
 
 from ropemodel._math import cos, fmax, fmin, if_else, sin
+from ropemodel.papers import route_vector as rv
 
 #: standard gravity [m/s²] (CGPM 1901)
 G_N = 9.80665
@@ -62,11 +63,6 @@ def as_column(items):
         return items
     column = _vector(items)
     return items if column is None else column
-
-
-def _column(items):
-    """A CasADi column of ``items`` (a list or a column)."""
-    return items if isinstance(items, (ca.SX, ca.MX, ca.DM)) else ca.vertcat(*items)
 
 
 def _sum(column, start=0.0):
@@ -226,28 +222,12 @@ def tension_at_joints(F_end, q_l, lengths, gradients):
     [30.9368, 10.0]
     """
     if _symbolic(F_end, q_l, *lengths, gradients):
-        rise = _rises(lengths, gradients)
+        rise = rv.rises(lengths, gradients)
         return [F_end + q_l * rise[k] for k in range(rise.numel())]
     out = [F_end]
     for length, gradient in zip(reversed(list(lengths)), reversed(list(gradients))):
         out.append(out[-1] + q_l * length * gradient)
     return out[::-1]
-
-
-def _rises(lengths, gradients):
-    """[G_0, …, G_n] (a CasADi column): G_k = Σ_{i>k} L_i g_i, the rise per unit rope weight from the return
-    sheave to joint k (G_n = 0); the tension there is F_end + q_l G_k."""
-    L, g = ca.vertcat(*lengths), _column(gradients)
-    return ca.vertcat(ca.cumsum((L * g)[::-1])[::-1], 0.0)
-
-
-def _rise_at(x, lengths, gradients):
-    """G(x) = Σ_i g_i ℓ_i(x) (a CasADi scalar): the rise per unit rope weight from the return sheave to x, ℓ_i(x)
-    the part of segment i between x and the return sheave."""
-    L, g = ca.vertcat(*lengths), _column(gradients)
-    ends = ca.cumsum(L)
-    L_u = ends[-1]
-    return _sum(g * ca.fmax(ca.fmin(ends, L_u) - ca.fmax(ends - L, x), 0.0))
 
 
 def rope_tension(x, F_end, q_l, lengths, gradients, x_m=None, load=0.0):
@@ -274,7 +254,7 @@ def rope_tension(x, F_end, q_l, lengths, gradients, x_m=None, load=0.0):
     """
     L_u = route_length(lengths)
     if _symbolic(x, F_end, q_l, *lengths, gradients):
-        total = F_end + q_l * _rise_at(x, lengths, gradients)
+        total = F_end + q_l * rv.rise_at(x, lengths, gradients)
         return total if x_m is None else total + if_else(x < x_m, load, 0.0)
     total, start = F_end, 0.0
     for length, gradient in zip(lengths, gradients):
@@ -315,7 +295,7 @@ def least_rope_tension(F_end, q_l, lengths, gradients, x_m=None, load=0.0):
     7.9631
     """
     if len(lengths) > 1 and _symbolic(F_end, q_l, x_m, load, *lengths, gradients):
-        return _least_symbolic(F_end, q_l, lengths, gradients, x_m, load)
+        return rv.least_tension(F_end, q_l, lengths, gradients, x_m, load)
     joints = tension_at_joints(F_end, q_l, lengths, gradients)
     L_u = route_length(lengths)
     if x_m is not None:
@@ -331,30 +311,6 @@ def least_rope_tension(F_end, q_l, lengths, gradients, x_m=None, load=0.0):
         after = if_else(x_m < L_u, beside, beside + load)            # at the return sheave: F_end
         out = fmin(before, after) if out is None else fmin(out, fmin(before, after))
     return fmin(joints[0], joints[-1]) if out is None else out
-
-
-def _least_symbolic(F_end, q_l, lengths, gradients, x_m, load):
-    """:func:`least_rope_tension` as vector operations, for q_l >= 0 (a rope's weight): the least over the joints
-    is F_end + q_l min_k G_k (:func:`_rises`), and on the loaded side the least of F_end + q_l P + J and
-    F_end + q_l Q, with P, Q the least G_k of the joints before and beyond the load.  Rounding is monotone, so
-    each equals the least of the terms of the loop to the last bit; the rope's weight and the pretension enter
-    in a few operations whatever the number of joints (the route's minima fold into numbers where its values are
-    known, as in sizing)."""
-    inner = _rises(lengths, gradients)[1:-1]          # G_1 … G_{n−1}, the joints between the ends
-    if x_m is None:
-        return F_end + q_l * ca.mmin(inner)
-    L_u = route_length(lengths)
-    x_m = fmin(x_m, L_u)
-    at = ca.cumsum(ca.vertcat(*lengths))[:-1]         # x_1 … x_{n−1}
-    top = ca.mmax(inner)                               # fills the joints not in a set: at least each of its own
-    before, beyond = at < x_m, at >= x_m
-    P = ca.mmin(ca.if_else(before, inner, top))
-    Q = ca.mmin(ca.if_else(beyond, inner, top))
-    loaded, free = F_end + q_l * P + load, F_end + q_l * Q
-    # a set without joints takes the other's term (both are never empty: there is a joint between the ends)
-    joints = fmin(if_else(before[0], loaded, free), if_else(beyond[-1], free, loaded))
-    beside = rope_tension(x_m, F_end, q_l, lengths, gradients)
-    return fmin(joints, fmin(if_else(x_m > 0.0, beside + load, beside), if_else(x_m < L_u, beside, beside + load)))
 
 
 def winding_side_mass(G_m, q_l, L_u, g=G_N):
