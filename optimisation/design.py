@@ -15,7 +15,7 @@ from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
 from ropemodel.errors import InputError
-from ropemodel.machines.base import design_words
+from ropemodel.machines.base import declared_machine, design_words
 from ropemodel.machines.sizing import Declaration, declared
 from ropemodel.papers import en12385 as ropes
 from ropemodel.rules.apply import with_rule_terms
@@ -189,18 +189,28 @@ def _generated(scene: Scene, method: str):
     solved on the cases that can be least, those a design found leaves below zero added until the continuous
     optimum and the catalogue design hold every check at every candidate; after :data:`generation.ROUNDS`
     rounds, the NLP of every candidate."""
-    problem = SizingProblem(scene, generate=True)
-    for _ in range(generation.ROUNDS):
-        sol, disc = _solve(problem, method)
-        designs = [sol.xs] if sol.feasible else []
-        if disc is not None and disc.solution is not None:
-            designs.append(rounded_up(problem, disc.solution.xs))
-        more = generation.uncovered(problem, designs)
-        if not more:
-            return problem, sol, disc
-        problem = problem.with_cases(more)
+    for first_range in (problem_range(scene), None):
+        problem = SizingProblem(scene, generate=True, first_range=first_range)
+        for _ in range(generation.ROUNDS):
+            sol, disc = _solve(problem, method)
+            designs = [sol.xs] if sol.feasible else []
+            if disc is not None and disc.solution is not None:
+                designs.append(rounded_up(problem, disc.solution.xs))
+            if not all(problem.covers(xs) for xs in designs):
+                break                           # a design outside the range its places were found for
+            more = generation.uncovered(problem, designs)
+            if not more:
+                return problem, sol, disc
+            problem = problem.with_cases(more)
     problem = SizingProblem(scene)
     return (problem, *_solve(problem, method))
+
+
+def problem_range(scene: Scene):
+    """The range of the first design variable the places that can govern are first found for: the machine's
+    catalogue (a winch: its rope diameters), or None (every value)."""
+    catalogue = getattr(declared_machine(scene).sizing, "catalogue_range", None)
+    return None if catalogue is None else catalogue()
 
 
 def _size_declared(scene: Scene, method: str) -> Design:

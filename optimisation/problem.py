@@ -138,7 +138,7 @@ class SizingProblem:
     #: :attr:`at_scene` (the same NLP, the scene's values folded in), those in p of :meth:`nlp_of`
     STATIC = True
 
-    def __init__(self, scene: Scene, prune_places: bool = True, generate: bool = False):
+    def __init__(self, scene: Scene, prune_places: bool = True, generate: bool = False, first_range=None):
         scene = prepare(scene)
         self.scene = scene
         self.machine = declared_machine(scene)
@@ -153,7 +153,12 @@ class SizingProblem:
         #: the places that can govern (:func:`ropemodel.envelope.prune.prune`, for every rope and pretension;
         #: ``prune_places=False`` for a sweep varying the route or the load): where :meth:`envelope` evaluates a
         #: design and, unless the constraints are generated, where the NLP makes the checks
-        self.candidates = prune(self.all_cases, scene.parameters, scene.built) if prune_places else self.all_cases
+        #: with ``first_range`` (low, high) of the first design variable, only for designs with it in that range
+        #: (the declaration's ``place_weights``; :meth:`covers`)
+        self.first_range = first_range if hasattr(sizing, "place_weights") else None
+        weights = sizing.place_weights(scene, self.first_range) if self.first_range else (0.0, math.inf)
+        self.candidates = (prune(self.all_cases, scene.parameters, scene.built, weights) if prune_places
+                           else self.all_cases)
         #: ``generate``: the NLP holds the cases each check is least in at the start, and more are added as the
         #: designs found are checked at every candidate (:mod:`optimisation.generation`)
         self.generated = generate
@@ -183,6 +188,14 @@ class SizingProblem:
 
             self.cases = first_cases(self)
         self._build_nlp()
+
+    def covers(self, xs) -> bool:
+        """Whether the :attr:`candidates` hold every worst case of the design at scaled ``xs``: its first variable in
+        :attr:`first_range` (or no range)."""
+        if self.first_range is None:
+            return True
+        first = float(np.asarray(xs, dtype=float).ravel()[0] * self.x_scale[0])
+        return self.first_range[0] <= first <= self.first_range[1]
 
     def _knowns(self, p, x_si) -> dict:
         """Every known of the model by name: the parameters from ``p``, the design ``x_si`` (SI), a check held at 0
