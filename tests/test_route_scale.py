@@ -175,3 +175,28 @@ def test_sizing_ten_thousand_points_equals_the_route_as_three_segments(tmp_path)
     for k in ("d", "F_nwl", "stroke"):
         assert profile.continuous[k] == pytest.approx(hand[k], rel=1e-8), k
     assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss < 1024 * 1024     # kB: under 1 GB
+
+
+@pytest.mark.slow      # about 25 s: run and trip on a 10 000-point profile, both directions
+def test_run_and_trip_on_ten_thousand_points_equal_the_route_as_three_segments(tmp_path):
+    """``run`` and ``trip`` on 10 000 pieces of a three-segment route (with the ramps' starts and stops) equal the
+    same route as three ``[[route]]`` tables: every output's worst to 1e-10 (a sum of 10^4 pieces against one
+    segment: its rounding), every trip summary to 1e-9 (the trip integrated piece by piece against segment by
+    segment) and the trip integrated in the distance in numpy to 1e-9."""
+    three = [(400.0, 22.0, None), (650.0, 9.0, None), (300.0, 3.0, None)]
+    rows = _pieces([(L, a) for L, a, _ in three], 10_000)
+    profile, _ = _scene_files(tmp_path, [(L, a, None) for L, a in rows])
+    (tmp_path / "three").mkdir()
+    _, tables = _scene_files(tmp_path / "three", three)
+    a, b = rm.run(str(profile)), rm.run(str(tables))
+    segments = {k for k in a.values if k.split("_")[0] in ("L", "alpha", "mu") and k.split("_")[-1][-1].isdigit()}
+    assert set(a.values) - segments == set(b.values) - segments
+    for k in set(b.values) - segments:
+        assert a.values[k] == pytest.approx(b.values[k], rel=1e-10, abs=1e-9), k
+    for direction in ("up", "down"):
+        got, same = trip(str(profile), direction).summary, trip(str(tables), direction).summary
+        for k, v in same.items():
+            assert got[k] == pytest.approx(v, rel=1e-9, abs=1e-6), (direction, k)
+        ref = _by_distance(direction, three, LOAD["t_ramp"], F_NWL)
+        for k in ("t_trip", "F_C_max", "F_S_min", "P_max", "E_trip", "W_drum", "stroke_needed"):
+            assert got[k] == pytest.approx(ref[k], rel=1e-9, abs=1e-6), (direction, k)
