@@ -3,10 +3,10 @@ it finds is checked at every candidate case.
 
 A route of n segments has O(n) places that can govern (:func:`ropemodel.envelope.prune.prune`: the candidates),
 and each case is a copy of the model, whose size grows with n: an NLP of every check at every candidate grows as
-O(n²) (10 000 points, every rope weight: 948 cases, 9487 constraints, 3.5 GB before it is solved).  Only a few cases are active at
-the optimum, so the NLP starts from the case in which each check is least at the starting design
-(:func:`first_cases`), and after each solve the design is checked at every candidate in one vectorised call
-(:func:`uncovered`); a check less at a candidate left out than the NLP held it (below zero, by more than
+O(n²) (10 000 points, every rope weight: 948 cases, 9487 constraints, 3.6 GB before it is solved).  Only a few
+cases are active at the optimum, so the NLP starts from the case in which each check is least at the starting
+design (:func:`first_cases`), and after each solve the design is checked at every candidate in one vectorised
+call (:func:`uncovered`); a check less at a candidate left out than the NLP held it (below zero, by more than
 :data:`TOL`) adds that case, and the NLP is solved again.  This is the exchange (cutting-plane) method of
 semi-infinite programming (Blankenship & Falk 1976, J. Optim. Theory Appl. 19(2), 261-281; Hettich & Kortanek
 1993, SIAM Review 35(3), 380-429): the NLP of a subset of the constraints is a relaxation, so its optimum, once it
