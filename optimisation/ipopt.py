@@ -168,14 +168,14 @@ def jacobian_at(problem, xs, p) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _jac_functions(problem):
-    """(g, ∂g/∂x) and ∇f_primary as Functions of (x, p); of the NLP with the scene's parameters folded in where the
-    problem has it (:func:`folded`), for p = p0."""
+    """(g, ∂g/∂x) and ∇f_primary of the problem's NLP as Functions of (x, p)."""
     if not hasattr(problem, "_jac_g"):
         problem._jac_g, problem._grad_f0 = _derivatives(problem, problem.g, problem.f_primary)
     return problem._jac_g, problem._grad_f0
 
 
 def _derivatives(problem, g, f_primary) -> tuple[ca.Function, ca.Function]:
+    """(x, p) → (g, ∂g/∂x) and (x, p) → ∇f_primary of the expressions ``g``, ``f_primary``."""
     jac = ca.Function("jac_g", [problem.xs, problem.p], [g, ca.jacobian(g, problem.xs)])
     return jac, ca.Function("grad_f0", [problem.xs, problem.p], [ca.gradient(f_primary, problem.xs)])
 

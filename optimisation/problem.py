@@ -152,16 +152,15 @@ class SizingProblem:
         self.all_cases, self.free = load_cases(scene), free(scene)
         #: the places that can govern (:func:`ropemodel.envelope.prune.prune`, for every rope and pretension;
         #: ``prune_places=False`` for a sweep varying the route or the load): where :meth:`envelope` evaluates a
-        #: design and, unless the constraints are generated, where the NLP makes the checks
-        #: with ``first_range`` (low, high) of the first design variable, only for designs with it in that range
-        #: (the declaration's ``place_weights``; :meth:`covers`)
+        #: design and, unless the constraints are generated (``generate``: the NLP holds the cases each check is
+        #: least in at the start, more added as the designs found are checked at every candidate,
+        #: :mod:`optimisation.generation`), where the NLP makes the checks.  With ``first_range`` (low, high) of
+        #: the first design variable: only for designs with it in that range (the declaration's
+        #: ``place_weights``; :meth:`covers`)
         self.first_range = first_range if hasattr(sizing, "place_weights") else None
         weights = sizing.place_weights(scene, self.first_range) if self.first_range else (0.0, math.inf)
         self.candidates = (prune(self.all_cases, scene.parameters, scene.built, weights) if prune_places
                            else self.all_cases)
-        #: ``generate``: the NLP holds the cases each check is least in at the start, and more are added as the
-        #: designs found are checked at every candidate (:mod:`optimisation.generation`)
-        self.generated = generate
         if not generate:
             _check_work(scene, self.candidates, len(self.all_cases))    # before the model is compiled
         self.problem = Problem(scene, held, freed) if freed else Problem(scene)

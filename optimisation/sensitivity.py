@@ -47,9 +47,10 @@ def _kkt_x(problem: SizingProblem, folded: bool) -> ca.Function:
 
 
 def _kkt_p(problem: SizingProblem, taken: tuple[int, ...]) -> ca.Function:
-    """(x, p, λ_S, w_x, w_S) → w_x ∂(∇_x L)/∂p + w_S ∂g_S/∂p, of the constraints S = ``taken`` (those with a
-    multiplier or a weight; the others add nothing): the few rows of ∂x*/∂p wanted, one adjoint sweep per row (a
-    route has thousands of parameters: a Jacobian in them costs a forward sweep per colour)."""
+    """(x, p, λ_S, w_x, w_S) → w_x ∂(∇_x L)/∂p + w_S ∂g_S/∂p, of the active constraints S = ``taken`` (an inactive
+    one has neither a multiplier nor a weight; a static NLP's from a model of their checks alone,
+    :meth:`SizingProblem.nlp_of`): the few rows of ∂x*/∂p wanted, one adjoint sweep per row (a route has thousands
+    of parameters: a Jacobian in them costs a forward sweep per colour)."""
     kept = _KKT.setdefault(problem, {})
     if taken not in kept:
         n = problem.xs.numel()
