@@ -232,12 +232,13 @@ class SizingProblem:
         self.f_primary = out[sizing.PRIMARY] / self.m_ref
         self.f = self._objective(self.f_primary)
         self.output_names = list(self.problem.unknowns)
+        self._first_case = self.cases[0]      # where :attr:`outputs` puts the load
 
     @cached_property
     def outputs(self) -> ca.Function:
         """Every scene output as a Function (x scaled, p), with the load in the first case."""
         args = self._args
-        every = self.problem.function.call({**args, **self.cases[0].values(ChainMap(args, self.scene.parameters))})
+        every = self.problem.function.call({**args, **self._first_case.values(ChainMap(args, self.scene.parameters))})
         return ca.Function("outputs", [self.xs, self.p], [every[n] for n in self.output_names],
                            ["x", "p"], self.output_names)
 

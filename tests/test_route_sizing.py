@@ -193,3 +193,22 @@ def test_constraint_generation_equals_every_candidate_and_the_one_dimensional_se
     hand = _hand(segments)
     for k in ("d", "F_nwl", "stroke"):
         assert design.continuous[k] == pytest.approx(hand[k], rel=1e-8), k
+
+
+def test_a_rope_below_the_catalogue_is_the_optimum_over_every_place_that_can_govern(tmp_path):
+    """A light load (3 kN): the continuous optimum is a rope thinner than the catalogue's smallest, outside the
+    rope weights the places are first found for (``size`` then finds them again for every rope); its optimum is
+    that of the NLP of every place that can govern for every rope (a second method) to 1e-10."""
+    from ropemodel.papers import en12385 as ropes
+
+    rng = np.random.default_rng(3)
+    segments = [(float(L), float(a), 0.05) for L, a in zip(rng.uniform(20.0, 80.0, 30), rng.uniform(-5.0, 25.0, 30))]
+    f = tmp_path / "size.toml"
+    f.write_text(_profile_toml(segments).replace('G_m = "467 kN"', 'G_m = "3 kN"')
+                 .replace('F_S_min = "5 kN"', 'F_S_min = "0.1 kN"'), encoding="utf-8")
+    design = size(str(f), with_sensitivities=False)
+    every = SizingProblem(load_sizing(str(f), emit=False))
+    whole = solve_continuous(every)
+    assert design.feasible and design.continuous["d"] < ropes.diameters()[0]
+    for k, v in every.to_si(whole.xs).items():
+        assert design.continuous[k] == pytest.approx(v, rel=1e-10), k
