@@ -3,7 +3,7 @@ it finds is checked at every candidate case.
 
 A route of n segments has O(n) places that can govern (:func:`ropemodel.envelope.prune.prune`: the candidates),
 and each case is a copy of the model, whose size grows with n: an NLP of every check at every candidate grows as
-O(n²) (10 000 points, every rope weight: 948 cases, 9487 constraints, 3.6 GB before it is solved).  Only a few
+O(n²) (10 000 points, every rope weight: 948 cases, 9487 constraints, 3.6 GB before IPOPT starts).  Only a few
 cases are active at the optimum, so the NLP starts from the case in which each check is least at the starting
 design (:func:`first_cases`), and after each solve the design is checked at every candidate in one vectorised
 call (:func:`uncovered`); a check less at a candidate left out than the NLP held it (below zero, by more than
@@ -49,7 +49,8 @@ def _screen(problem: SizingProblem) -> tuple[ca.Function, np.ndarray]:
         params = problem.scene.parameters
         ends = joint_ends(params) if problem.scene.route else None
         rows = [case.values(params, ends) for case in problem.candidates]
-        columns = np.array([[float(r.get(k, 0.0)) for r in rows] for k in problem.free]).reshape(len(problem.free), -1)
+        columns = np.array([[float(r.get(k, 0.0)) for r in rows] for k in problem.free],
+                           dtype=float).reshape(len(problem.free), len(rows))
         kept = problem.__dict__["_screen"] = (ca.Function("screen", [x, c], [ca.vertcat(*g)]), columns)
     return kept
 

@@ -141,7 +141,7 @@ def _pieces(segments, n: int) -> list[tuple[float, float]]:
     return [(L / k, a) for (L, a), k in zip(segments, counts) for _ in range(k)]
 
 
-@pytest.mark.slow      # about 30 s: sizing a 10 000-point profile (studies/route_scale.py measures it)
+@pytest.mark.slow      # about 25 s: sizing a 10 000-point profile (studies/route_scale.py measures it)
 def test_sizing_ten_thousand_points_equals_the_route_as_three_segments(tmp_path):
     """A 10 000-row profile that is the three segments of tests/test_route_sizing.py cut into pieces: ``size``
     (constraint generation over the places that can govern) gives the design of the same route as three
