@@ -115,7 +115,7 @@ def test_run_on_the_kept_places_equals_run_on_every_place(tmp_path):
     assert prune(load_cases(scene), scene.parameters, asbuilt) == load_cases(scene)
 
 
-@pytest.mark.slow      # 5 s each: the least tension searched along the route at every place of a fine grid
+@pytest.mark.slow      # 2 to 5 s each: the least tension searched along the route at every place of a fine grid
 @pytest.mark.parametrize("seed", [4, 5])
 def test_a_range_of_rope_weights_keeps_the_worst_place_of_each(seed):
     """For the rope weights of a range only (a sizing's catalogue: q_l from 20 to 150 N/m), fewer places are kept,

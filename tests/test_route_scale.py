@@ -141,7 +141,7 @@ def _pieces(segments, n: int) -> list[tuple[float, float]]:
     return [(L / k, a) for (L, a), k in zip(segments, counts) for _ in range(k)]
 
 
-@pytest.mark.slow      # about 25 s: sizing a 10 000-point profile (studies/route_scale.py measures it)
+@pytest.mark.slow      # about 20 s: sizing a 10 000-point profile (studies/route_scale.py measures it)
 def test_sizing_ten_thousand_points_equals_the_route_as_three_segments(tmp_path):
     """A 10 000-row profile that is the three segments of tests/test_route_sizing.py cut into pieces: ``size``
     (constraint generation over the places that can govern) gives the design of the same route as three
@@ -177,7 +177,7 @@ def test_sizing_ten_thousand_points_equals_the_route_as_three_segments(tmp_path)
     assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss < 1024 * 1024     # kB: under 1 GB
 
 
-@pytest.mark.slow      # about 25 s: run and trip on a 10 000-point profile, both directions
+@pytest.mark.slow      # about 20 s: run and trip on a 10 000-point profile, both directions
 def test_run_and_trip_on_ten_thousand_points_equal_the_route_as_three_segments(tmp_path):
     """``run`` and ``trip`` on 10 000 pieces of a three-segment route (with the ramps' starts and stops) equal the
     same route as three ``[[route]]`` tables: every output's worst to 1e-10 (a sum of 10^4 pieces against one

@@ -170,7 +170,7 @@ def _profile_toml(segments) -> str:
                           for L, a, mu in segments) + "[parameters]\n" + params
 
 
-@pytest.mark.slow      # 8 s: the one-dimensional search over many places in numpy
+@pytest.mark.slow      # 2 to 8 s: the one-dimensional search over many places in numpy
 def test_constraint_generation_equals_every_candidate_and_the_one_dimensional_search(tmp_path):
     """A 12-segment route that rises, dips and rises again (the least tension inside the route moves with the
     rope's weight): ``size`` (the NLP holds the cases where each check can be least, more added while a design
