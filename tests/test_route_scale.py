@@ -1,10 +1,12 @@
 """Routes at survey scale (issue 22, item 4): a profile of a thousand points through ``trip`` and the array evaluator
 with its constants folded in, equal to the same route written as ``[[route]]`` tables and to the exact trip
-written out in numpy.
+written out in numpy; ``size``, ``run`` and ``trip`` on a profile of 10 000 pieces of three segments, equal to
+the three segments.
 
 Truths: the trip integrated in the distance travelled, in closed form on each stretch (``test_trip._by_distance``,
 numpy only, docs/physics.md §4); the same route as ``[[route]]`` tables (a second way in); CasADi's map with the
-constants passed at every point (a second method of the same evaluation).
+constants passed at every point (a second method of the same evaluation); a straight segment cut into pieces is
+the same segment (a limit case), and the one-dimensional sizing search in numpy (``test_route_sizing._hand``).
 """
 
 from __future__ import annotations
