@@ -206,6 +206,22 @@ def _generated(scene: Scene, method: str):
     return (problem, *_solve(problem, method))
 
 
+def _diagnosed(problem: SizingProblem, **how) -> tuple[SizingProblem, Diagnosis]:
+    """(problem, diagnosis) of a problem whose NLP holds some of the candidate cases (:func:`_generated`): the
+    least-violation design is checked at every candidate, and a case more violated there than the NLP's least is
+    added and the diagnosis made again, so the least maximum violation and the conflicting checks are those of
+    every candidate (the exchange method of :mod:`optimisation.generation` applied to the least-violation NLP)."""
+    for _ in range(generation.ROUNDS):
+        diag = diagnose(problem, **how)
+        if diag.feasible or diag.x_least is None or problem.cases == problem.candidates:
+            return problem, diag
+        more = generation.uncovered(problem, [diag.x_least])
+        if not more:
+            return problem, diag
+        problem = problem.with_cases(more)
+    return problem, diag
+
+
 def problem_range(scene: Scene):
     """The range of the first design variable the places that can govern are first found for: the machine's
     catalogue (a winch: its rope diameters), or None (every value)."""
@@ -275,7 +291,7 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
                     load_cases={"cases": len(problem.all_cases), "candidates": len(problem.candidates),
                                 "in_nlp": len(problem.cases)})
     if not sol.feasible:
-        design.diagnosis = diagnose(problem)
+        problem, design.diagnosis = _diagnosed(problem)
         if design.diagnosis.feasible:   # IPOPT failed on a feasible problem: say so, do not guess
             design.message = f"IPOPT failed ({sol.status}) although a feasible design exists"
         else:
@@ -296,7 +312,8 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
             design.message = (f"no catalogue diameter: the continuous optimum d = {d_star * 1e3:.4g} mm is above "
                               f"the largest catalogue size {cat[-1] * 1e3:g} mm")
         else:
-            design.diagnosis = diag = diagnose(problem, fix_d=above[0], x0=sol.xs)
+            problem, diag = _diagnosed(problem, fix_d=above[0], x0=sol.xs)
+            design.diagnosis = diag
             design.message = "no catalogue diameter meets every check; " + diag.text(problem.units)
         if disc.method.endswith("(timed out)"):
             design.message = (f"bonmin did not finish within {BONMIN_TIMEOUT:g} s; use --discrete next-size-up. "

@@ -242,14 +242,14 @@ class SizingProblem:
         return ca.Function("outputs", [self.xs, self.p], [every[n] for n in self.output_names],
                            ["x", "p"], self.output_names)
 
-    def _constraints(self, model, args, p, only=None) -> tuple[list, list, list, dict, list]:
+    def _constraints(self, model, args, p, only=None, t=None) -> tuple[list, list, list, dict, list]:
         """Every check in every case it can differ in (a check that depends only on the manoeuvre once per
         manoeuvre, one that depends on neither once), or the (check, case index) pairs ``only``: their labels, the
         constraints g, the margins, the outputs at the first case and the pairs made.  The cases' places and
         accelerations follow the NLP's parameters ``p`` (a segment's length moves x_m).  ``model``: the NLP's model
         (:func:`~optimisation.nlp_parts.vector_model`, or one of some checks alone), or a Function (c) → a Function
-        (x) → its outputs, each case and the scene's values folded in; ``args``: each known's value (the design in
-        SI among them)."""
+        (x[, t]) → its outputs, each case and the scene's values folded in (``t``: a parameter left free,
+        :func:`optimisation.infeasibility.freeing`); ``args``: each known's value (the design in SI among them)."""
         values = ChainMap(args, self.scene.parameters)
         ends = self._ends(values, p) if self.scene.route else None
         x_si = ca.vertcat(*[args[k] for k in self.variables])
@@ -258,7 +258,8 @@ class SizingProblem:
             case = self.cases[i].values(values, ends)     # an input a case leaves alone: 0, as CasADi's default
             c = ca.vertcat(*[case.get(k, 0.0) for k in self.free])
             if not isinstance(model, ca.Function):
-                return model(c).call({"x": x_si})
+                folded = model(c)
+                return folded.call({k: {"x": x_si, "t": t}[k] for k in folded.name_in()})
             given = {"x": x_si, "p": p, "c": c}
             return model.call({k: given[k] for k in model.name_in()})
 
@@ -396,5 +397,4 @@ class SizingProblem:
 
     def evaluate(self, xs, p=None) -> dict[str, float]:
         """Every scene output (SI) at scaled ``xs``."""
-        res = self.outputs(x=xs, p=self.p0 if p is None else p)
-        return {k: float(v) for k, v in res.items()}
+        return {k: float(v) for k, v in self.outputs(x=xs, p=self.p0 if p is None else p).items()}

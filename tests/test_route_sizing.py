@@ -212,3 +212,33 @@ def test_a_rope_below_the_catalogue_is_the_optimum_over_every_place_that_can_gov
     assert design.feasible and design.continuous["d"] < ropes.diameters()[0]
     for k, v in every.to_si(whole.xs).items():
         assert design.continuous[k] == pytest.approx(v, rel=1e-10), k
+
+
+@pytest.mark.slow      # about 20 s: three sizings and the diagnosis of every candidate
+def test_no_design_on_a_long_route_names_what_makes_one(tmp_path):
+    """The 12-segment route that rises, dips and rises with a rope safety factor of 40: no design.  The
+    least-violation problem over the cases ``size`` holds gives the least maximum violation of the NLP of every
+    candidate (a second method) to 1e-9, and the named remedy is right: with the n_rope it names a design exists,
+    with 0.5 % more none does (bisection truth around the named value)."""
+    from optimisation.infeasibility import diagnose
+
+    rng = np.random.default_rng(7)
+    segments = [(float(L), float(a), float(mu)) for L, a, mu in
+                zip(rng.uniform(50.0, 200.0, 12), np.concatenate([rng.uniform(8.0, 25.0, 5), rng.uniform(-6.0, 2.0, 3),
+                                                                   rng.uniform(5.0, 20.0, 4)]),
+                    rng.uniform(0.04, 0.07, 12))]
+    text = _profile_toml(segments)
+
+    def sized(n_rope):
+        f = tmp_path / f"size_{n_rope!r}.toml"
+        f.write_text(text.replace("n_rope = 4.5", f"n_rope = {n_rope!r}"), encoding="utf-8")
+        return f, size(str(f), with_sensitivities=False)
+
+    f, design = sized(40.0)
+    assert not design.feasible
+    whole = diagnose(SizingProblem(load_sizing(str(f), emit=False)))
+    assert design.diagnosis.max_violation == pytest.approx(whole.max_violation, rel=1e-9)
+    (need,) = [n for n in design.diagnosis.needs if n.startswith("n_rope <=")]
+    n_rope = float(need.split()[2])
+    assert sized(n_rope)[1].feasible
+    assert not sized(1.005 * n_rope)[1].feasible
