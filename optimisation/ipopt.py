@@ -158,7 +158,7 @@ def jacobian_at(problem, xs, p) -> tuple[np.ndarray, np.ndarray]:
     key = (np.asarray(xs, float).tobytes(), np.asarray(p, float).tobytes())
     kept = problem.__dict__.setdefault("_jac_kept", {})
     if key not in kept:
-        g, J = (np.asarray(a, float) for a in _jac_functions(problem)[0](xs, p))
+        g, J = (np.asarray(a, float) for a in _jac_at(problem, p)[0](xs, p))
         g = g.ravel()
         g.flags.writeable = J.flags.writeable = False
         kept[key] = (g, J)
@@ -168,12 +168,28 @@ def jacobian_at(problem, xs, p) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _jac_functions(problem):
+    """(g, ∂g/∂x) and ∇f_primary of the problem's NLP as Functions of (x, p)."""
     if not hasattr(problem, "_jac_g"):
-        problem._jac_g = ca.Function("jac_g", [problem.xs, problem.p],
-                                     [problem.g, ca.jacobian(problem.g, problem.xs)])
-        problem._grad_f0 = ca.Function("grad_f0", [problem.xs, problem.p],
-                                       [ca.gradient(problem.f_primary, problem.xs)])
+        problem._jac_g, problem._grad_f0 = _derivatives(problem, problem.g, problem.f_primary)
     return problem._jac_g, problem._grad_f0
+
+
+def _derivatives(problem, g, f_primary) -> tuple[ca.Function, ca.Function]:
+    """(x, p) → (g, ∂g/∂x) and (x, p) → ∇f_primary of the expressions ``g``, ``f_primary``."""
+    jac = ca.Function("jac_g", [problem.xs, problem.p], [g, ca.jacobian(g, problem.xs)])
+    return jac, ca.Function("grad_f0", [problem.xs, problem.p], [ca.gradient(f_primary, problem.xs)])
+
+
+def _jac_at(problem, p):
+    """:func:`_jac_functions` of the folded NLP at p = p0 (a route's derivatives then carry no segment), else of
+    the parametric one."""
+    if not (getattr(problem, "STATIC", False) and np.array_equal(np.asarray(p, dtype=float), problem.p0)):
+        return _jac_functions(problem)
+    if "_jac_folded" not in problem.__dict__:
+        nlp = problem.at_scene
+        primary = problem.__dict__.get("folded_primary", problem.f_primary)    # not folded: the NLP's own
+        problem.__dict__["_jac_folded"] = _derivatives(problem, nlp["g"], primary)
+    return problem.__dict__["_jac_folded"]
 
 
 def _polish(problem, sol, p, lbx, ubx):
@@ -211,7 +227,7 @@ def lexicographic_ok(problem, sol, p) -> bool:
     normals (and active bound normals): then no feasible direction lowers the mass,
     so the weighted optimum respects the lexicographic order.
     """
-    _, grad_f0 = _jac_functions(problem)
+    _, grad_f0 = _jac_at(problem, p)
     J = jacobian_at(problem, sol.xs, p)[1]
     gf = np.asarray(grad_f0(sol.xs, p)).ravel()
     idx = [problem.constraints.index(c) for c in sol.active]

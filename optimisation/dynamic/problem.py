@@ -153,6 +153,9 @@ class DynamicSizingProblem(SizingProblem):
         scaled."""
         return self.backoffs.get(check, BACKOFF)
 
+    #: the checks through the manoeuvres are not static: derivatives of :meth:`nlp`, not of its static forms
+    STATIC = False
+
     @cached_property
     def at_scene(self) -> dict:
         """The NLP IPOPT solves at the scene's parameters: this problem's own (:meth:`nlp`), the checks through
