@@ -222,8 +222,9 @@ def _polish(problem, sol, p, lbx, ubx):
 
 def _g_at(problem, x, p) -> np.ndarray:
     """g of ``problem`` at scaled ``x``: alone where its Jacobian costs several evaluations (the dynamic NLP's
-    integrators), else as :func:`jacobian_at` evaluates it (a static problem at p0: its folded NLP)."""
-    if getattr(problem, "STATIC", False):
+    integrators: ``STATIC`` False), else as :func:`jacobian_at` evaluates it (a static problem at p0: its folded
+    NLP; a declared machine's problem)."""
+    if getattr(problem, "STATIC", True):
         return jacobian_at(problem, x, p)[0]
     return np.asarray(problem.g_function(x, p), float).ravel()
 
