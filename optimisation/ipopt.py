@@ -193,28 +193,40 @@ def _jac_at(problem, p):
 
 
 def _polish(problem, sol, p, lbx, ubx):
-    """Newton on the active constraints when they fix x (vertex); keeps IPOPT's x otherwise."""
+    """Newton on the active constraints when they fix x (vertex); keeps IPOPT's x otherwise.  Chord steps: the
+    Jacobian at IPOPT's point throughout (it is within IPOPT's tolerance of the vertex, so the steps still
+    shrink by orders of magnitude each), the constraints alone evaluated at the others (:func:`_g_at`) — through
+    the dynamic NLP's integrators a Jacobian costs about nine evaluations of the constraints."""
     idx = [problem.constraints.index(c) for c in sol.active]
     fixed = [i for i, _ in sol.active_bounds]
     if len(idx) + len(fixed) != 3:
         return
     x, last = sol.xs.copy(), np.inf
+    g, J = jacobian_at(problem, x, p)
+    A = np.vstack([J[idx, :], np.eye(3)[fixed, :]]) if fixed else J[idx, :]
+    if np.linalg.cond(A) > 1e12:
+        return
     for _ in range(20):
-        g, J = jacobian_at(problem, x, p)
         r = np.concatenate([g.ravel()[idx], np.zeros(len(fixed))])
-        A = np.vstack([J[idx, :], np.eye(3)[fixed, :]]) if fixed else J[idx, :]
-        if np.linalg.cond(A) > 1e12:
-            return
         step = np.linalg.solve(A, -r)
         x = x + step
+        g = _g_at(problem, x, p)
         size = np.max(np.abs(step))
         # converged, or at the noise floor of g (a step no longer halves: e.g. g through an integrator)
         if size < 1e-15 * max(1.0, np.max(np.abs(x))) or size > 0.5 * last:
             break
         last = size
-    g = jacobian_at(problem, x, p)[0]
     if np.all(g > -1e-9) and np.all(x >= lbx - 1e-12) and np.all(x <= ubx + 1e-12):
         sol.xs, sol.g, sol.polished = x, g.copy(), True
+
+
+def _g_at(problem, x, p) -> np.ndarray:
+    """g of ``problem`` at scaled ``x``: alone where its Jacobian costs several evaluations (the dynamic NLP's
+    integrators: ``STATIC`` False), else as :func:`jacobian_at` evaluates it (a static problem at p0: its folded
+    NLP; a declared machine's problem)."""
+    if getattr(problem, "STATIC", True):
+        return jacobian_at(problem, x, p)[0]
+    return np.asarray(problem.g_function(x, p), float).ravel()
 
 
 def lexicographic_ok(problem, sol, p) -> bool:
