@@ -9,13 +9,13 @@ from typing import Any, cast
 import numpy as np
 
 
-from optimisation import discrete
+from optimisation import discrete, generation
 from optimisation.infeasibility import Diagnosis, diagnose
 from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
 from ropemodel.errors import InputError
-from ropemodel.machines.base import design_words
+from ropemodel.machines.base import declared_machine, design_words
 from ropemodel.machines.sizing import Declaration, declared
 from ropemodel.papers import en12385 as ropes
 from ropemodel.rules.apply import with_rule_terms
@@ -66,6 +66,9 @@ class Design(DesignViews):
     verified: list[dict] = field(default_factory=list)
     #: the model solved at a declared sizing's design
     result: Any = None
+    #: the load cases: every one the worst is taken over (``cases``), those that can govern, where each design is
+    #: checked (``candidates``), and those the NLP made its checks in (``in_nlp``, :mod:`optimisation.generation`)
+    load_cases: dict[str, int] = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         """The JSON contract of ``ropemodel size --json`` (SI numbers)."""
@@ -93,6 +96,8 @@ class Design(DesignViews):
                 infeasible["scan"] = self.diagnosis.scan
             out["infeasible"] = infeasible
         out["message"] = self.message
+        if self.load_cases:
+            out["load_cases"] = self.load_cases
         out.update(self.rope)
         if self.objective:
             out["objective"] = self.objective
@@ -164,6 +169,66 @@ def solve_best(problem: SizingProblem, p=None, x0=None) -> Solution:
     return sol
 
 
+def _solve(problem: SizingProblem, method: str):
+    """The continuous optimum and the catalogue design of ``problem`` (the latter None where the former is not
+    feasible)."""
+    sol = solve_best(problem)
+    if not sol.feasible:   # confirm independently: every catalogue size, F_nwl and stroke found with d fixed
+        probe = discrete.next_size_up(problem, 0.0)
+        if probe.solution is not None:
+            sol = solve_best(problem, x0=probe.solution.xs)
+    if not sol.feasible:
+        return sol, None
+    if method == "bonmin":
+        return sol, discrete.bonmin_with_timeout(problem, BONMIN_TIMEOUT, x0=sol.xs)
+    return sol, discrete.next_size_up(problem, problem.to_si(sol.xs)["d"])
+
+
+def _generated(scene: Scene, method: str):
+    """(problem, continuous optimum, catalogue design) by constraint generation (:mod:`optimisation.generation`):
+    solved on the cases that can be least, those a design found leaves below zero added until the continuous
+    optimum and the catalogue design hold every check at every candidate; after :data:`generation.ROUNDS`
+    rounds, the NLP of every candidate."""
+    for first_range in (problem_range(scene), None):
+        problem = SizingProblem(scene, generate=True, first_range=first_range)
+        for _ in range(generation.ROUNDS):
+            sol, disc = _solve(problem, method)
+            designs = [sol.xs] if sol.feasible else []
+            if disc is not None and disc.solution is not None:
+                designs.append(rounded_up(problem, disc.solution.xs))
+            if not all(problem.covers(xs) for xs in designs):
+                break                           # a design outside the range its places were found for
+            more = generation.uncovered(problem, designs)
+            if not more:
+                return problem, sol, disc
+            problem = problem.with_cases(more)
+    problem = SizingProblem(scene)
+    return (problem, *_solve(problem, method))
+
+
+def _diagnosed(problem: SizingProblem, **how) -> tuple[SizingProblem, Diagnosis]:
+    """(problem, diagnosis) of a problem whose NLP holds some of the candidate cases (:func:`_generated`): the
+    least-violation design is checked at every candidate, and a case more violated there than the NLP's least is
+    added and the diagnosis made again, so the least maximum violation and the conflicting checks are those of
+    every candidate (the exchange method of :mod:`optimisation.generation` applied to the least-violation NLP)."""
+    for _ in range(generation.ROUNDS):
+        diag = diagnose(problem, **how)
+        if diag.feasible or diag.x_least is None or problem.cases == problem.candidates:
+            return problem, diag
+        more = generation.uncovered(problem, [diag.x_least])
+        if not more:
+            return problem, diag
+        problem = problem.with_cases(more)
+    return problem, diag
+
+
+def problem_range(scene: Scene):
+    """The range of the first design variable the places that can govern are first found for: the machine's
+    catalogue (a winch: its rope diameters), or None (every value)."""
+    catalogue = getattr(declared_machine(scene).sizing, "catalogue_range", None)
+    return None if catalogue is None else catalogue()
+
+
 def _size_declared(scene: Scene, method: str) -> Design:
     """The sizing of a model that declares it (:mod:`optimisation.declared`)."""
     from optimisation.declared import size_declared
@@ -221,15 +286,12 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     scene = load_sizing(scene, emit=False)
     if declared(scene.model) is not None:           # a model that declares its sizing (not the winch)
         return _size_declared(scene, method)
-    problem = SizingProblem(scene)
-    design = Design(problem.scene, False, method=method, units=dict(problem.units))
-    sol = solve_best(problem)
-    if not sol.feasible:   # confirm independently: every catalogue size, F_nwl and stroke found with d fixed
-        probe = discrete.next_size_up(problem, 0.0)
-        if probe.solution is not None:
-            sol = solve_best(problem, x0=probe.solution.xs)
+    problem, sol, disc = _generated(scene, method)
+    design = Design(problem.scene, False, method=method, units=dict(problem.units),
+                    load_cases={"cases": len(problem.all_cases), "candidates": len(problem.candidates),
+                                "in_nlp": len(problem.cases)})
     if not sol.feasible:
-        design.diagnosis = diagnose(problem)
+        problem, design.diagnosis = _diagnosed(problem)
         if design.diagnosis.feasible:   # IPOPT failed on a feasible problem: say so, do not guess
             design.message = f"IPOPT failed ({sol.status}) although a feasible design exists"
         else:
@@ -243,10 +305,6 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     if with_sensitivities:
         design.sensitivities = with_rule_terms(problem.scene, sensitivities(problem, sol))
     d_star = design.continuous["d"]
-    if method == "bonmin":
-        disc = discrete.bonmin_with_timeout(problem, BONMIN_TIMEOUT, x0=sol.xs)
-    else:
-        disc = discrete.next_size_up(problem, d_star)
     if disc.solution is None:
         cat = ropes.diameters()
         above = [dk for dk in cat if dk >= d_star - 1e-9]
@@ -254,7 +312,8 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
             design.message = (f"no catalogue diameter: the continuous optimum d = {d_star * 1e3:.4g} mm is above "
                               f"the largest catalogue size {cat[-1] * 1e3:g} mm")
         else:
-            design.diagnosis = diag = diagnose(problem, fix_d=above[0], x0=sol.xs)
+            problem, diag = _diagnosed(problem, fix_d=above[0], x0=sol.xs)
+            design.diagnosis = diag
             design.message = "no catalogue diameter meets every check; " + diag.text(problem.units)
         if disc.method.endswith("(timed out)"):
             design.message = (f"bonmin did not finish within {BONMIN_TIMEOUT:g} s; use --discrete next-size-up. "

@@ -58,6 +58,7 @@ class Diagnosis:
     needs: list[str] = field(default_factory=list)    # "needs D >= 1.26 m": what would make a design exist
     backing: str = ""                                 # what backs the verdict beyond the local solvers (a scan)
     scan: dict = field(default_factory=dict)          # that scan's axes and counts
+    x_least: Any = None                               # the design (scaled) of least maximum violation
 
     def text(self, units: dict[str, str]) -> str:
         if self.feasible:
@@ -143,7 +144,7 @@ def diagnose(problem: SizingProblem, p=None, d_range=None, fix_d: float | None =
                if z3[3 + i] > 1e-6}
     where = f" at d = {fix_d * 1e3:g} mm" if fix_d is not None else ""
     needs = remedies(problem, conflicting, p, lbx, ubx, z1[:3])
-    return Diagnosis(False, t_star, conflicting, alone, elastic, margins, where, needs)
+    return Diagnosis(False, t_star, conflicting, alone, elastic, margins, where, needs, x_least=z1[:3])
 
 
 def remedies(problem: SizingProblem, conflicting, p, lbx, ubx, x0) -> list[str]:
@@ -195,17 +196,46 @@ def _safe_round(x: float, up: bool) -> float:
     return (math.ceil(x / step) if up else math.floor(x / step)) * step
 
 
+def freeing(problem: SizingProblem, i: int, t: ca.MX) -> ca.MX:
+    """The scaled constraints g of ``problem`` at the scene's parameters ``p0`` but the i-th, which is ``t``
+    [SI], the others folded in as :attr:`~optimisation.problem.SizingProblem.at_scene` folds them (a route's
+    sums over segments are numbers): what the remedies solve, each evaluation no longer a pass over the route.
+    A parameter a route's places follow (a segment's length) is not folded: g through the whole model then."""
+    name = problem.params[i]
+    if not problem._nlp_model.is_a("SXFunction") or (problem.scene.route and name.startswith("L_")):
+        whole = ca.Function("g", [problem.xs, problem.p], [problem.g])
+        return whole(problem.xs, ca.vertcat(problem.p[:i], t, problem.p[i + 1:]))
+    x, ts = ca.SX.sym("x", problem._nlp_model.size1_in("x")), ca.SX.sym("t")
+    pv = ca.SX(ca.DM(problem.p0))
+    pv[i] = ts
+    c = ca.SX.sym("c", problem._nlp_model.size1_in("c"))
+    model = ca.Function("nlp_model_free", [x, ts, c], problem._nlp_model.call([x, pv, c]), ["x", "t", "c"],
+                        problem._nlp_model.name_out())
+
+    def case(cv) -> ca.Function:
+        return ca.Function("nlp_case", [x, ts], model.call([x, ts, ca.DM(ca.evalf(cv))]), ["x", "t"],
+                           model.name_out())
+
+    args = problem._knowns(ca.DM(problem.p0), problem.xs * ca.DM(problem.x_scale))
+    args = {k: float(v) if isinstance(v, ca.DM) else v for k, v in args.items()}
+    args[name] = t
+    made = problem._constraints(case, args, problem.p, t=t)[1]
+    return ca.vertcat(*made) / ca.DM(problem.g_scale)
+
+
 def _freeing(problem, gfun, i, sense, quantity, p):
     """A function of the design's bounds and start: the least (``"min"``) or largest (``"max"``) value of
     parameter i with a feasible design within them, or None.  The NLP is built once and solved for each
     catalogue diameter (fixed through the bounds)."""
     t = ca.MX.sym("t")
     scale = abs(p[i]) or 1.0
-    pv = ca.vertcat(*[t * scale if j == i else problem.p[j] for j in range(len(p))])
-    xs = ca.MX.sym("x", 3)
+    if np.array_equal(p, problem.p0):     # the other parameters folded in (a route's sums are numbers)
+        g = ca.Function("g_free", [problem.xs, t], [freeing(problem, i, t * scale)])(xs := ca.MX.sym("x", 3), t)
+    else:
+        xs = ca.MX.sym("x", 3)
+        g = gfun(xs, ca.vertcat(*[t * scale if j == i else problem.p[j] for j in range(len(p))]))
     z = ca.vertcat(xs, t)
-    solver = ca.nlpsol("free", "ipopt", {"x": z, "p": problem.p, "f": t if sense == "min" else -t,
-                                         "g": gfun(xs, pv)}, OPTS)
+    solver = ca.nlpsol("free", "ipopt", {"x": z, "p": problem.p, "f": t if sense == "min" else -t, "g": g}, OPTS)
     lo = quantity.low / scale if math.isfinite(quantity.low) else -np.inf
     hi = quantity.high / scale if math.isfinite(quantity.high) else np.inf
 

@@ -158,7 +158,7 @@ def jacobian_at(problem, xs, p) -> tuple[np.ndarray, np.ndarray]:
     key = (np.asarray(xs, float).tobytes(), np.asarray(p, float).tobytes())
     kept = problem.__dict__.setdefault("_jac_kept", {})
     if key not in kept:
-        g, J = (np.asarray(a, float) for a in _jac_functions(problem)[0](xs, p))
+        g, J = (np.asarray(a, float) for a in _jac_at(problem, p)[0](xs, p))
         g = g.ravel()
         g.flags.writeable = J.flags.writeable = False
         kept[key] = (g, J)
@@ -168,37 +168,65 @@ def jacobian_at(problem, xs, p) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _jac_functions(problem):
+    """(g, ∂g/∂x) and ∇f_primary of the problem's NLP as Functions of (x, p)."""
     if not hasattr(problem, "_jac_g"):
-        problem._jac_g = ca.Function("jac_g", [problem.xs, problem.p],
-                                     [problem.g, ca.jacobian(problem.g, problem.xs)])
-        problem._grad_f0 = ca.Function("grad_f0", [problem.xs, problem.p],
-                                       [ca.gradient(problem.f_primary, problem.xs)])
+        problem._jac_g, problem._grad_f0 = _derivatives(problem, problem.g, problem.f_primary)
     return problem._jac_g, problem._grad_f0
 
 
+def _derivatives(problem, g, f_primary) -> tuple[ca.Function, ca.Function]:
+    """(x, p) → (g, ∂g/∂x) and (x, p) → ∇f_primary of the expressions ``g``, ``f_primary``."""
+    jac = ca.Function("jac_g", [problem.xs, problem.p], [g, ca.jacobian(g, problem.xs)])
+    return jac, ca.Function("grad_f0", [problem.xs, problem.p], [ca.gradient(f_primary, problem.xs)])
+
+
+def _jac_at(problem, p):
+    """:func:`_jac_functions` of the folded NLP at p = p0 (a route's derivatives then carry no segment), else of
+    the parametric one."""
+    if not (getattr(problem, "STATIC", False) and np.array_equal(np.asarray(p, dtype=float), problem.p0)):
+        return _jac_functions(problem)
+    if "_jac_folded" not in problem.__dict__:
+        nlp = problem.at_scene
+        primary = problem.__dict__.get("folded_primary", problem.f_primary)    # not folded: the NLP's own
+        problem.__dict__["_jac_folded"] = _derivatives(problem, nlp["g"], primary)
+    return problem.__dict__["_jac_folded"]
+
+
 def _polish(problem, sol, p, lbx, ubx):
-    """Newton on the active constraints when they fix x (vertex); keeps IPOPT's x otherwise."""
+    """Newton on the active constraints when they fix x (vertex); keeps IPOPT's x otherwise.  Chord steps: the
+    Jacobian at IPOPT's point throughout (it is within IPOPT's tolerance of the vertex, so the steps still
+    shrink by orders of magnitude each), the constraints alone evaluated at the others (:func:`_g_at`) — through
+    the dynamic NLP's integrators a Jacobian costs about nine evaluations of the constraints."""
     idx = [problem.constraints.index(c) for c in sol.active]
     fixed = [i for i, _ in sol.active_bounds]
     if len(idx) + len(fixed) != 3:
         return
     x, last = sol.xs.copy(), np.inf
+    g, J = jacobian_at(problem, x, p)
+    A = np.vstack([J[idx, :], np.eye(3)[fixed, :]]) if fixed else J[idx, :]
+    if np.linalg.cond(A) > 1e12:
+        return
     for _ in range(20):
-        g, J = jacobian_at(problem, x, p)
         r = np.concatenate([g.ravel()[idx], np.zeros(len(fixed))])
-        A = np.vstack([J[idx, :], np.eye(3)[fixed, :]]) if fixed else J[idx, :]
-        if np.linalg.cond(A) > 1e12:
-            return
         step = np.linalg.solve(A, -r)
         x = x + step
+        g = _g_at(problem, x, p)
         size = np.max(np.abs(step))
         # converged, or at the noise floor of g (a step no longer halves: e.g. g through an integrator)
         if size < 1e-15 * max(1.0, np.max(np.abs(x))) or size > 0.5 * last:
             break
         last = size
-    g = jacobian_at(problem, x, p)[0]
     if np.all(g > -1e-9) and np.all(x >= lbx - 1e-12) and np.all(x <= ubx + 1e-12):
         sol.xs, sol.g, sol.polished = x, g.copy(), True
+
+
+def _g_at(problem, x, p) -> np.ndarray:
+    """g of ``problem`` at scaled ``x``: alone where its Jacobian costs several evaluations (the dynamic NLP's
+    integrators: ``STATIC`` False), else as :func:`jacobian_at` evaluates it (a static problem at p0: its folded
+    NLP; a declared machine's problem)."""
+    if getattr(problem, "STATIC", True):
+        return jacobian_at(problem, x, p)[0]
+    return np.asarray(problem.g_function(x, p), float).ravel()
 
 
 def lexicographic_ok(problem, sol, p) -> bool:
@@ -208,7 +236,7 @@ def lexicographic_ok(problem, sol, p) -> bool:
     normals (and active bound normals): then no feasible direction lowers the mass,
     so the weighted optimum respects the lexicographic order.
     """
-    _, grad_f0 = _jac_functions(problem)
+    _, grad_f0 = _jac_at(problem, p)
     J = jacobian_at(problem, sol.xs, p)[1]
     gf = np.asarray(grad_f0(sol.xs, p)).ravel()
     idx = [problem.constraints.index(c) for c in sol.active]

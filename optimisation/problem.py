@@ -22,17 +22,17 @@ in N are divided by F_ref, margins in m are taken in m, ratio margins as they ar
 
 from __future__ import annotations
 
+import copy
 import math
 from collections import ChainMap
 from functools import cached_property
-from typing import Any
 
 import casadi as ca
 import numpy as np
 
-from ropemodel.core.evaluate import reordered
+from optimisation.nlp_parts import Ends, depends, nlp_function, vector_model
 from ropemodel.envelope import Envelope, LoadCase, envelope, free, load_cases
-from ropemodel.envelope.cases import depends_on, distinct, joint_ends
+from ropemodel.envelope.cases import distinct, joint_ends
 from ropemodel.envelope.prune import prune
 from ropemodel.machines import default
 from ropemodel.machines.base import declared_machine, needing
@@ -50,43 +50,11 @@ def declaration(scene):
     return needing("sizing", scene, "sizing")
 
 
-class _Reads(dict):
-    """Outputs as symbols, each made when first read: its keys are what a declaration's ``nlp_form`` writes a
-    check from."""
-
-    def __missing__(self, key):
-        self[key] = ca.MX.sym(key)
-        return self[key]
-
-
-def _nlp_function(fun: ca.Function, checks, sizing, args) -> ca.Function:
-    """``fun`` with only the outputs the NLP reads (each check in its ``nlp_form``, the primary objective): a
-    route's model has an output per segment, and every derivative of the NLP would carry them."""
-    out = _Reads()
-    for c in checks:
-        sizing.nlp_form(c, out, args)
-    wanted = {sizing.PRIMARY, *checks, *out}
-    return reordered(fun, fun.name_in(), [k for k in fun.name_out() if k in wanted])
-
-
-def _vector_model(fun: ca.Function, variables, params, free, given) -> ca.Function:
-    """``fun`` (one scalar input per known) as a Function of three vectors: the design ``x`` (SI, in the order of
-    ``variables``), the NLP's parameters ``p`` (``params``) and the case inputs ``c`` (``free``); the ``given``
-    outputs 0.  Each case of the NLP is one call of it, not a node per parameter (a route has thousands), and its
-    derivatives are those of one SX Function."""
-    sym: Any = ca.SX.sym if fun.is_a("SXFunction") else ca.MX.sym
-    x, p, c = sym("x", len(variables)), sym("p", len(params)), sym("c", len(free))
-    env = {**{k: p[i] for i, k in enumerate(params)}, **{k: c[i] for i, k in enumerate(free)},
-           **{k: x[i] for i, k in enumerate(variables)}, **{k: 0.0 for k in given}}
-    out = fun.call({k: env[k] for k in fun.name_in() if k in env})
-    return ca.Function("nlp_model", [x, p, c], [out[k] for k in fun.name_out()], ["x", "p", "c"],
-                       list(fun.name_out()))
-
-
-def _label(check: str, case: LoadCase, inputs, params) -> str:
+def _label(check: str, case: LoadCase, inputs, params, ends=None) -> str:
     """``slip_margin_up @ segment 2, x_m = 1300 m, start``: the check and the case it is made in (of the case
-    inputs it depends on; the check alone where it depends on none)."""
-    where = case.label(params, inputs)
+    inputs it depends on; the check alone where it depends on none; ``ends``: the places' x_m, as
+    :meth:`LoadCase.values` takes them)."""
+    where = case.label(params, inputs, ends)
     return f"{check} @ {where}" if where else check
 
 
@@ -166,7 +134,11 @@ class SizingProblem:
     outputs: a Function (x_SI, p) → every scene output (for reports: N_p, margins).
     """
 
-    def __init__(self, scene: Scene, prune_places: bool = True):
+    #: the NLP is the checks of its load cases alone: its derivatives in x at ``p0`` may be taken of
+    #: :attr:`at_scene` (the same NLP, the scene's values folded in), those in p of :meth:`nlp_of`
+    STATIC = True
+
+    def __init__(self, scene: Scene, prune_places: bool = True, generate: bool = False, first_range=None):
         scene = prepare(scene)
         self.scene = scene
         self.machine = declared_machine(scene)
@@ -176,12 +148,21 @@ class SizingProblem:
         held, freed = sizing.frees(scene)
         self.least_drum = bool(freed)
         #: every place of the load and every manoeuvre the scene leaves open (:func:`ropemodel.envelope.load_cases`),
-        #: their inputs (x_m, a_h) set by each case: where :meth:`envelope` evaluates a design
+        #: their inputs (x_m, a_h) set by each case
         self.all_cases, self.free = load_cases(scene), free(scene)
-        #: where the NLP makes the checks: the places that can govern (:func:`ropemodel.envelope.prune.prune`,
-        #: for every rope and pretension; ``prune_places=False`` for a sweep varying the route or the load)
-        self.cases = prune(self.all_cases, scene.parameters, scene.built) if prune_places else self.all_cases
-        _check_work(scene, self.cases, len(self.all_cases))    # before the model is compiled
+        #: the places that can govern (:func:`ropemodel.envelope.prune.prune`, for every rope and pretension;
+        #: ``prune_places=False`` for a sweep varying the route or the load): where :meth:`envelope` evaluates a
+        #: design and, unless the constraints are generated (``generate``: the NLP holds the cases each check is
+        #: least in at the start, more added as the designs found are checked at every candidate,
+        #: :mod:`optimisation.generation`), where the NLP makes the checks.  With ``first_range`` (low, high) of
+        #: the first design variable: only for designs with it in that range (the declaration's
+        #: ``place_weights``; :meth:`covers`)
+        self.first_range = first_range if hasattr(sizing, "place_weights") else None
+        weights = sizing.place_weights(scene, self.first_range) if self.first_range else (0.0, math.inf)
+        self.candidates = (prune(self.all_cases, scene.parameters, scene.built, weights) if prune_places
+                           else self.all_cases)
+        if not generate:
+            _check_work(scene, self.candidates, len(self.all_cases))    # before the model is compiled
         self.problem = Problem(scene, held, freed) if freed else Problem(scene)
         fun = self.problem.function
         self.params = [k for k in self.problem.knowns
@@ -189,79 +170,163 @@ class SizingProblem:
         self.p0 = np.array([scene.parameters[k] for k in self.params], dtype=float)
         self.F_ref = sizing.force_scale(scene)
         self.x_scale = sizing.x_scale(self.F_ref)
-
-        n = len(self.variables)
-        xs = ca.MX.sym("x", n)
-        p = ca.MX.sym("p", len(self.params))
-        x_si = xs * ca.DM(self.x_scale)
-        args = {k: p[i] for i, k in enumerate(self.params)}
-        args.update({k: x_si[i] for i, k in enumerate(self.variables)})
-        args.update({k: 0.0 for k in self.problem.given})   # a check held at 0 where its dimension is a result
-        self.xs, self.p = xs, p
-        checks = self.machine.checks(self.problem.unknowns)
-        self._nlp_model = _vector_model(_nlp_function(fun, checks, sizing, args), self.variables, self.params,
-                                        self.free, self.problem.given)
-        self.constraints, self._g, self._margin_exprs, out = self._constraints(self._nlp_model, fun, args, p, x_si)
+        self.xs, self.p = ca.MX.sym("x", len(self.variables)), ca.MX.sym("p", len(self.params))
+        self._args = self._knowns(self.p, self.xs * ca.DM(self.x_scale))
+        self.checks = self.machine.checks(self.problem.unknowns)
+        self._nlp_model = vector_model(nlp_function(fun, self.checks, sizing, self._args), self.variables,
+                                        self.params, self.free, self.problem.given)
         unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
         q = scene.built.quantities
-        self.units = {c: sizing.unit(c, q[_base(c)].unit) for c in self.constraints}
-        self.g_scale = np.array([unit_scale[self.units[c]] for c in self.constraints])
+        #: each check's scale in the NLP (g = its NLP form over this)
+        self.check_scale = {c: unit_scale[sizing.unit(c, q[c].unit)] for c in self.checks}
+        #: the case inputs each check depends on (a check the same in every case is made once)
+        self.depends = depends(self._nlp_model, self.checks, self.free)
+        self.cases = self.candidates
+        if generate:
+            from optimisation.generation import first_cases
+
+            self.cases = first_cases(self)
+        self._build_nlp()
+
+    def covers(self, xs) -> bool:
+        """Whether the :attr:`candidates` hold every worst case of the design at scaled ``xs``: its first variable in
+        :attr:`first_range` (or no range)."""
+        if self.first_range is None:
+            return True
+        first = float(np.asarray(xs, dtype=float).ravel()[0] * self.x_scale[0])
+        return self.first_range[0] <= first <= self.first_range[1]
+
+    def _knowns(self, p, x_si) -> dict:
+        """Every known of the model by name: the parameters from ``p``, the design ``x_si`` (SI), a check held at 0
+        where its dimension is a result."""
+        args = {k: p[i] for i, k in enumerate(self.params)}
+        args.update({k: x_si[i] for i, k in enumerate(self.variables)})
+        args.update({k: 0.0 for k in self.problem.given})
+        return args
+
+    def with_cases(self, more) -> SizingProblem:
+        """This problem with the NLP also making its checks at the candidates ``more`` (indices into
+        :attr:`candidates`; the model is not compiled again)."""
+        out = copy.copy(self)
+        known = set(self.cases)
+        out.cases = self.cases + [self.candidates[i] for i in sorted(set(more)) if self.candidates[i] not in known]
+        out._build_nlp()
+        return out
+
+    def _build_nlp(self) -> None:
+        """The NLP of :attr:`cases`: its constraints, their units and scales, the objective; what was derived
+        from a previous NLP (folded NLP, Jacobians, solvers) is dropped."""
+        for k in ("at_scene", "folded_primary", "g_function", "margin_function", "_jac_kept", "_jac_g", "_grad_f0",
+                  "_jac_folded"):
+            self.__dict__.pop(k, None)
+        sizing, xs, p = self.sizing, self.xs, self.p
+        self.constraints, self._g, self._margin_exprs, out, self._made = self._constraints(self._nlp_model, self._args,
+                                                                                           p)
+        self.units = {c: sizing.unit(c, self.scene.built.quantities[_base(c)].unit) for c in self.constraints}
+        self.g_scale = np.array([self.check_scale[_base(c)] for c in self.constraints])
         self.g = ca.vertcat(*self._g) / ca.DM(self.g_scale)
         # reference of the primary objective: its value at x = 1 in scaled units (fixed number: the weights are
         # constants; a winch: the rope mass per metre at d = 10 mm)
         m_at = ca.Function("m", [xs, p], [out[sizing.PRIMARY]])
-        self.m_ref = float(m_at(ca.DM.ones(n), self.p0))
+        self.m_ref = float(m_at(ca.DM.ones(len(self.variables)), self.p0))
         self.f_primary = out[sizing.PRIMARY] / self.m_ref
         self.f = self._objective(self.f_primary)
         self.output_names = list(self.problem.unknowns)
-        every = fun.call({**args, **self.cases[0].values(ChainMap(args, scene.parameters))})
-        self.outputs = ca.Function("outputs", [xs, p], [every[n] for n in self.output_names],
-                                   ["x", "p"], self.output_names)
+        self._first_case = self.cases[0]      # where :attr:`outputs` puts the load
 
-    def _constraints(self, model: ca.Function, fun: ca.Function, args, p, x_si) -> tuple[list, list, list, dict]:
+    @cached_property
+    def outputs(self) -> ca.Function:
+        """Every scene output as a Function (x scaled, p), with the load in the first case."""
+        args = self._args
+        every = self.problem.function.call({**args, **self._first_case.values(ChainMap(args, self.scene.parameters))})
+        return ca.Function("outputs", [self.xs, self.p], [every[n] for n in self.output_names],
+                           ["x", "p"], self.output_names)
+
+    def _constraints(self, model, args, p, only=None, t=None) -> tuple[list, list, list, dict, list]:
         """Every check in every case it can differ in (a check that depends only on the manoeuvre once per
-        manoeuvre, one that depends on neither once): their labels, the constraints g and the margins.
-        The cases' places and accelerations follow the NLP's parameters ``p`` (a segment's length moves x_m).
-        ``model``: :func:`_vector_model` or the same at ``p0``; ``fun``: the model with one input per known;
-        ``args``: each known's value; ``x_si``: the design in SI.  Returns (labels, g, margins, the outputs at
-        the first case)."""
+        manoeuvre, one that depends on neither once), or the (check, case index) pairs ``only``: their labels, the
+        constraints g, the margins, the outputs at the first case and the pairs made.  The cases' places and
+        accelerations follow the NLP's parameters ``p`` (a segment's length moves x_m).  ``model``: the NLP's model
+        (:func:`~optimisation.nlp_parts.vector_model`, or one of some checks alone), or a Function (c) → a Function
+        (x[, t]) → its outputs, each case and the scene's values folded in (``t``: a parameter left free,
+        :func:`optimisation.infeasibility.freeing`); ``args``: each known's value (the design in SI among them)."""
         values = ChainMap(args, self.scene.parameters)
-        ends = joint_ends(values) if self.scene.route else None
+        ends = self._ends(values, p) if self.scene.route else None
+        x_si = ca.vertcat(*[args[k] for k in self.variables])
 
         def at_case(i: int) -> dict:
             case = self.cases[i].values(values, ends)     # an input a case leaves alone: 0, as CasADi's default
-            given = {"x": x_si, "p": p, "c": ca.vertcat(*[case.get(k, 0.0) for k in self.free])}
+            c = ca.vertcat(*[case.get(k, 0.0) for k in self.free])
+            if not isinstance(model, ca.Function):
+                folded = model(c)
+                return folded.call({k: {"x": x_si, "t": t}[k] for k in folded.name_in()})
+            given = {"x": x_si, "p": p, "c": c}
             return model.call({k: given[k] for k in model.name_in()})
 
-        margins = self.machine.checks(self.problem.unknowns)
-        depends = depends_on(fun, margins)
+        labelled = ends if ends is None else [float(e) for e in joint_ends(self.scene.parameters)]
+        made = only if only is not None else [(c, i) for c in self.checks
+                                              for i in distinct(self.cases, self.depends[c])]
         at: dict[int, dict] = {}
         labels, g, exprs = [], [], []
-        for c in margins:
-            for i in distinct(self.cases, depends[c]):
-                if i not in at:
-                    at[i] = at_case(i)
-                labels.append(_label(c, self.cases[i], depends[c], self.scene.parameters))
-                g.append(self.sizing.nlp_form(c, at[i], args))
-                exprs.append(at[i][c])
-        return labels, g, exprs, (at[0] if 0 in at else at_case(0))
+        for c, i in made:
+            if i not in at:
+                at[i] = at_case(i)
+            labels.append(_label(c, self.cases[i], self.depends[c], self.scene.parameters, labelled))
+            g.append(self.sizing.nlp_form(c, at[i], args))
+            exprs.append(at[i][c])
+        first = at[min(at)] if at else at_case(0)     # the objective: the same in every case
+        return labels, g, exprs, first, made
+
+    def nlp_of(self, taken) -> tuple:
+        """(f, g_S) of the NLP (parametric) with the constraints S = ``taken`` (indices into :attr:`constraints`)
+        alone, from a model of their checks alone: a route's least tensions, which the other checks need, are
+        then left out of the derivatives in the parameters (:mod:`optimisation.sensitivity`)."""
+        made = [self._made[i] for i in taken]
+        checks = list(dict.fromkeys(c for c, _ in made))
+        model = vector_model(nlp_function(self.problem.function, checks, self.sizing, self._args), self.variables,
+                              self.params, self.free, self.problem.given)
+        _, g, _, out, _ = self._constraints(model, self._args, self.p, only=made)
+        g_s = ca.vertcat(*g) / ca.DM(self.g_scale[list(taken)]) if taken else ca.MX(0, 1)
+        return self._objective(out[self.sizing.PRIMARY] / self.m_ref), g_s
+
+    def _ends(self, values, p):
+        """The places' x_m (:func:`ropemodel.envelope.cases.joint_ends`): numbers where ``values`` are, else each
+        a sum of the NLP's parameters ``p`` (one operation per place, not a chain through every segment)."""
+        ends = joint_ends(self.scene.parameters)
+        if all(isinstance(values[f"L_{i}"], float) for i in range(1, len(ends))):
+            return joint_ends(values)
+        where = {k: i for i, k in enumerate(self.params)}
+        lengths = [where[f"L_{i}"] for i in range(1, len(ends))]
+        return Ends(p, lengths)
 
     @cached_property
     def at_scene(self) -> dict:
-        """The NLP (:meth:`nlp`) at the scene's parameters ``p0``, folded into its expressions (a route's sums are
-        numbers; the NLP's ``p`` is still there, unused): what IPOPT solves when ``p`` is ``p0``, its derivatives no
-        longer carrying every segment's parameters."""
+        """The NLP (:meth:`nlp`) at the scene's parameters ``p0``, folded into its expressions, each case's place and
+        acceleration too (a route's sums and minima are numbers; the NLP's ``p`` is still there, unused): what
+        IPOPT solves when ``p`` is ``p0``, its derivatives no longer carrying every segment's parameters."""
         if not self._nlp_model.is_a("SXFunction"):
             return self.nlp()
-        x, c = (ca.SX.sym(k, self._nlp_model.size1_in(k)) for k in ("x", "c"))
-        model = ca.Function("nlp_model_p0", [x, c], self._nlp_model.call([x, ca.DM(self.p0), c]),
-                            ["x", "c"], self._nlp_model.name_out())
-        x_si = self.xs * ca.DM(self.x_scale)
-        args = {**dict(zip(self.params, self.p0.tolist())), **{k: x_si[i] for i, k in enumerate(self.variables)},
-                **{k: 0.0 for k in self.problem.given}}
-        _, g, _, out = self._constraints(model, self.problem.function, args, self.p, x_si)
-        return self.nlp(f=self._objective(out[self.sizing.PRIMARY] / self.m_ref),
-                        g=ca.vertcat(*g) / ca.DM(self.g_scale))
+        model = self.folded_model()
+        x = ca.SX.sym("x", self._nlp_model.size1_in("x"))
+
+        def case(c) -> ca.Function:
+            return ca.Function("nlp_case", [x], model.call([x, ca.DM(ca.evalf(c))]), ["x"], model.name_out())
+
+        args = self._knowns(ca.DM(self.p0), self.xs * ca.DM(self.x_scale))
+        args = {k: float(v) if isinstance(v, ca.DM) else v for k, v in args.items()}
+        _, g, _, out, _ = self._constraints(case, args, self.p)
+        self.__dict__["folded_primary"] = out[self.sizing.PRIMARY] / self.m_ref
+        return self.nlp(f=self._objective(self.__dict__["folded_primary"]), g=ca.vertcat(*g) / ca.DM(self.g_scale))
+
+    def folded_model(self) -> ca.Function:
+        """The NLP's model (:func:`~optimisation.nlp_parts.vector_model`) at the scene's parameters ``p0`` (SX,
+        folded): a Function (x SI, c)."""
+        if "_folded" not in self.__dict__:
+            x, c = (ca.SX.sym(k, self._nlp_model.size1_in(k)) for k in ("x", "c"))
+            self.__dict__["_folded"] = ca.Function("nlp_model_p0", [x, c],
+                                                   self._nlp_model.call([x, ca.DM(self.p0), c]), ["x", "c"],
+                                                   self._nlp_model.name_out())
+        return self.__dict__["_folded"]
 
     def _objective(self, primary):
         """The primary objective (scaled), then the other variables in order, far below it."""
@@ -272,9 +337,13 @@ class SizingProblem:
 
     def envelope(self, xs, p=None) -> Envelope:
         """Every output of the scene at scaled ``xs`` in every case, each at its worst
-        (:func:`ropemodel.envelope.envelope`): the margins, forces and power at a design."""
+        (:func:`ropemodel.envelope.envelope`): the margins, forces and power at a design.  At the scene's
+        parameters the cases are the :attr:`candidates` (every worst is among them), else every case."""
+        at_p0 = p is None or np.array_equal(np.asarray(p, dtype=float), self.p0)
         params = dict(zip(self.params, self.p0 if p is None else np.asarray(p, dtype=float)))
-        return envelope(self.problem, self.all_cases, {**params, **self.to_si(xs)})
+        env = envelope(self.problem, self.candidates if at_p0 else self.all_cases, {**params, **self.to_si(xs)})
+        env.spanned = self.all_cases
+        return env
 
     # ------------------------------------------------------------------ helpers
     def nlp(self, f=None, g=None, x=None) -> dict:
@@ -328,5 +397,4 @@ class SizingProblem:
 
     def evaluate(self, xs, p=None) -> dict[str, float]:
         """Every scene output (SI) at scaled ``xs``."""
-        res = self.outputs(x=xs, p=self.p0 if p is None else p)
-        return {k: float(v) for k, v in res.items()}
+        return {k: float(v) for k, v in self.outputs(x=xs, p=self.p0 if p is None else p).items()}

@@ -27,27 +27,45 @@ import numpy as np
 from optimisation.ipopt import Solution
 from optimisation.problem import SizingProblem
 
-#: the KKT matrices' Functions of each problem, built once (kept while the problem lives)
-_KKT: weakref.WeakKeyDictionary[SizingProblem, tuple[ca.Function, ca.Function]] = weakref.WeakKeyDictionary()
+#: the KKT matrix's parts in x of each problem ((H, J_x) of its NLP, and of the NLP with the scene's values folded
+#: in), and its weighted parameter derivatives by the constraints they take, built once (kept while it lives)
+_KKT: weakref.WeakKeyDictionary[SizingProblem, dict] = weakref.WeakKeyDictionary()
 
 
-def _functions(problem: SizingProblem) -> tuple[ca.Function, ca.Function]:
-    """The KKT matrix's parts in x (H, J_x), and the weighted parameter derivative w_x ∂(∇_x L)/∂p + w_g ∂g/∂p:
-    the few rows of ∂x*/∂p wanted, by as many adjoint sweeps (a route has thousands of parameters: their full
-    Jacobians cost a forward sweep each)."""
-    kkt = _KKT.get(problem)
-    if kkt is None:
-        n, m = problem.xs.numel(), problem.g.numel()
-        lam, w_x, w_g = ca.MX.sym("lam", m), ca.MX.sym("w_x", n, n), ca.MX.sym("w_g", n, m)
-        grad_L = ca.gradient(problem.f + ca.dot(lam, problem.g), problem.xs)
-        weighted = ca.mtimes(w_x, grad_L) + ca.mtimes(w_g, problem.g)
-        kkt = _KKT[problem] = (
-            ca.Function("kkt", [problem.xs, problem.p, lam], [ca.jacobian(grad_L, problem.xs),
-                                                               ca.jacobian(problem.g, problem.xs)],
-                        ["x", "p", "lam"], ["H", "Jx"]),
-            ca.Function("kkt_p", [problem.xs, problem.p, lam, w_x, w_g], [ca.jacobian(weighted, problem.p)],
-                        ["x", "p", "lam", "w_x", "w_g"], ["dW"]))
-    return kkt
+def _kkt_x(problem: SizingProblem, folded: bool) -> ca.Function:
+    """(x, p, λ) → H = ∇²_xx (f + λᵀg), J_x = ∂g/∂x; ``folded``: of the NLP with the scene's values folded in
+    (:attr:`SizingProblem.at_scene`: the same matrices at p = p0, built without every segment's parameters)."""
+    kept = _KKT.setdefault(problem, {})
+    if folded not in kept:
+        nlp = problem.at_scene if folded else problem.nlp()
+        lam = ca.MX.sym("lam", problem.g.numel())
+        grad_L = ca.gradient(nlp["f"] + ca.dot(lam, nlp["g"]), problem.xs)
+        kept[folded] = ca.Function("kkt", [problem.xs, problem.p, lam],
+                                   [ca.jacobian(grad_L, problem.xs), ca.jacobian(nlp["g"], problem.xs)],
+                                   ["x", "p", "lam"], ["H", "Jx"])
+    return kept[folded]
+
+
+def _kkt_p(problem: SizingProblem, taken: tuple[int, ...]) -> ca.Function:
+    """(x, p, λ_S, w_x, w_S) → w_x ∂(∇_x L)/∂p + w_S ∂g_S/∂p, of the active constraints S = ``taken`` (an inactive
+    one has neither a multiplier nor a weight; a static NLP's from a model of their checks alone,
+    :meth:`SizingProblem.nlp_of`): the few rows of ∂x*/∂p wanted, one adjoint sweep per row (a route has thousands
+    of parameters: a Jacobian in them costs a forward sweep per colour)."""
+    kept = _KKT.setdefault(problem, {})
+    if taken not in kept:
+        n = problem.xs.numel()
+        if getattr(problem, "STATIC", False):
+            f, g = problem.nlp_of(taken)
+        else:
+            f, g = problem.f, problem.g[list(taken)] if taken else ca.MX(0, 1)
+        lam, w_x, w_g = ca.MX.sym("lam", len(taken)), ca.MX.sym("w_x", n, n), ca.MX.sym("w_g", n, len(taken))
+        lagrangian = f + ca.dot(lam, g)
+        # row i: ∂/∂p of w_x,i ∇_x L (a forward derivative of L in x along w_x,i) + w_g,i g, by one adjoint sweep
+        rows = [ca.gradient(ca.jtimes(lagrangian, problem.xs, w_x[i, :].T) + ca.dot(w_g[i, :].T, g), problem.p).T
+                for i in range(n)]
+        kept[taken] = ca.Function("kkt_p", [problem.xs, problem.p, lam, w_x, w_g], [ca.vertcat(*rows)],
+                                  ["x", "p", "lam", "w_x", "w_g"], ["dW"])
+    return kept[taken]
 
 
 def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, dict[str, float]]:
@@ -58,10 +76,12 @@ def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, di
     depends): the derivatives do not exist there, and no number is made up for them.
     """
     p = problem.p0 if p is None else np.asarray(p, dtype=float)
-    kkt, kkt_p = _functions(problem)
-    out = kkt(x=sol.xs, p=p, lam=sol.lam_g)
-    H, Jx = (np.asarray(out[k]) for k in ("H", "Jx"))
+    folded = getattr(problem, "STATIC", False) and np.array_equal(p, problem.p0)
     idx = [problem.constraints.index(c) for c in sol.active]
+    lam = np.zeros_like(sol.lam_g)       # an inactive constraint's multiplier is 0 (IPOPT leaves ~1e-10 there)
+    lam[idx] = sol.lam_g[idx]
+    out = _kkt_x(problem, folded)(x=sol.xs, p=p, lam=lam)
+    H, Jx = (np.asarray(out[k]) for k in ("H", "Jx"))
     fixed = [i for i, _ in sol.active_bounds]
     n, na, nb = 3, len(idx), len(fixed)
     E = np.eye(3)[fixed, :] if fixed else np.zeros((0, 3))
@@ -78,7 +98,9 @@ def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, di
         return {}
     w_g = np.zeros((n, Jx.shape[0]))
     np.add.at(w_g.T, idx, Z[:, n:n + na].T)
-    dW = np.asarray(kkt_p(x=sol.xs, p=p, lam=sol.lam_g, w_x=Z[:, :n], w_g=w_g)["dW"])
+    taken = tuple(sorted(set(idx)))
+    dW = np.asarray(_kkt_p(problem, taken)(x=sol.xs, p=p, lam=lam[list(taken)], w_x=Z[:, :n],
+                                           w_g=w_g[:, list(taken)])["dW"])
     dx = -dW * problem.x_scale[:, None]
     if not np.all(np.isfinite(dx)):
         return {}

@@ -34,10 +34,12 @@ BUDGETS = {
     "sobol": Budget(2**18, "evaluations", "the samples, their outputs and SALib's bootstrap resamples of them are "
                                           "held in memory: memory and time grow with the evaluations"),
     "route sizing": Budget(2500, "segment evaluations",
-                           "sizing checks every check with the load at each place that can govern, each through "
-                           "the whole route, so the NLP grows as those places times the segments and its solve "
-                           "faster still: 2500 is a route of 625 segments at 4 places, or of 49 where every "
-                           "place is checked (sweep --sizing)"),
+                           "an NLP that checks every check with the load at each place that can govern (dynamic "
+                           "sizing's static start), or at every place (sweep --sizing), makes each through the whole "
+                           "route, so it grows as those places times the segments and its solve faster still: "
+                           "2500 is a route of 625 segments at 4 places, or of 49 where every place is checked "
+                           "(size builds its NLP of a few places and checks every design at all of them: not "
+                           "counted)"),
 }
 
 _LIFTED = False

@@ -18,7 +18,7 @@ def fig9():
 #: ``@pytest.mark.slow`` where it is slow by design (10^4-point properties, the fuzz's generated families).
 SLOW_BY_DURATION = (
     "tests/test_api_scenes.py::test_a_scene_a_name_and_a_path_give_the_same_answer[report]",
-    "tests/test_budget.py::test_size_counts_the_places_it_builds",
+    "tests/test_budget.py::test_size_builds_few_cases_and_the_whole_nlp_is_counted",
     "tests/test_calcsheet.py::test_every_equation_of_every_variant_can_be_shown",
     "tests/test_calcsheet.py::test_the_sheet_holds_every_equation_the_page_shows",
     "tests/test_capstan_accuracy_properties.py::test_every_regime_against_an_independent_integration[smooth]",

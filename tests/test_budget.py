@@ -68,24 +68,27 @@ def test_sizing_at_every_place_is_counted_by_its_segments(n, refused, tmp_path):
         SizingProblem(load_sizing(scene, emit=False), prune_places=False)
 
 
-def test_size_counts_the_places_it_builds(tmp_path, capsys):
-    """``size`` checks only the places that can govern (ropemodel.envelope.prune, tested against a brute-force
-    search in test_route_prune.py): 50 segments, refused when every place counted, now fit; 1000 segments
-    are refused with the count of the cases the NLP would hold (at least the route's two ends, far fewer
-    than its 1001 places) times the segments."""
-    from optimisation.problem import load_sizing, prepare
+def test_size_builds_few_cases_and_the_whole_nlp_is_counted(tmp_path, capsys):
+    """``size`` makes its checks at the cases where each can be least and adds those a design leaves below zero
+    (optimisation.generation; every design checked at every place that can govern): 1000 segments are sized
+    (the NLP holds a few cases, not counted against the budget).  The NLP of every place that can govern
+    (``sensitivity --sizing``, ``size --dynamic``'s start) is refused with the count of its cases (at least the
+    route's two ends, far fewer than its 1001 places) times the segments."""
+    import json
 
-    scene = tmp_path / "route.toml"
-    scene.write_text(route_scene(50, "1 m"))
-    assert main(["size", str(scene), "--json"]) == 0
-    capsys.readouterr()
+    from optimisation.problem import SizingProblem, load_sizing, prepare
+
     n = 1000
+    scene = tmp_path / "route.toml"
     scene.write_text(route_scene(n, "1 m"))
+    assert main(["size", str(scene), "--json"]) == 0
+    cases = json.loads(capsys.readouterr().out)["load_cases"]
+    assert cases["in_nlp"] <= cases["candidates"] < cases["cases"] == n + 1     # steady motion: one case a place
     sized = prepare(load_sizing(scene, emit=False))
     kept = len(prune(load_cases(sized), sized.parameters, sized.built))
-    assert 2 <= kept < n + 1
-    assert main(["size", str(scene)]) == 2
-    assert f"{kept * n:,} segment evaluations" in _error(capsys)
+    assert kept == cases["candidates"] and 2 <= kept < n + 1 and kept * n > budget.BUDGETS["route sizing"].limit
+    with pytest.raises(InputError, match=f"{kept * n:,} segment evaluations"):
+        SizingProblem(sized)
 
 
 def test_lifted_restores():

@@ -196,3 +196,29 @@ def test_the_ramps_timing_is_read_from_where_its_phases_meet(tmp_path, ramp):
         assert t1[-1] == pytest.approx(12.0) and t0[0] == 0.0
     expected = {"t_ramp", "jerk_max", "v_pj"} if ramp == "scurve" else {"t_ramp"}
     assert timing_params(SimpleNamespace(all_paths=paths)) == expected
+
+
+# ---------------------------------------------------------------------- the continuous optimum's record
+
+
+@pytest.mark.slow
+def test_the_nlps_own_record_of_a_design_is_the_simulators(scene):
+    """The continuous optimum is reported through the NLP's own integration (``integrated``), not simulated:
+    in every case the hybrid simulator runs smoothly through (no event), each check's least margin there agrees
+    with the simulator's to half the NLP's back-off — what the NLP leaves for the difference between its
+    integrator and the simulator's (optimisation.dynamic.refine) — at a design near the optimum (the static
+    design with the transient's own factors, the sizing's start)."""
+    from optimisation.design import solve_best
+    from optimisation.dynamic.problem import BACKOFF, DynamicSizingProblem
+    from optimisation.dynamic.start import factored_start
+    from optimisation.dynamic.verify import integrated, verify
+
+    problem = DynamicSizingProblem(scene)
+    xs = factored_start(problem, solve_best(SizingProblem(problem.scene)).xs)
+    ours, simulated = integrated(problem, xs, 1e-3), verify(problem, xs)
+    smooth = [i for i, v in enumerate(simulated) if all(f.split()[0] in v.least for f in v.failures)]  # no event
+    assert len(smooth) >= len(simulated) // 2, [v.failures for v in simulated]
+    for i in smooth:
+        assert ours[i].scaled.keys() == simulated[i].scaled.keys()
+        for check, value in simulated[i].scaled.items():
+            assert ours[i].scaled[check] == pytest.approx(value, abs=0.5 * BACKOFF), (simulated[i].where, check)

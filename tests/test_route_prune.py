@@ -71,7 +71,7 @@ def test_sizing_on_the_pruned_places_equals_sizing_on_every_place():
     a = sizing.size(scene, with_sensitivities=False)
     every = sizing.SizingProblem
     try:
-        sizing.SizingProblem = lambda s: every(s, prune_places=False)
+        sizing.SizingProblem = lambda s, **_: every(s, prune_places=False)   # every place, in one NLP
         b = sizing.size(scene, with_sensitivities=False)
     finally:
         sizing.SizingProblem = every
@@ -113,3 +113,24 @@ def test_run_on_the_kept_places_equals_run_on_every_place(tmp_path):
     asbuilt = Model("winch", {**scene.effects, "elongation": "asbuilt"}, scene.built.options)
     assert prunable(scene.built) and not prunable(asbuilt)
     assert prune(load_cases(scene), scene.parameters, asbuilt) == load_cases(scene)
+
+
+@pytest.mark.slow      # 2 to 5 s each: the least tension searched along the route at every place of a fine grid
+@pytest.mark.parametrize("seed", [4, 5])
+def test_a_range_of_rope_weights_keeps_the_worst_place_of_each(seed):
+    """For the rope weights of a range only (a sizing's catalogue: q_l from 20 to 150 N/m), fewer places are kept,
+    and for ropes at both ends of the range and inside it the least tension of the winding rope over a fine grid
+    of places (searched at 1001 points along the route, numpy) is still at a kept joint."""
+    route = _route(seed, 60)
+    every = governing_places(_params(route), ACCELERATIONS)
+    keep = governing_places(_params(route), ACCELERATIONS, (20.0, 150.0))
+    assert keep < every
+    joints = np.concatenate([[0.0], route.ends])
+    kept, grid = joints[sorted(keep)], places(route, 20)
+    for q_l in (20.0, 61.0, 150.0):
+        r = route.with_(q_l=q_l)
+        for a in ACCELERATIONS:
+            for s in (1.0, -1.0):
+                least = min(r.least("winding", float(x), a, s, 1001) for x in grid)
+                least_kept = min(r.least("winding", float(x), a, s, 1001) for x in kept)
+                assert least_kept == pytest.approx(least, rel=1e-12, abs=1e-6), (q_l, a, s)

@@ -1,10 +1,12 @@
 """Routes at survey scale (issue 22, item 4): a profile of a thousand points through ``trip`` and the array evaluator
 with its constants folded in, equal to the same route written as ``[[route]]`` tables and to the exact trip
-written out in numpy.
+written out in numpy; ``size``, ``run`` and ``trip`` on a profile of 10 000 pieces of three segments, equal to
+the three segments.
 
 Truths: the trip integrated in the distance travelled, in closed form on each stretch (``test_trip._by_distance``,
 numpy only, docs/physics.md §4); the same route as ``[[route]]`` tables (a second way in); CasADi's map with the
-constants passed at every point (a second method of the same evaluation).
+constants passed at every point (a second method of the same evaluation); a straight segment cut into pieces is
+the same segment (a limit case), and the one-dimensional sizing search in numpy (``test_route_sizing._hand``).
 """
 
 from __future__ import annotations
@@ -130,3 +132,73 @@ def test_sizing_a_profile_equals_its_tables_and_the_parametric_nlp(tmp_path):
     folded = np.asarray(ipopt.solver(problem, at_scene=True)(**args)["x"]).ravel()
     np.testing.assert_allclose(folded, parametric, rtol=1e-10)
     assert problem.to_si(folded)["d"] == pytest.approx(tables.continuous["d"], rel=1e-8)
+
+
+def _pieces(segments, n: int) -> list[tuple[float, float]]:
+    """``segments`` (length [m], inclination [deg]) each cut into straight pieces, n in all (in proportion to the
+    lengths): the same route as n profile rows."""
+    total = sum(L for L, _ in segments)
+    counts = [round(n * L / total) for L, _ in segments[:-1]]
+    counts.append(n - sum(counts))
+    return [(L / k, a) for (L, a), k in zip(segments, counts) for _ in range(k)]
+
+
+@pytest.mark.slow      # about 20 s: sizing a 10 000-point profile (studies/route_scale.py measures it)
+def test_sizing_ten_thousand_points_equals_the_route_as_three_segments(tmp_path):
+    """A 10 000-row profile that is the three segments of tests/test_route_sizing.py cut into pieces: ``size``
+    (constraint generation over the places that can govern) gives the design of the same route as three
+    ``[[route]]`` tables, the continuous optimum and every margin to 1e-10 (a sum of 10^4 pieces differs from
+    one segment by its rounding, about n eps = 2e-12), and the one-dimensional search over many places in numpy
+    (tests/_route_truth.py) to 1e-8; within 1 GB (ru_maxrss of the process, the whole test session included)."""
+    import resource
+
+    from test_route_sizing import P, _hand
+
+    three = [(400.0, 22.0), (650.0, 9.0), (300.0, 3.0)]
+    rows = _pieces(three, 10_000)
+    assert len(rows) == 10_000
+    head, params = SIZING.split("[parameters]\n")
+    (tmp_path / "route.csv").write_text("length [m],inclination [deg]\n" + "".join(f"{L!r},{a!r}\n" for L, a in rows))
+    (tmp_path / "profile.toml").write_text(head + '[route_profile]\nfile = "route.csv"\n[parameters]\n' + params)
+    (tmp_path / "tables.toml").write_text(head + "".join(f'[[route]]\nlength = "{L!r} m"\ninclination = "{a!r} deg"\n'
+                                                         for L, a in three) + "[parameters]\n" + params)
+    profile = sizing.size(str(tmp_path / "profile.toml"), with_sensitivities=False)
+    tables = sizing.size(str(tmp_path / "tables.toml"), with_sensitivities=False)
+    assert profile.feasible and tables.feasible
+    assert profile.design == tables.design
+    for k, v in tables.continuous.items():
+        assert profile.continuous[k] == pytest.approx(v, rel=1e-10), k
+    for k, v in tables.margins.items():       # forces [N] near zero: to 1e-10 of the load
+        scale = P["G_m"] if k.startswith(("slack", "taut", "route", "sheave")) else 1.0
+        assert profile.margins[k] == pytest.approx(v, rel=1e-10, abs=1e-10 * scale), k
+    assert {c.split(" @ ")[0] for c in profile.active} == {c.split(" @ ")[0] for c in tables.active}
+    assert profile.load_cases["cases"] == 3 * 10_001 and profile.load_cases["in_nlp"] < 20
+    hand = _hand([(L, a, P["mu_pl"]) for L, a in three])
+    for k in ("d", "F_nwl", "stroke"):
+        assert profile.continuous[k] == pytest.approx(hand[k], rel=1e-8), k
+    assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss < 1024 * 1024     # kB: under 1 GB
+
+
+@pytest.mark.slow      # about 20 s: run and trip on a 10 000-point profile, both directions
+def test_run_and_trip_on_ten_thousand_points_equal_the_route_as_three_segments(tmp_path):
+    """``run`` and ``trip`` on 10 000 pieces of a three-segment route (with the ramps' starts and stops) equal the
+    same route as three ``[[route]]`` tables: every output's worst to 1e-10 (a sum of 10^4 pieces against one
+    segment: its rounding), every trip summary to 1e-9 (the trip integrated piece by piece against segment by
+    segment) and the trip integrated in the distance in numpy to 1e-9."""
+    three = [(400.0, 22.0, None), (650.0, 9.0, None), (300.0, 3.0, None)]
+    rows = _pieces([(L, a) for L, a, _ in three], 10_000)
+    profile, _ = _scene_files(tmp_path, [(L, a, None) for L, a in rows])
+    (tmp_path / "three").mkdir()
+    _, tables = _scene_files(tmp_path / "three", three)
+    a, b = rm.run(str(profile)), rm.run(str(tables))
+    segments = {k for k in a.values if k.split("_")[0] in ("L", "alpha", "mu") and k.split("_")[-1][-1].isdigit()}
+    assert set(a.values) - segments == set(b.values) - segments
+    for k in set(b.values) - segments:
+        assert a.values[k] == pytest.approx(b.values[k], rel=1e-10, abs=1e-9), k
+    for direction in ("up", "down"):
+        got, same = trip(str(profile), direction).summary, trip(str(tables), direction).summary
+        for k, v in same.items():
+            assert got[k] == pytest.approx(v, rel=1e-9, abs=1e-6), (direction, k)
+        ref = _by_distance(direction, three, LOAD["t_ramp"], F_NWL)
+        for k in ("t_trip", "F_C_max", "F_S_min", "P_max", "E_trip", "W_drum", "stroke_needed"):
+            assert got[k] == pytest.approx(ref[k], rel=1e-9, abs=1e-6), (direction, k)

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 from _route_truth import Route, places, rope
 from scipy.optimize import brentq
@@ -160,3 +161,84 @@ def test_a_start_on_the_steep_end_needs_more_rope(tmp_path):
     lighter = size(_without_ramps(scene.raw), with_sensitivities=False)
     assert lighter.continuous["d"] < 0.99 * design.continuous["d"]
     assert design.continuous["d"] == pytest.approx(_hand(list(reversed(SEGMENTS)))["d"], rel=1e-8)
+
+
+def _profile_toml(segments) -> str:
+    head, params = TOML.split("[parameters]\n")
+    head = head.split("[[route]]")[0]
+    return head + "".join(f'[[route]]\nlength = "{L!r} m"\ninclination = "{a!r} deg"\nmu_winding = {mu!r}\n'
+                          for L, a, mu in segments) + "[parameters]\n" + params
+
+
+@pytest.mark.slow      # 2 to 8 s: the one-dimensional search over many places in numpy
+def test_constraint_generation_equals_every_candidate_and_the_one_dimensional_search(tmp_path):
+    """A 12-segment route that rises, dips and rises again (the least tension inside the route moves with the
+    rope's weight): ``size`` (the NLP holds the cases where each check can be least, more added while a design
+    leaves a candidate below zero) gives the optimum of the NLP of every candidate (a second method) to 1e-10
+    and of the one-dimensional search over many places in numpy to 1e-8, and holds fewer cases than it checks."""
+    rng = np.random.default_rng(7)
+    segments = [(float(L), float(a), float(mu)) for L, a, mu in
+                zip(rng.uniform(50.0, 200.0, 12), np.concatenate([rng.uniform(8.0, 25.0, 5), rng.uniform(-6.0, 2.0, 3),
+                                                                   rng.uniform(5.0, 20.0, 4)]),
+                    rng.uniform(0.04, 0.07, 12))]
+    f = tmp_path / "size.toml"
+    f.write_text(_profile_toml(segments), encoding="utf-8")
+    design = size(str(f), with_sensitivities=False)
+    every = SizingProblem(load_sizing(str(f), emit=False))
+    whole = solve_continuous(every)
+    assert design.feasible and whole.feasible
+    assert design.load_cases["in_nlp"] < len(every.cases)
+    for k, v in every.to_si(whole.xs).items():
+        assert design.continuous[k] == pytest.approx(v, rel=1e-10), k
+    hand = _hand(segments)
+    for k in ("d", "F_nwl", "stroke"):
+        assert design.continuous[k] == pytest.approx(hand[k], rel=1e-8), k
+
+
+def test_a_rope_below_the_catalogue_is_the_optimum_over_every_place_that_can_govern(tmp_path):
+    """A light load (3 kN): the continuous optimum is a rope thinner than the catalogue's smallest, outside the
+    rope weights the places are first found for (``size`` then finds them again for every rope); its optimum is
+    that of the NLP of every place that can govern for every rope (a second method) to 1e-10."""
+    from ropemodel.papers import en12385 as ropes
+
+    rng = np.random.default_rng(3)
+    segments = [(float(L), float(a), 0.05) for L, a in zip(rng.uniform(20.0, 80.0, 30), rng.uniform(-5.0, 25.0, 30))]
+    f = tmp_path / "size.toml"
+    f.write_text(_profile_toml(segments).replace('G_m = "467 kN"', 'G_m = "3 kN"')
+                 .replace('F_S_min = "5 kN"', 'F_S_min = "0.1 kN"'), encoding="utf-8")
+    design = size(str(f), with_sensitivities=False)
+    every = SizingProblem(load_sizing(str(f), emit=False))
+    whole = solve_continuous(every)
+    assert design.feasible and design.continuous["d"] < ropes.diameters()[0]
+    for k, v in every.to_si(whole.xs).items():
+        assert design.continuous[k] == pytest.approx(v, rel=1e-10), k
+
+
+@pytest.mark.slow      # about 20 s: three sizings and the diagnosis of every candidate
+def test_no_design_on_a_long_route_names_what_makes_one(tmp_path):
+    """The 12-segment route that rises, dips and rises with a rope safety factor of 40: no design.  The
+    least-violation problem over the cases ``size`` holds gives the least maximum violation of the NLP of every
+    candidate (a second method) to 1e-9, and the named remedy is right: with the n_rope it names a design exists,
+    with 0.5 % more none does (bisection truth around the named value)."""
+    from optimisation.infeasibility import diagnose
+
+    rng = np.random.default_rng(7)
+    segments = [(float(L), float(a), float(mu)) for L, a, mu in
+                zip(rng.uniform(50.0, 200.0, 12), np.concatenate([rng.uniform(8.0, 25.0, 5), rng.uniform(-6.0, 2.0, 3),
+                                                                   rng.uniform(5.0, 20.0, 4)]),
+                    rng.uniform(0.04, 0.07, 12))]
+    text = _profile_toml(segments)
+
+    def sized(n_rope):
+        f = tmp_path / f"size_{n_rope!r}.toml"
+        f.write_text(text.replace("n_rope = 4.5", f"n_rope = {n_rope!r}"), encoding="utf-8")
+        return f, size(str(f), with_sensitivities=False)
+
+    f, design = sized(40.0)
+    assert not design.feasible
+    whole = diagnose(SizingProblem(load_sizing(str(f), emit=False)))
+    assert design.diagnosis.max_violation == pytest.approx(whole.max_violation, rel=1e-9)
+    (need,) = [n for n in design.diagnosis.needs if n.startswith("n_rope <=")]
+    n_rope = float(need.split()[2])
+    assert sized(n_rope)[1].feasible
+    assert not sized(1.005 * n_rope)[1].feasible

@@ -159,6 +159,9 @@ class DynamicSizingProblem(SizingProblem):
         """The largest back-off of any check in any case (scaled; ``default`` where none is set)."""
         return max((b for by in self.backoffs.values() for b in by.values()), default=default)
 
+    #: the checks through the manoeuvres are not static: derivatives of :meth:`nlp`, not of its static forms
+    STATIC = False
+
     @cached_property
     def at_scene(self) -> dict:
         """The NLP IPOPT solves at the scene's parameters: this problem's own (:meth:`nlp`), the checks through

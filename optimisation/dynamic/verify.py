@@ -106,6 +106,34 @@ def verdict(sim, manoeuvre, a: dict, F_ref: float, in_nlp: bool = True) -> Verdi
     return out
 
 
+def integrated(problem, xs, dt: float) -> list[Verdict]:
+    """Every case of ``problem`` at scaled design ``xs`` as the sizing NLP integrates it (its own integrator at
+    its own mesh, read every ``dt`` [s] and at each phase's ends; no simulator, no events, no peaks): the record
+    of a design the answer reports but does not return, the continuous optimum, whose checks the NLP already
+    holds between its grid points (:mod:`optimisation.dynamic.refine`) — the hybrid simulator verifies the
+    catalogue design the answer returns, the same NLP's work one catalogue size up."""
+    machine = declared(problem.scene)
+    p = problem.p0
+    a = {k: float(v) for k, v in problem.values(np.asarray(xs, float) * problem.x_scale, p).items()}
+    out = []
+    for i, (m, path) in enumerate(zip(problem.cases, problem.all_paths)):
+        pp = problem.pp0(path, xs, p)
+        t, o, _ = path.samples(pp, path.uniform_grid(pp, dt))
+        o = {k: np.min(np.atleast_2d(v), axis=0) for k, v in o.items()}    # a tension's least over the elements
+        v = Verdict(m.label, m.x_m, m.where, i in problem.selected, True)
+        for c in path.checks:
+            series = np.asarray(c.margin(o, a), float).ravel()
+            j = int(np.argmin(series))
+            v.least[c.name] = (float(series[j]), float(t[j]))
+            v.sides[c.name] = sides(machine, c.name, o, a, j)
+            v.scaled[c.name] = float(np.min(np.asarray(c.nlp(o, a), float))) / (problem.F_ref if c.unit == "N" else 1.0)
+            if series[j] < 0:
+                v.failures.append(f"{c.name} {series[j]:.6g} at t = {t[j]:.4f} s")
+        v.ok = not v.failures
+        out.append(v)
+    return out
+
+
 def all_ok(verdicts) -> bool:
     return all(v.ok for v in verdicts)
 

@@ -91,17 +91,19 @@ def _residual(problem) -> ca.Function:
     return problem.__dict__["_warm_g"]
 
 
-def _newton(jac, residual, x, p, rows, fixed, lbx):
+def _newton(jac, residual, x, p, rows, fixed, lbx, start=None):
     """Newton on g[rows] = 0 with x[fixed] = lbx[fixed]: the point, or None (singular, not converging).
 
     Chord steps: the Jacobian of the first point is kept while each step at least halves the last, and taken
     again where one does not; g alone is evaluated between (through the integrators a tenth of the cost of g
     with its Jacobian, which needs the sensitivities).  It stops where a step with a fresh Jacobian does not
-    halve either (the noise floor of g through an integrator) or is below rounding."""
-    g, J = (np.asarray(a) for a in jac(x, p)[:2])
-    fresh, last = True, np.inf
+    halve either (the noise floor of g through an integrator) or is below rounding.  ``start``: (g, J) at ``x``
+    to begin with instead — J the previous problem's at its optimum, a chord like any other (:func:`_carried`)."""
+    g, J = (np.asarray(a) for a in (start or jac(x, p)[:2]))
+    fresh, last = start is None, np.inf
+    A = None
     for _ in range(NEWTON_STEPS):
-        if fresh:
+        if fresh or A is None:
             A = np.vstack([J[rows, :], np.eye(len(x))[fixed, :]])
             if np.linalg.cond(A) > 1e12:
                 return None
@@ -132,11 +134,12 @@ def on_active_set(old, sol, new, p=None, fix_d: float | None = None) -> Solution
         return None
     jac = _jacobian(new)
     x0 = np.clip(np.asarray(sol.xs, float), lbx, ubx)
-    g0 = np.asarray(jac(x0, p)[0]).ravel()
+    g0 = np.asarray(_residual(new)(x0, p)).ravel()
     candidates = _candidates(list(sol.active), new, g0)
+    start = _carried(old, sol, new, p, candidates, g0)
     m = len(x0) - len(fixed)
     for rows in itertools.combinations(candidates, m) if 0 < m <= len(candidates) else ():
-        found = _kkt(jac, new, x0, p, list(rows), fixed, lbx, ubx)
+        found = _kkt(jac, new, x0, p, list(rows), fixed, lbx, ubx, start)
         if found is not None:
             x, g, lam_g, lam_x, f = found
             out = Solution(x, f, g, lam_g, lam_x, True, "active set", 0, time.perf_counter() - t_start)
@@ -148,9 +151,26 @@ def on_active_set(old, sol, new, p=None, fix_d: float | None = None) -> Solution
     return None
 
 
-def _kkt(jac, new, x0, p, rows, fixed, lbx, ubx):
+def _carried(old, sol, new, p, candidates: list[int], g0: np.ndarray):
+    """(g0, J) for :func:`_newton`'s first chord on ``new``: J the previous problem's Jacobian at its optimum
+    ``sol`` (kept from its own KKT test, :func:`~optimisation.ipopt.jacobian_at`), each candidate row the row of
+    the previous active check it stands for (:func:`_candidates`: the same check, its instant moved within
+    :data:`NEAR`) — rather than a Jacobian of ``new`` at a point that is not yet its solution: a Jacobian costs
+    about nine evaluations of the checks through the integrators.  The point Newton ends at is fixed by the
+    checks' values alone; the KKT test there takes the exact Jacobian of ``new``.  None when the previous
+    active set does not map row for row."""
+    if len(candidates) != len(sol.active):
+        return None
+    J_old = jacobian_at(old, sol.xs, p)[1]
+    J = np.zeros((len(g0), J_old.shape[1]))
+    for i, name in zip(candidates, sol.active):
+        J[i] = J_old[old.constraints.index(name)]
+    return g0, J
+
+
+def _kkt(jac, new, x0, p, rows, fixed, lbx, ubx, start=None):
     """(x, g, lam_g, lam_x, f) when Newton on ``rows`` and ``fixed`` ends at a KKT point of ``new``, else None."""
-    x = _newton(jac, _residual(new), x0.copy(), p, rows, fixed, lbx)
+    x = _newton(jac, _residual(new), x0.copy(), p, rows, fixed, lbx, start)
     if x is None or np.any(x < lbx - 1e-12) or np.any(x > ubx + 1e-12):
         return None
     g, J, grad, f = (np.asarray(a) for a in jac(x, p))

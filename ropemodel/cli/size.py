@@ -29,7 +29,7 @@ def add_arguments(parser) -> None:
                         help="how to pick the catalogue diameter (default: next-size-up)")
     parser.add_argument("--dynamic", action="store_true",
                         help="size through start-up and braking in both directions (a scene with a transient); "
-                             "every design verified by simulation")
+                             "the returned design verified by simulation")
     parser.add_argument("--find", metavar="NAME", default=None,
                         help="with --dynamic: t_ramp, the shortest ramp that keeps the scene's design safe")
 

@@ -5,9 +5,7 @@ from __future__ import annotations
 import json
 
 import numpy as np
-import pandas as pd
 
-from ropemodel.errors import SolveError
 from ropemodel.views.records import SimulationViews, finite_summary
 
 
@@ -30,36 +28,8 @@ class Simulation(SimulationViews):
     ``plot()`` (the rope forces against time).
     """
 
-    def __init__(self, scene, system):
-        self.scene, self.system = scene, system
-        self._t, self._x, self._o, self._modes = [], [], [], []
-
-    @property
-    def setup(self):
-        return self.system.setup
-
-    def record(self, times, X, out, mode):
-        self._t.append(np.asarray(times, float))
-        self._x.append(np.asarray(X, float))
-        self._o.append(np.asarray(out, float))
-        self._modes += [mode] * len(times)
-
     def finish(self, events):
-        t = np.concatenate(self._t)
-        names = self.system.functions(0, self._modes[0]).out_names
-        out = dict(zip(names, np.concatenate(self._o, axis=1)))
-        out["E [J]"] = out["E [J]"] - out["E [J]"][0]
-        out["energy_residual [J]"] = out["W_drum [J]"] - out["E [J]"] - out["D [J]"]
-        columns = {"t [s]": t, **out}
-        for p in self.system.parts:
-            if p.column:
-                columns[p.column] = [m[p.effect] for m in self._modes]
-        self.history = pd.DataFrame(columns)
-        numeric = self.history.select_dtypes("number").to_numpy()
-        bad = ~np.isfinite(numeric).all(axis=1)
-        if bad.any():
-            raise SolveError(f"the transient has non-finite values from t = {t[bad.argmax()]:.6g} s on "
-                             f"(an integrator failure); try a tighter [numerics] sim_rtol")
+        self.history = self._history("W_drum [J]")
         self.events = events
         self.summary = self._summarise()
 

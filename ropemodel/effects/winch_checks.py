@@ -159,9 +159,10 @@ class DesignChecks(Submodel):
         a = _hook(self.sibling("inertia")).acceleration(v)
         F_end, q_l = 0.5 * v["F_nwl"], v["q_l"]
         eqs = []
+        slopes, mus = rt.as_column(route.inclinations), rt.as_column(route.mus)   # vector operations on a route
         for way, s in DIRECTIONS.items():
-            unwind = [rt.rope_gradient(al, v["mu_pl"], -s, a) for al in route.inclinations]
-            wind = [rt.rope_gradient(al, mu, s, a) for al, mu in zip(route.inclinations, route.mus)]
+            unwind = rt.rope_gradient(slopes, v["mu_pl"], -s, a)
+            wind = rt.rope_gradient(slopes, mus, s, a)
             pull = rt.load_pull(v["G_ml"], v["T_m"], v["G_m"], s, a)
             if len(route.lengths) > 1:     # one piece: the unwinding rope has nothing between its ends
                 eqs.append(Equation(f"F_S_least_{way}", v[f"F_S_least_{way}"]

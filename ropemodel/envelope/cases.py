@@ -82,11 +82,11 @@ class LoadCase:
         """What tells this case from others in ``inputs`` (its place for ``x_m``, its manoeuvre for ``a_h``)."""
         return (self.joint if "x_m" in inputs else None, self.manoeuvre if "a_h" in inputs else None)
 
-    def place(self, params: Mapping) -> str:
-        """``segment 2, x_m = 1300 m`` (numbers from ``params``)."""
+    def place(self, params: Mapping, ends: list | None = None) -> str:
+        """``segment 2, x_m = 1300 m`` (numbers from ``params``; ``ends`` as in :meth:`values`)."""
         if self.joint is None:
             return ""
-        x = f"x_m = {float(joint_ends(params)[self.joint]):g} m"
+        x = f"x_m = {float((ends or joint_ends(params))[self.joint]):g} m"
         return x if self.segment is None else f"segment {self.segment}, {x}"
 
     def name(self) -> str:
@@ -99,9 +99,10 @@ class LoadCase:
             place = f"segment {self.segment} ({'at the drive' if self.joint == 0 else 'its return-sheave end'})"
         return ", ".join(p for p in (place, self.manoeuvre or "") if p)
 
-    def label(self, params: Mapping, inputs=CASE_INPUTS) -> str:
-        """The place and the manoeuvre as text: ``segment 2, x_m = 1300 m, start`` (of ``inputs`` only)."""
-        parts = (self.place(params) if "x_m" in inputs else "", (self.manoeuvre or "") if "a_h" in inputs else "")
+    def label(self, params: Mapping, inputs=CASE_INPUTS, ends: list | None = None) -> str:
+        """The place and the manoeuvre as text: ``segment 2, x_m = 1300 m, start`` (of ``inputs`` only; ``ends``
+        as in :meth:`values`)."""
+        parts = (self.place(params, ends) if "x_m" in inputs else "", (self.manoeuvre or "") if "a_h" in inputs else "")
         return ", ".join(p for p in parts if p)
 
 

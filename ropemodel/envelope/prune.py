@@ -34,9 +34,10 @@ from ropemodel.papers.route import G_N
 MIN_PLACES = 8
 
 
-def governing_places(params, accelerations) -> set[int]:
+def governing_places(params, accelerations, weights=(0.0, np.inf)) -> set[int]:
     """Joints (0 = the drive, k = the end of segment k) where the load can govern, for each acceleration a
-    [m/s²] in ``accelerations`` and both directions (see the module docstring).  ``params``: SI floats."""
+    [m/s²] in ``accelerations`` and both directions (see the module docstring), for every rope weight q_l in
+    ``weights`` [N/m] (low, high; default every q_l > 0).  ``params``: SI floats."""
     L = np.asarray(segment_lengths(params), dtype=float)
     n = len(L)
     alpha = np.array([params[f"alpha_{i}"] for i in range(1, n + 1)], dtype=float)
@@ -50,25 +51,34 @@ def governing_places(params, accelerations) -> set[int]:
             g = np.sin(alpha) + s * (mu * np.cos(alpha) + a / G_N)
             G = np.concatenate([np.cumsum((L * g)[::-1])[::-1], [0.0]])     # G_0 … G_n
             A = np.concatenate([[np.inf], np.minimum.accumulate(G[1:])])     # A_0 = ∞: no loaded term at the drive
-            keep |= _hull_toward_least(A, J)
+            keep |= _hull_toward_least(A, J, *weights)
     return keep
 
 
-def _hull_toward_least(A: np.ndarray, J: np.ndarray) -> set[int]:
-    """Indices p minimising J_p + q A_p for some q > 0: the lower convex hull of the points (A_p, J_p) from the
-    least A to the least J (Andrew's monotone chain)."""
+def _hull_toward_least(A: np.ndarray, J: np.ndarray, low: float = 0.0, high: float = np.inf) -> set[int]:
+    """Indices p minimising J_p + q A_p for some q in [low, high], q > 0: vertices of the lower convex hull of the
+    points (A_p, J_p) (Andrew's monotone chain).  Vertex k of the hull, in order of A, is least for the q between
+    minus the slopes of its edges, −s_k <= q <= −s_{k−1} (s_{−1} = −∞ toward the least A, s_last = +∞)."""
     idx = [int(i) for i in np.lexsort((J, A)) if np.isfinite(A[i])]
     hull: list[int] = []
     for i in idx:
         while len(hull) >= 2 and _cross(A, J, hull[-2], hull[-1], i) <= 0.0:
             hull.pop()
         hull.append(i)
+    slopes = [_slope(A, J, a, b) for a, b in zip(hull, hull[1:])]
     out = set()
     for k, i in enumerate(hull):
-        out.add(i)
-        if k + 1 < len(hull) and J[hull[k + 1]] >= J[i]:    # the slope turns non-negative: no q > 0 beyond
-            break
+        most = -slopes[k - 1] if k else np.inf                      # the largest q it is least for
+        least = -slopes[k] if k < len(slopes) else -np.inf          # the smallest
+        if most > 0.0 and most >= low and least <= high:
+            out.add(i)
     return out
+
+
+def _slope(A, J, a: int, b: int) -> float:
+    """The slope of the hull's edge from a to b (A[b] >= A[a]); +∞ where it is vertical."""
+    dA = float(A[b] - A[a])
+    return float(J[b] - J[a]) / dA if dA > 0.0 else np.inf
 
 
 def _cross(x, y, o, a, b) -> float:
@@ -82,14 +92,14 @@ def prunable(model) -> bool:
     return all(sm.place_through_pull for sm in model.submodels)
 
 
-def prune(cases: list[LoadCase], params, model) -> list[LoadCase]:
-    """``cases`` at the places that can govern only (:func:`governing_places`); ``cases`` as they are when the
-    place is pinned, there are few places, or a submodel of ``model`` reads the place otherwise
-    (:func:`prunable`)."""
+def prune(cases: list[LoadCase], params, model, weights=(0.0, np.inf)) -> list[LoadCase]:
+    """``cases`` at the places that can govern only (:func:`governing_places`, for every rope weight q_l in
+    ``weights`` [N/m]); ``cases`` as they are when the place is pinned, there are few places, or a submodel of
+    ``model`` reads the place otherwise (:func:`prunable`)."""
     places = {c.joint for c in cases}
     if None in places or len(places) < MIN_PLACES or not prunable(model):
         return cases
     one_per_manoeuvre = {c.manoeuvre: c for c in cases}.values()
     accelerations = {float(c.values(params).get("a_h", params.get("a_h", 0.0))) for c in one_per_manoeuvre}
-    keep = governing_places(params, sorted(accelerations))
+    keep = governing_places(params, sorted(accelerations), weights)
     return [c for c in cases if c.joint in keep]

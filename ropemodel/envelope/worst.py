@@ -159,7 +159,8 @@ def envelope(problem, cases: list[LoadCase], params: Mapping | None = None) -> E
     have to push), naming the case.
     """
     params = dict(params or {})
-    inputs = problem.inputs({k: v for k, v in params.items() if k in problem.knowns})
+    knowns = set(problem.knowns)
+    inputs = problem.inputs({k: v for k, v in params.items() if k in knowns})
     values = {**problem.scene.parameters, **inputs, **params}
     columns = problem.evaluate({**inputs, **case_columns(cases, values)})
     env = Envelope(cases, values, columns)

@@ -35,19 +35,34 @@ from __future__ import annotations
 import casadi as ca
 
 from ropemodel._math import cos, fmax, fmin, if_else, sin
+from ropemodel.papers import route_vector as rv
 
 #: standard gravity [m/s²] (CGPM 1901)
 G_N = 9.80665
 
 
 def _symbolic(*items) -> bool:
-    return any(isinstance(a, (ca.SX, ca.MX, ca.DM)) for a in items)
+    """Whether any of ``items`` (or of the entries of a list among them) is a CasADi expression."""
+    return any(_symbolic(*a) if isinstance(a, (list, tuple)) else isinstance(a, (ca.SX, ca.MX, ca.DM)) for a in items)
 
 
 def _vector(items):
     """A list with CasADi entries as one column (vector operations: a route of thousands of segments builds in a
-    few operations, not thousands), or None for numbers (summed one by one, as written)."""
+    few operations, not thousands), or None for numbers (summed one by one, as written).
+
+    The symbolic forms keep q_l (and F_end) outside the sums over the route: with the route's values known (the
+    scene's, folded in) each sum is one number, and the model's size in the rope and the pretension, which
+    sizing varies, no longer grows with the segments."""
     return ca.vertcat(*items) if _symbolic(*items) else None
+
+
+def as_column(items):
+    """A list of a route's values as one CasADi column where any is symbolic (a column passes through), else the
+    list: what the functions here take per segment (a column of gradients builds in a few operations)."""
+    if isinstance(items, (ca.SX, ca.MX)):
+        return items
+    column = _vector(items)
+    return items if column is None else column
 
 
 def _sum(column, start=0.0):
@@ -73,7 +88,7 @@ def rope_weight_along_route(q_l, lengths, inclinations):
     """
     L, a = _vector(lengths), _vector(inclinations)
     if L is not None and a is not None:
-        return _sum(q_l * L * ca.sin(a))
+        return q_l * _sum(L * ca.sin(a))
     total = 0.0
     for length, alpha in zip(lengths, inclinations):
         total = total + q_l * length * sin(alpha)
@@ -87,7 +102,7 @@ def rope_resistance_along_route(q_l, lengths, inclinations, mus):
     """
     L, a, m = _vector(lengths), _vector(inclinations), _vector(mus)
     if L is not None and a is not None and m is not None:
-        return _sum(m * q_l * L * ca.cos(a))
+        return q_l * _sum(m * L * ca.cos(a))
     total = 0.0
     for length, alpha, mu in zip(lengths, inclinations, mus):
         total = total + mu * q_l * length * cos(alpha)
@@ -206,6 +221,9 @@ def tension_at_joints(F_end, q_l, lengths, gradients):
     >>> [round(t / 1e3, 4) for t in tension_at_joints(10e3, 80.0, [1150.0], [g])]
     [30.9368, 10.0]
     """
+    if _symbolic(F_end, q_l, *lengths, gradients):
+        rise = rv.rises(lengths, gradients)
+        return [F_end + q_l * rise[k] for k in range(rise.numel())]
     out = [F_end]
     for length, gradient in zip(reversed(list(lengths)), reversed(list(gradients))):
         out.append(out[-1] + q_l * length * gradient)
@@ -235,6 +253,9 @@ def rope_tension(x, F_end, q_l, lengths, gradients, x_m=None, load=0.0):
     [190.949, 19.064, 10.0]
     """
     L_u = route_length(lengths)
+    if _symbolic(x, F_end, q_l, *lengths, gradients):
+        total = F_end + q_l * rv.rise_at(x, lengths, gradients)
+        return total if x_m is None else total + if_else(x < x_m, load, 0.0)
     total, start = F_end, 0.0
     for length, gradient in zip(lengths, gradients):
         total = total + q_l * gradient * _overlap(start, start + length, x, L_u)
@@ -273,6 +294,8 @@ def least_rope_tension(F_end, q_l, lengths, gradients, x_m=None, load=0.0):
     >>> round(least_rope_tension(10e3, 80.0, [300.0, 300.0], g) / 1e3, 4)
     7.9631
     """
+    if len(lengths) > 1 and _symbolic(F_end, q_l, x_m, load, *lengths, gradients):
+        return rv.least_tension(F_end, q_l, lengths, gradients, x_m, load)
     joints = tension_at_joints(F_end, q_l, lengths, gradients)
     L_u = route_length(lengths)
     if x_m is not None:

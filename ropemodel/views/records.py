@@ -10,6 +10,9 @@ import json
 import math
 from typing import Any, ClassVar
 
+import numpy as np
+
+from ropemodel.errors import SolveError
 from ropemodel.units import factor, label
 from ropemodel.views import html
 from ropemodel.views.plotting import axes, finish
@@ -105,7 +108,47 @@ class SimulationViews:
 
     summary: dict
     scene: Any
+    system: Any
     history: Any
+
+    def __init__(self, scene, system) -> None:
+        self.scene, self.system = scene, system
+        self._t: list = []
+        self._o: list = []
+        self._modes: list = []
+
+    @property
+    def setup(self):
+        return self.system.setup
+
+    def record(self, times, X, out, mode):
+        """Keep what the integrator hands over for one stretch in one mode: output ``times`` [s], the
+        states ``X`` (not kept) and the outputs ``out`` (one row per output name)."""
+        self._t.append(np.asarray(times, float))
+        self._o.append(np.asarray(out, float))
+        self._modes += [mode] * len(times)
+
+    def _history(self, work: str):
+        """The recorded stretches as one DataFrame: ``t [s]``, every output, the energy E from its start,
+        the drive's work renamed ``work`` and the balance residual W − E − D; one column per variant with
+        modes.  Raises SolveError at the first non-finite row (an integrator failure)."""
+        import pandas as pd
+
+        t = np.concatenate(self._t)
+        names = self.system.functions(0, self._modes[0]).out_names
+        out = dict(zip(names, np.concatenate(self._o, axis=1)))
+        W = out.pop("W_drum [J]")
+        out["E [J]"] = out["E [J]"] - out["E [J]"][0]
+        columns = {"t [s]": t, **out, work: W, "energy_residual [J]": W - out["E [J]"] - out["D [J]"]}
+        for p in self.system.parts:
+            if p.column:
+                columns[p.column] = [m[p.effect] for m in self._modes]
+        history = pd.DataFrame(columns)
+        bad = ~np.isfinite(history.select_dtypes("number").to_numpy()).all(axis=1)
+        if bad.any():
+            raise SolveError(f"the transient has non-finite values from t = {t[bad.argmax()]:.6g} s on "
+                             f"(an integrator failure); try a tighter [numerics] sim_rtol")
+        return history
 
     @property
     def summary_units(self) -> dict[str, str]:

@@ -6,7 +6,6 @@ import json
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
 from ropemodel.errors import SolveError
 from ropemodel.views.plotting import axes, finish
@@ -34,36 +33,8 @@ class KoepeSimulation(SimulationViews):
     events: located events (time, name, modes after it, state and history columns there).
     """
 
-    def __init__(self, scene, system):
-        self.scene, self.system = scene, system
-        self._t: list = []
-        self._o: list = []
-        self._modes: list = []
-
-    @property
-    def setup(self):
-        return self.system.setup
-
-    def record(self, times, X, out, mode):
-        self._t.append(np.asarray(times, float))
-        self._o.append(np.asarray(out, float))
-        self._modes += [mode] * len(times)
-
     def finish(self, events):
-        t = np.concatenate(self._t)
-        names = self.system.functions(0, self._modes[0]).out_names
-        out = dict(zip(names, np.concatenate(self._o, axis=1)))
-        W = out.pop("W_drum [J]")
-        out["E [J]"] = out["E [J]"] - out["E [J]"][0]
-        columns = {"t [s]": t, **out, "W_wheel [J]": W, "energy_residual [J]": W - out["E [J]"] - out["D [J]"]}
-        for p in self.system.parts:
-            if p.column:
-                columns[p.column] = [m[p.effect] for m in self._modes]
-        self.history = pd.DataFrame(columns)
-        bad = ~np.isfinite(self.history.select_dtypes("number").to_numpy()).all(axis=1)
-        if bad.any():
-            raise SolveError(f"the transient has non-finite values from t = {t[bad.argmax()]:.6g} s on "
-                             f"(an integrator failure); try a tighter [numerics] sim_rtol")
+        self.history = self._history("W_wheel [J]")
         self.events = events
         run_out = next((e for e in events if e.name == "run_out"), None)
         if run_out is not None:

@@ -147,6 +147,28 @@ def force_scale(scene) -> float:
     return max(0.1 * abs(scene.parameters.get("G_m", 1e5)), 1e3)
 
 
+def catalogue_range() -> tuple[float, float]:
+    """The smallest and the largest catalogue diameter [m] (EN 12385-4 sizes, ropemodel/data/ropes.toml)."""
+    from ropemodel.papers import en12385 as ropes
+
+    sizes = ropes.diameters()
+    return sizes[0], sizes[-1]
+
+
+def place_weights(scene, first_range=None) -> tuple[float, float]:
+    """The rope weights q_l [N/m] a design with d in ``first_range`` [m] has (default: every d > 0): the range
+    the places that can govern are found for (:func:`ropemodel.envelope.prune.prune`).  q_l = g W d² (EN 12385-4)
+    grows with d; W is the construction's (or the scene's ``rope_W`` with ``rope = "catalogue"``)."""
+    from ropemodel.papers import en12385 as ropes
+
+    if first_range is None:
+        return 0.0, math.inf
+    W = scene.parameters.get("rope_W")
+    if W is None:
+        W = ropes.construction(scene.effects["rope"]).W
+    return ropes.rope_weight_per_metre(W, first_range[0]), ropes.rope_weight_per_metre(W, first_range[1])
+
+
 def x_scale(F_ref: float) -> np.ndarray:
     """SI per unit of scaled x: 10 mm, F_ref, 1 m."""
     return np.array([0.01, F_ref, 1.0])

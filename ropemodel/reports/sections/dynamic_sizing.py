@@ -12,7 +12,7 @@ from ropemodel.machines.base import declared_machine
 
 INTRO = """<p>Every design check holds through {{ through }},
 with the load anywhere on the route (the ends and the middle of every segment), not only at the static forces
-(<code>ropemodel size --dynamic</code>); every design verified by the hybrid simulator.
+(<code>ropemodel size --dynamic</code>); the recommended design verified by the hybrid simulator.
 The recommended design against the static optimum (continuous optima; the static one is what the paper's
 sizing gives):</p>"""
 

@@ -1,0 +1,65 @@
+"""The parts the sizing NLP is built of (:class:`optimisation.problem.SizingProblem`): the scene's model as a
+Function of three vectors (design, parameters, case inputs) with only the outputs the checks read, which case
+inputs each check depends on, and the places' x_m as sums of the NLP's parameters."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import casadi as ca
+
+from ropemodel.core.evaluate import reordered
+
+
+class _Reads(dict):
+    """Outputs as symbols, each made when first read: its keys are what a declaration's ``nlp_form`` writes a
+    check from."""
+
+    def __missing__(self, key):
+        self[key] = ca.MX.sym(key)
+        return self[key]
+
+
+def nlp_function(fun: ca.Function, checks, sizing, args) -> ca.Function:
+    """``fun`` with only the outputs the NLP reads (each check in its ``nlp_form``, the primary objective): a
+    route's model has an output per segment, and every derivative of the NLP would carry them."""
+    out = _Reads()
+    for c in checks:
+        sizing.nlp_form(c, out, args)
+    wanted = {sizing.PRIMARY, *checks, *out}
+    return reordered(fun, fun.name_in(), [k for k in fun.name_out() if k in wanted])
+
+
+def vector_model(fun: ca.Function, variables, params, free, given) -> ca.Function:
+    """``fun`` (one scalar input per known) as a Function of three vectors: the design ``x`` (SI, in the order of
+    ``variables``), the NLP's parameters ``p`` (``params``) and the case inputs ``c`` (``free``); the ``given``
+    outputs 0.  Each case of the NLP is one call of it, not a node per parameter (a route has thousands), and its
+    derivatives are those of one SX Function."""
+    sym: Any = ca.SX.sym if fun.is_a("SXFunction") else ca.MX.sym
+    x, p, c = sym("x", len(variables)), sym("p", len(params)), sym("c", len(free))
+    env = {**{k: p[i] for i, k in enumerate(params)}, **{k: c[i] for i, k in enumerate(free)},
+           **{k: x[i] for i, k in enumerate(variables)}, **{k: 0.0 for k in given}}
+    out = fun.call({k: env[k] for k in fun.name_in() if k in env})
+    return ca.Function("nlp_model", [x, p, c], [out[k] for k in fun.name_out()], ["x", "p", "c"],
+                       list(fun.name_out()))
+
+
+class Ends:
+    """x_m of joint k, L_1 + … + L_k, as one sum of the NLP's parameters (their indices ``lengths``), made when
+    asked: summed in order, as the model's own cumulative sums of the segments are."""
+
+    def __init__(self, p, lengths):
+        self.p, self.lengths = p, lengths
+
+    def __getitem__(self, k: int):
+        return ca.sum1(self.p[self.lengths[:k]]) if k else 0.0
+
+
+def depends(model: ca.Function, checks, free) -> dict[str, tuple[str, ...]]:
+    """Check → the case inputs of ``free`` it depends on (as :func:`ropemodel.envelope.cases.depends_on`), from the
+    structure of :func:`vector_model`: one sparsity sweep per check through its case input vector ``c``."""
+    out = {}
+    for check in checks:
+        pattern = model.sparsity_jac("c", check) if free else None
+        out[check] = tuple(k for j, k in enumerate(free) if pattern is not None and pattern.has_nz(0, j))
+    return out

@@ -1,0 +1,63 @@
+"""The tension along a route's rope sides as vector operations (CasADi columns), for long routes: the sums and
+minima over the segments in a few operations, with the rope's weight q_l and the tension F_end at the return
+sheave outside them, so that where the route's values are known (the scene's, folded in) each is one number and
+the model's size in q_l and F_end (what sizing varies) does not grow with the segments.  The functions of
+:mod:`ropemodel.papers.route` call these on symbols; docs/physics.md §4 derives the forms.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+
+
+def _sum(column, start=0.0):
+    """start + column[0] + column[1] + …, added in that order."""
+    return start + ca.sum1(column) if column.numel() else start
+
+
+def column(items):
+    """A CasADi column of ``items`` (a list or a column)."""
+    return items if isinstance(items, (ca.SX, ca.MX, ca.DM)) else ca.vertcat(*items)
+
+
+def rises(lengths, gradients):
+    """[G_0, …, G_n] (a CasADi column): G_k = Σ_{i>k} L_i g_i, the rise per unit rope weight from the return
+    sheave to joint k (G_n = 0); the tension there is F_end + q_l G_k."""
+    L, g = ca.vertcat(*lengths), column(gradients)
+    return ca.vertcat(ca.cumsum((L * g)[::-1])[::-1], 0.0)
+
+
+def rise_at(x, lengths, gradients):
+    """G(x) = Σ_i g_i ℓ_i(x) (a CasADi scalar): the rise per unit rope weight from the return sheave to x, ℓ_i(x)
+    the part of segment i between x and the return sheave."""
+    L, g = ca.vertcat(*lengths), column(gradients)
+    ends = ca.cumsum(L)
+    L_u = ends[-1]
+    return _sum(g * ca.fmax(ca.fmin(ends, L_u) - ca.fmax(ends - L, x), 0.0))
+
+
+def least_tension(F_end, q_l, lengths, gradients, x_m, load):
+    """:func:`ropemodel.papers.route.least_rope_tension` (two segments or more) as vector operations, for q_l >= 0
+    (a rope's weight): the least over the joints is F_end + q_l min_k G_k (:func:`rises`), and on the loaded side
+    the least of F_end + q_l P + J and
+    F_end + q_l Q, with P, Q the least G_k of the joints before and beyond the load.  Rounding is monotone, so
+    each equals the least of the terms of the loop to the last bit; the rope's weight and the pretension enter
+    in a few operations whatever the number of joints (the route's minima fold into numbers where its values are
+    known, as in sizing)."""
+    inner = rises(lengths, gradients)[1:-1]          # G_1 … G_{n−1}, the joints between the ends
+    if x_m is None:
+        return F_end + q_l * ca.mmin(inner)
+    ends = ca.cumsum(ca.vertcat(*lengths))
+    L_u = ends[-1]
+    x_m = ca.fmin(x_m, L_u)
+    at = ends[:-1]                                     # x_1 … x_{n−1}
+    top = ca.mmax(inner)                               # fills the joints not in a set: at least each of its own
+    before, beyond = at < x_m, at >= x_m
+    P = ca.mmin(ca.if_else(before, inner, top))
+    Q = ca.mmin(ca.if_else(beyond, inner, top))
+    loaded, free = F_end + q_l * P + load, F_end + q_l * Q
+    # a set without joints takes the other's term (both are never empty: there is a joint between the ends)
+    joints = ca.fmin(ca.if_else(before[0], loaded, free), ca.if_else(beyond[-1], free, loaded))
+    beside = F_end + q_l * rise_at(x_m, lengths, gradients)        # the tension beside the load
+    return ca.fmin(joints, ca.fmin(ca.if_else(x_m > 0.0, beside + load, beside),
+                                   ca.if_else(x_m < L_u, beside, beside + load)))
