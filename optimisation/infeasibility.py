@@ -98,7 +98,9 @@ def diagnose(problem: SizingProblem, p=None, d_range=None, fix_d: float | None =
     x0 = problem.x0() if x0 is None else np.asarray(x0, dtype=float)
     x0 = np.clip(x0, lbx, np.where(np.isfinite(ubx), ubx, x0))
     ng = problem.g.numel()
-    gfun = ca.Function("g", [problem.xs, problem.p], [problem.g])
+    # at the scene's parameters, the NLP with them folded in (a route's sums are numbers, as IPOPT solved it)
+    folded = problem.at_scene["g"] if np.array_equal(p, problem.p0) else problem.g
+    gfun = ca.Function("g", [problem.xs, problem.p], [folded])
     xs = ca.MX.sym("x", 3)
     g = gfun(xs, problem.p)
 
