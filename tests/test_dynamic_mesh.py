@@ -10,9 +10,12 @@ functions.
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
+from optimisation.dynamic import mesh
 from optimisation.dynamic.manoeuvres import sides
 from optimisation.dynamic.mesh import P_MAX, P_MIN, richardson, unsafe_part
 from ropemodel.effects.transient.contact import N_SLIP_DYNAMIC
@@ -84,3 +87,41 @@ def test_defaults_say_where_they_come_from():
     assert N_SLIP_DYNAMIC.default == 1.1 and "engineering judgement" in N_SLIP_DYNAMIC.range_source
     assert "engineering judgement" in N_SLIP_DYNAMIC.default_note
     assert MESH_TOL.unit == "N" and MESH_TOL.default == 1000.0 and MESH_TOL.range_source
+
+
+def _power_law(g_star: float, C: float, p: float, meshes) -> dict:
+    """One case's one check, g(m) = g* + C m^-p on each mesh m."""
+    return {m: {0: {"slip_margin_back": g_star + C * m ** -p}} for m in meshes}
+
+
+@pytest.mark.parametrize("C", [-2e4, 2e4])       # rising (the coarse meshes pessimistic) and falling margins
+def test_a_margin_kept_at_its_need_holds_on_every_mesh_from_the_scenes_and_in_the_limit(C):
+    """g(m) = g* + C/m from the scene's 8 elements a span, estimated at 32: a design whose margin at 32 is exactly
+    its need (the unsafe part of E(32) or the most a coarser mesh judges it worse) keeps g >= 0 at 8, 16, 32, every
+    finer mesh and in the limit; and the need is not more than that requires (one of them is 0 to rounding)."""
+    shape = _power_law(0.0, C, 1.0, (8, 16, 32, 64, 128))
+    need = mesh.estimate(shape, 32, {0: ["slip_margin_back"]}, ["case"])[("case", "slip_margin_back")].need
+    g_star = need - shape[32][0]["slip_margin_back"]        # the limit of the margins kept at exactly the need
+    held = {m: g_star + C / m for m in (8, 16, 32, 64, 128, 1024)}
+    assert min(*held.values(), g_star) >= -1e-9 * abs(C)
+    assert min(*held.values(), g_star) == pytest.approx(0.0, abs=1e-9 * abs(C))
+
+
+def test_cases_within_reach_of_their_limit_are_estimated():
+    """A case is estimated where its margin at n is within the screening's limit or within REACH times its
+    largest change from a coarser mesh: 30 kN with a 9 kN change is (30 < 4.1 x 9), 30 kN with 5 kN is not, 1 kN
+    with no change is (under the 15 kN screening limit)."""
+    assert mesh.REACH == pytest.approx(mesh.MARGIN / (1 - 2 ** -0.5))
+    g = {16: {0: {"c": 39e3}, 1: {"c": 35e3}, 2: {"c": 1e3}}, 32: {0: {"c": 30e3}, 1: {"c": 30e3}, 2: {"c": 1e3}}}
+    assert mesh.within_reach(g, 32, {"c": 15e3}) == {0: ["c"], 2: ["c"]}
+
+
+def test_each_case_is_backed_off_by_its_own_need():
+    """The back-off of a check in a case: BACKOFF + MARGIN x its need / the check's scale, per case (two places of
+    one check with different errors keep different back-offs)."""
+    problem = SimpleNamespace(F_ref=3e4, machine=SimpleNamespace(manoeuvres=SimpleNamespace(CHECK=CHECK)))
+    found = mesh.MeshEstimate(32, 1e3, {("a", "slip_margin_back"): mesh.CaseError(11.0, 330.0, 1.0, 0.0, 959.0),
+                                        ("b", "slip_margin_back"): mesh.CaseError(321.0, 39.0, 1.6, 39.0, 35.0)})
+    assert mesh.backoffs(problem, found) == {"a": {"slip_margin_back": pytest.approx(1e-4 + 1.2 * 959.0 / 3e4)},
+                                             "b": {"slip_margin_back": pytest.approx(1e-4 + 1.2 * 39.0 / 3e4)}}
+    assert found.errors == {"slip_margin_back": 330.0} and found.coarse == {"slip_margin_back": 959.0}

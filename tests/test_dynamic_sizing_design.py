@@ -106,12 +106,15 @@ def test_json_has_the_static_keys_and_each_manoeuvre(scene, design, capsys, tmp_
 
 
 def sized_problem(scene, design) -> DynamicSizingProblem:
-    """The NLP whose optimum is the design's continuous one: on the rope mesh the sizing chose, each check
-    backed off as the mesh control set it (``design.mesh``: SI, scaled back here as the NLP scales a check)."""
+    """The NLP whose optimum is the design's continuous one: on the rope mesh the sizing chose, each check in
+    each case backed off as the mesh control set it (``design.mesh["cases"]``: SI, scaled back here as the NLP
+    scales a check)."""
     scale = SizingProblem(scene).F_ref                       # the static problem's force scale, the NLP's
-    return DynamicSizingProblem(with_segments(scene, design.mesh["segments"]),
-                                backoffs={c: b / (scale if CHECK[c].unit == "N" else 1.0)
-                                          for c, b in design.mesh["backoffs"].items()})
+    backoffs: dict = {}
+    for e in design.mesh["cases"]:
+        unit = scale if CHECK[e["check"]].unit == "N" else 1.0
+        backoffs.setdefault(e["case"], {})[e["check"]] = e["backoff"] / unit
+    return DynamicSizingProblem(with_segments(scene, design.mesh["segments"]), backoffs=backoffs)
 
 
 @pytest.mark.parametrize("name, rel_step", [("G_m", 1e-3)])

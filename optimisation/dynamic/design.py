@@ -267,6 +267,10 @@ def _catalogue(problem, sol, design: DynamicDesign, say) -> DynamicDesign:
     for dk in [d for d in ropes.diameters() if d >= d_star - 1e-9]:
         x0 = np.array([dk / problem.x_scale[0], *sol.xs[1:]])
         prob, dsol = solve_refined(problem, x0, fix_d=dk, warm=(problem, sol))
+        if dsol.feasible and design.mesh.get("segments"):       # its own estimate, at this design
+            t0 = time.perf_counter()
+            prob, dsol, found = converge(prob, dsol, say=say, fix_d=dk, coarsest=design.mesh["segments_scene"])
+            design.mesh["catalogue"] = {**found.to_dict(), "seconds": time.perf_counter() - t0} if found else None
         if not dsol.feasible:
             continue
         xs = rounded_up(prob, dsol.xs)
@@ -307,14 +311,27 @@ def why_no_size(problem, d_star: float, design: DynamicDesign) -> None:
 
 def mesh_record(problem, found, n_scene: int, seconds: float) -> dict:
     """What the mesh control did (``--json``'s ``mesh``): the scene's and the chosen elements per span, the
-    tolerance [N], each check's estimated discretisation error and its back-off in the NLP (in the check's
-    unit, N or m; the back-off adds the integration's), the observed orders, each mesh tried, the seconds."""
+    tolerance [N], each check's estimated discretisation error and its back-off in the NLP (the largest over the
+    cases; ``cases``: each estimated case's own, with the margin, the unsafe part and how much worse a coarser
+    mesh judged it), in the check's unit (N or m; the back-off adds the integration's), the observed orders,
+    each mesh tried, the seconds."""
     if found is None:
         return {"segments_scene": None, "segments": None, "note": "the transient's rope has no elements to refine"}
-    backed = set(found.errors) | set(problem.backoffs)      # every check the optimum's NLP backs off its own way
     check = problem.machine.manoeuvres.CHECK
-    return {**found.to_dict(), "segments_scene": n_scene, "at": "the continuous optimum", "seconds": seconds,
-            "backoffs": {c: problem.backoff(c) * (problem.F_ref if check[c].unit == "N" else 1.0) for c in backed}}
+    index = {case.tag: i for i, case in enumerate(problem.cases)}
+
+    def si(c: str, tag: str) -> float:
+        return problem.backoff(c, index[tag]) * (problem.F_ref if check[c].unit == "N" else 1.0)
+
+    out = found.to_dict()
+    for entry in out["cases"]:
+        entry["backoff"] = si(entry["check"], entry["case"])
+    backed = [(tag, c) for tag, by in problem.backoffs.items() for c in by] + list(found.cases)
+    largest: dict[str, float] = {}
+    for tag, c in backed:           # every check the optimum's NLP backs off its own way, in any case
+        largest[c] = max(largest.get(c, 0.0), si(c, tag))
+    return {**out, "segments_scene": n_scene, "at": "the continuous optimum", "seconds": seconds,
+            "backoffs": largest}
 
 
 def slip_factors(scene) -> dict:

@@ -16,18 +16,31 @@ in the asymptotic range), and the error of g(n) is E(n) = |g(n) − g(2n)| / (1 
 sum of the changes still to come (Richardson extrapolation with the observed order; Roache,
 *Verification and Validation in Computational Science and Engineering*, 1998, ch. 5).
 
-:func:`control`: at a design, from n = the scene's ``segments``, doubling: E(n) of every check in every
-case where it can govern (its least margin within :data:`~optimisation.dynamic.screen.SCREEN_TOL` of its
-limit: 5 % of the load's weight, 0.5 m of take-up); the first n at which every force check's E(n) is
-within the scene's ``mesh_tol`` [N] is the mesh.  :func:`backoffs`: each check's back-off in the NLP is
-:data:`MARGIN` times the part of its largest E(n) on the unsafe side (:func:`unsafe_part`: all of it where
-the margins fall as the mesh is refined or show no steady trend, none where they rise steadily; the stroke
-checks', in m, too: no tolerance of their own) plus the integration's
-:data:`~optimisation.dynamic.problem.BACKOFF`.  :func:`converge`: the NLP solved again on
-that mesh with those back-offs, until the estimate at its optimum is within the back-offs it was solved
-with.  A design that keeps g(n) ≥ its unsafe part of E(n) keeps g ≥ 0 in the limit n → ∞, and at every
-finer mesh while g(n) converges monotonically.  Measured on the test scene: the slip margins rise as the mesh
-is refined (the coarse mesh is on the safe side), the rope safety's falls.
+:func:`control`: at a design, every case (each manoeuvre with the load at each candidate place) on every mesh
+from the scene's ``segments`` up to n (cheap: no finer than the sizing's own), and, from n = the scene's
+``segments`` doubling, E(n) of each check in each case *within reach* of its limit (:func:`within_reach`: its
+least margin at n within :data:`~optimisation.dynamic.screen.SCREEN_TOL` of its limit, 5 % of the load's
+weight or 0.5 m of take-up, where it can govern; or within :data:`REACH` times its largest change from a coarser
+mesh, where an error or a coarser mesh could take it below its limit although it does not govern) — only those
+cases are integrated on 2n and 4n; the first n at which every such force check's E(n) is within the scene's
+``mesh_tol`` [N] is the mesh.  :func:`backoffs`: each check's back-off *in each case* is :data:`MARGIN` times
+what its margin at n must keep (:attr:`CaseError.need`), plus the integration's
+:data:`~optimisation.dynamic.problem.BACKOFF`: the larger of the part of its E(n) on the unsafe side
+(:func:`unsafe_part`: all of it where the margins fall as the mesh is refined or show no steady trend, none
+where they rise steadily; the stroke checks', in m, too: no tolerance of their own) and the most a coarser mesh
+from the scene's judged it worse (a rising margin: the scene's own mesh, which ``simulate`` runs, and twice it
+judge the design more harshly than n).  :func:`converge`: the NLP solved again on that mesh with those
+back-offs, until the estimate at its optimum is within the back-offs it was solved with; the catalogue design
+too (d fixed, :mod:`optimisation.dynamic.design`).  A design that keeps g(n) ≥ its need keeps g ≥ 0 in the
+limit n → ∞, at every finer mesh while g(n) converges monotonically, and on every mesh from the scene's to n.
+
+Measured on the three-segment route of issue 21 (8 elements a span; the mesh chosen, 32): the slip margin of
+the downward start with the load at 1550 m, the catalogue design's active check, went −948, −314, +11, +176 N
+at 8, 16, 32, 64 elements (rising: E(32) on the unsafe side 0).  Backed off only by its unsafe part, the design
+held at 32 elements and in the limit but not with 16, twice the scene's: the coarser meshes' judgement is
+now part of each case's back-off.  Per case, because one check's error differs by orders of magnitude between
+places (the same check at the return sheave: 39 N).  On the test scene: the slip margins rise as the mesh is
+refined, the rope safety's falls.
 """
 
 from __future__ import annotations
@@ -48,6 +61,12 @@ P_MIN, P_MAX = 0.5, 2.0
 #: the back-off of a check is this many times its estimated error (the error moves with the design between
 #: the estimate and the optimum it sets the back-offs of)
 MARGIN = 1.2
+#: a check in a case is estimated (its finer meshes integrated) where its least margin at n is within this many
+#: times the largest change from a coarser mesh to n: with changes still to come no larger than that one, no
+#: estimate :func:`control` can make backs it off by more (Richardson's at the least order gives E at most
+#: 1/(1 − 2^(−P_MIN)) = 3.41 times the next change, times :data:`MARGIN`), nor does a coarser mesh judge it below
+#: its limit.  Where it is further off, no error this control could find reaches its limit
+REACH = MARGIN / (1.0 - 2.0 ** -P_MIN)
 #: the finest mesh :func:`control` compares with (elements per span; ``[numerics] segments`` allows 400)
 SEGMENTS_MAX = 256
 #: re-solves of :func:`converge`
@@ -103,22 +122,71 @@ def margins_at(problem, xs, n: int, p=None, which=None) -> dict[int, dict[str, f
 
 @dataclass
 class MeshEstimate:
-    """What :func:`control` found: the ``segments`` chosen, the tolerance ``tol`` [N], each check's estimated
-    error ``errors`` (its unit in ``units``: N or m), how much of it is on the unsafe side ``unsafe`` (the
-    margin at n above the converged one: what the back-off must cover) and observed ``orders`` there, and per
-    mesh tried (``levels``) the largest force error."""
+    """What :func:`control` found: the ``segments`` chosen, the tolerance ``tol`` [N], the meshes compared
+    (``meshes``: from the scene's to 4 ``segments``), each estimated case's checks (``cases``: a
+    :class:`CaseError` per (case tag, check)), per check the largest over the cases of its error ``errors``, of
+    its unsafe part ``unsafe``, of how much worse a coarser mesh judged it ``coarse`` (unit in ``units``: N or
+    m) and the observed order ``orders`` at the largest error, and per mesh tried (``levels``) the largest
+    force error."""
 
     segments: int
     tol: float
-    errors: dict = field(default_factory=dict)
-    unsafe: dict = field(default_factory=dict)
-    orders: dict = field(default_factory=dict)
+    cases: dict = field(default_factory=dict)
     units: dict = field(default_factory=dict)
     levels: list = field(default_factory=list)
+    meshes: list = field(default_factory=list)
+
+    def _largest(self, what: str) -> dict[str, float]:
+        out: dict[str, float] = {}
+        for (_, check), e in self.cases.items():
+            out[check] = max(out.get(check, 0.0), getattr(e, what))
+        return out
+
+    @property
+    def errors(self) -> dict[str, float]:
+        return self._largest("error")
+
+    @property
+    def unsafe(self) -> dict[str, float]:
+        return self._largest("unsafe")
+
+    @property
+    def coarse(self) -> dict[str, float]:
+        return self._largest("coarse")
+
+    @property
+    def orders(self) -> dict[str, float]:
+        worst: dict[str, CaseError] = {}
+        for (_, check), e in self.cases.items():
+            if check not in worst or e.error > worst[check].error:
+                worst[check] = e
+        return {c: e.order for c, e in worst.items()}
 
     def to_dict(self) -> dict:
         return {"segments": self.segments, "tolerance": self.tol, "errors": self.errors, "unsafe": self.unsafe,
-                "orders": self.orders, "units": self.units, "levels": self.levels}
+                "coarse": self.coarse, "orders": self.orders, "units": dict(self.units), "levels": self.levels,
+                "meshes": self.meshes,
+                "cases": [{"case": tag, "check": c, **dataclasses.asdict(e)} for (tag, c), e in self.cases.items()]}
+
+
+@dataclass(frozen=True)
+class CaseError:
+    """One check in one case at the chosen mesh n: its least ``margin`` there (SI, before back-offs), its
+    Richardson ``error`` E(n) and observed ``order``, the ``unsafe`` part of E(n) (:func:`unsafe_part`), and
+    ``coarse``: how much lower the least margin was on a coarser mesh from the scene's (≥ 0; the design must
+    keep the check there too, :attr:`need`)."""
+
+    margin: float
+    error: float
+    order: float
+    unsafe: float
+    coarse: float
+
+    @property
+    def need(self) -> float:
+        """What the margin at n must keep (≥ 0): its unsafe part of E(n) (the limit n → ∞, and every finer mesh
+        while the margins converge monotonically) or the most a coarser mesh judges it worse, the larger."""
+        return max(self.unsafe, self.coarse)
 
 
 def unsafe_part(g_n: float, g_2n: float, g_4n: float) -> float:
@@ -130,51 +198,64 @@ def unsafe_part(g_n: float, g_2n: float, g_4n: float) -> float:
     return 0.0 if rising else richardson(g_n, g_2n, g_4n)[0]
 
 
-def estimate(g: dict, n: int) -> tuple[dict, dict, dict]:
-    """Each check's E(n) (SI), its unsafe part (:func:`unsafe_part`) and observed order, the largest over the
-    cases where it can govern (its least margin within :data:`~optimisation.dynamic.screen.SCREEN_TOL` of its
-    limit, as the screening judges it: a check further from its limit than any error estimated here cannot
-    govern), from ``g`` (mesh → case → check → least margin)."""
-    errors: dict[str, float] = {}
-    unsafe: dict[str, float] = {}
-    orders: dict[str, float] = {}
-    first = g[n]
-    for i, margins in first.items():
+def within_reach(g: dict, n: int, limits: dict[str, float]) -> dict[int, list[str]]:
+    """Case → its checks whose error can reach their limit, from ``g`` (mesh → case → check → least margin,
+    every case on ``n`` and every coarser mesh): those whose least margin at n is within ``limits`` (check →
+    the screening's :data:`~optimisation.dynamic.screen.SCREEN_TOL` in its unit: it can govern) or within
+    :data:`REACH` times the largest change from a coarser mesh to n (an error or a coarser mesh's judgement
+    that large could take it below its limit)."""
+    out: dict[int, list[str]] = {}
+    for i, margins in g[n].items():
         for check, value in margins.items():
-            if value > SCREEN_TOL * _scale(check, g):
-                continue
-            three = (value, g[2 * n][i][check], g[4 * n][i][check])
+            change = max((abs(value - g[m][i][check]) for m in g if m < n), default=0.0)
+            if value <= max(limits[check], REACH * change):
+                out.setdefault(i, []).append(check)
+    return out
+
+
+def estimate(g: dict, n: int, near: dict[int, list[str]], tags: list[str]) -> dict:
+    """(case tag, check) → :class:`CaseError` at ``n`` for each case's checks in ``near``, from ``g`` (mesh →
+    case → check → least margin, SI: ``near``'s cases on n, 2n, 4n, every case on the coarser meshes)."""
+    out = {}
+    for i, checks in near.items():
+        for check in checks:
+            three = (g[n][i][check], g[2 * n][i][check], g[4 * n][i][check])
             e, p = richardson(*three)
-            if e >= errors.get(check, -1.0):
-                errors[check], orders[check] = e, p
-            unsafe[check] = max(unsafe.get(check, 0.0), unsafe_part(*three))
-    return errors, unsafe, orders
+            coarse = max((three[0] - g[m][i][check] for m in g if m < n), default=0.0)
+            out[(tags[i], check)] = CaseError(three[0], e, p, unsafe_part(*three), max(coarse, 0.0))
+    return out
 
 
-def _scale(check: str, g: dict) -> float:
-    return g["F_ref"] if g["units"][check] == "N" else 1.0
-
-
-def control(problem, xs, p=None, say=None) -> MeshEstimate | None:
-    """The mesh and each check's estimated error at scaled design ``xs`` (see the module); None when the
-    transient's rope has no elements to refine (``mesh_tol`` not a parameter: a rigid rope, one spring)."""
+def control(problem, xs, p=None, say=None, coarsest: int | None = None) -> MeshEstimate | None:
+    """The mesh and each check's estimated error in each case within reach at scaled design ``xs`` (see the
+    module), comparing with every mesh from ``coarsest`` elements per span (default the problem's) up; None
+    when the transient's rope has no elements to refine (``mesh_tol`` not a parameter: a rigid rope, one
+    spring)."""
     if "mesh_tol" not in problem.scene.parameters:
         return None
     tol = problem.scene.parameters["mesh_tol"]
     n = segments_of(problem.scene)
-    units = {c: check.unit for c, check in problem.machine.manoeuvres.CHECK.items()}
-    g: dict = {"F_ref": problem.F_ref, "units": units}
+    check = problem.machine.manoeuvres.CHECK
+    units = {c: check[c].unit for c in check}
+    limits = {c: SCREEN_TOL * check_scale(problem, check[c]) for c in check}
+    tags = [case.tag for case in problem.cases]
+    every = range(len(problem.cases))
+    g: dict[int, dict] = {}
+    m = coarsest or n
+    while m < n:                    # the coarser meshes from the scene's, every case: their judgement counts too
+        _measure(problem, xs, p, g, m, every, say)
+        m *= 2
     levels = []
     while True:
-        _measure(problem, xs, p, g, n, range(len(problem.cases)), say)
-        near = [i for i, margins in g[n].items() if any(v <= SCREEN_TOL * _scale(c, g) for c, v in margins.items())]
-        for m in (2 * n, 4 * n):        # the finer meshes in the cases where a check can govern (all estimate reads)
+        _measure(problem, xs, p, g, n, every, say)
+        near = within_reach(g, n, limits)
+        for m in (2 * n, 4 * n):        # the finer meshes only in the cases within reach (all estimate reads)
             _measure(problem, xs, p, g, m, near, say)
-        errors, unsafe, orders = estimate(g, n)
-        force = max((e for c, e in errors.items() if units[c] == "N"), default=0.0)
+        found = estimate(g, n, near, tags)
+        force = max((e.error for (_, c), e in found.items() if units[c] == "N"), default=0.0)
         levels.append({"segments": n, "largest_force_error": force})
         if force <= tol:
-            return MeshEstimate(n, tol, errors, unsafe, orders, {c: units[c] for c in errors}, levels)
+            return MeshEstimate(n, tol, found, {c: units[c] for _, c in found}, levels, sorted(g))
         if 8 * n > SEGMENTS_MAX:
             raise SolveError(f"the rope's discretisation error is {force:.4g} N at {n} elements per span "
                              f"(Richardson's estimate from {n}, {2 * n} and {4 * n}), above mesh_tol = {tol:.4g} N; "
@@ -191,34 +272,45 @@ def _measure(problem, xs, p, g: dict, m: int, cases, say) -> None:
         g[m].update(margins_at(problem, xs, m, p, missing))
 
 
-def backoffs(problem, found: MeshEstimate) -> dict[str, float]:
-    """Check name → its back-off in the NLP (scaled): :data:`MARGIN` times the unsafe part of its E(n), plus
-    :data:`BACKOFF`."""
+def backoffs(problem, found: MeshEstimate) -> dict[str, dict[str, float]]:
+    """Case tag → check → its back-off in the NLP (scaled): :data:`MARGIN` times what the margin must keep
+    (:attr:`CaseError.need`), plus :data:`BACKOFF`."""
     check = problem.machine.manoeuvres.CHECK
-    return {c: BACKOFF + MARGIN * e / check_scale(problem, check[c]) for c, e in found.unsafe.items()}
+    out: dict[str, dict[str, float]] = {}
+    for (tag, c), e in found.cases.items():
+        out.setdefault(tag, {})[c] = BACKOFF + MARGIN * e.need / check_scale(problem, check[c])
+    return out
 
 
-def converge(problem, sol, record=None, say=None):
-    """The continuous optimum ``sol`` of ``problem`` solved again on the mesh :func:`control` chooses, with
-    the back-offs of :func:`backoffs`, until the estimate at the optimum is within the back-offs it was
-    solved with: (problem, solution, :class:`MeshEstimate` or None).  Each re-solve first tries Newton on the
-    previous optimum's active set (:func:`~optimisation.dynamic.warm.on_active_set`: kept only at a KKT point of
-    the new problem), then IPOPT from it.  A solution that is not feasible is returned as it is (no design on
-    the finer mesh)."""
+def _solved_with(problem, wanted: dict) -> bool:
+    """Whether every need in ``wanted`` (:func:`backoffs`, less its :data:`MARGIN`) is within the back-off
+    ``problem`` was solved with."""
+    return all(BACKOFF + (b - BACKOFF) / MARGIN <= problem.backoffs.get(tag, {}).get(c, BACKOFF) * (1 + 1e-9)
+               for tag, by in wanted.items() for c, b in by.items())
+
+
+def converge(problem, sol, record=None, say=None, fix_d: float | None = None, coarsest: int | None = None):
+    """The optimum ``sol`` of ``problem`` (``fix_d``: with d fixed, the catalogue's) solved again on the mesh
+    :func:`control` chooses (comparing from ``coarsest`` elements per span, default the problem's), with the
+    back-offs of :func:`backoffs`, until the estimate at its optimum is within the back-offs it was solved with:
+    (problem, solution, :class:`MeshEstimate` or None).  Each re-solve first tries Newton on the previous
+    optimum's active set (:func:`~optimisation.dynamic.warm.on_active_set`: kept only at a KKT point of the new
+    problem), then IPOPT from it.  A solution that is not feasible is returned as it is (no design on the finer
+    mesh)."""
+    coarsest = coarsest or segments_of(problem.scene)
     for _ in range(ROUNDS):
-        found = control(problem, sol.xs, say=say)
+        found = control(problem, sol.xs, say=say, coarsest=coarsest)
         if found is None:
             return problem, sol, None
         wanted = backoffs(problem, found)
-        if found.segments == segments_of(problem.scene) and all(
-                BACKOFF + (b - BACKOFF) / MARGIN <= problem.backoff(c) * (1 + 1e-9) for c, b in wanted.items()):
+        if found.segments == segments_of(problem.scene) and _solved_with(problem, wanted):
             return problem, sol, found
         if say is not None:
             say(f"dynamic optimum on {found.segments} elements per span, checks backed off by their error")
         scene, old = with_segments(problem.scene, found.segments), problem
         problem = DynamicSizingProblem(scene, selected=problem.selected, backoffs=wanted,
                                        shared_paths=problem.shared_paths)
-        problem, sol = solve_refined(problem, sol.xs, record=record, warm=(old, sol))
+        problem, sol = solve_refined(problem, sol.xs, fix_d=fix_d, record=record, warm=(old, sol))
         if not sol.feasible:
             return problem, sol, found
     raise SolveError(f"the mesh's error estimates at the optimum kept exceeding the back-offs it was solved with "

@@ -56,8 +56,9 @@ class DynamicSizingProblem(SizingProblem):
     modes (:class:`~optimisation.dynamic.shooting.Path`); ``selected``: the indices of the cases the NLP
     integrates (default: those governing a check at the start design, :func:`~optimisation.dynamic.screen.governing`),
     ``paths`` theirs and ``grids`` their time grids (default a uniform grid of step :data:`DT_GRID`).
-    ``paths`` given: the smooth modes of a previous problem of the same scene, re-used.  ``backoffs``: check
-    name → its back-off in the NLP (scaled; default :data:`BACKOFF`), from the mesh's error estimate
+    ``paths`` given: the smooth modes of a previous problem of the same scene, re-used.  ``backoffs``: case tag
+    (:attr:`~optimisation.dynamic.manoeuvres.Manoeuvre.tag`) → check name → its back-off in that case in the NLP
+    (scaled; default :data:`BACKOFF`), from the mesh's error estimate in that case
     (:func:`optimisation.dynamic.mesh.backoffs`).  ``shared_paths``: the cases' smooth modes built at the start
     design (:meth:`start_path`), shared by the problems one sizing makes of the same scene (its grids, cases,
     meshes), so that none is built twice.
@@ -65,11 +66,12 @@ class DynamicSizingProblem(SizingProblem):
 
     def __init__(self, scene, grids=None, paths=None, selected=None, backoffs=None, shared_paths=None):
         super().__init__(transient_scene(scene))
-        self.backoffs = dict(backoffs or {})
+        self.backoffs = {tag: dict(by) for tag, by in (backoffs or {}).items()}
         self.shared_paths = {} if shared_paths is None else shared_paths
         self.static_constraints = list(self.constraints)
         self.g_static = self.g
         self.cases = cases(self.scene)
+        self.tags = [case.tag for case in cases(self.scene)]
         if paths is None:
             paths = [self.start_path(i) for i in range(len(self.cases))]
         self.all_paths = paths
@@ -140,7 +142,7 @@ class DynamicSizingProblem(SizingProblem):
                         tag = f"[{e}]" if check.needs == "T" else ""
                         names.append(f"{check.name}{tag} @ {path.manoeuvre.tag}, t = {t:.6g} s")
                 scale += [unit_scale[check.unit]] * (rows * len(times))
-                offsets += [self.backoff(check.name)] * (rows * len(times))
+                offsets += [self.backoff(check.name, self.selected[j])] * (rows * len(times))
                 self.units.update({n: check.unit for n in names[len(names) - rows * len(times):]})
         self.dynamic_constraints = names
         self.constraints = self.static_constraints + names
@@ -148,10 +150,14 @@ class DynamicSizingProblem(SizingProblem):
         self.g_scale = np.concatenate([self.g_scale, scale])
         self._margin_exprs = self._margin_exprs + margins
 
-    def backoff(self, check: str) -> float:
-        """The back-off of ``check`` (a name of :data:`~optimisation.dynamic.manoeuvres.CHECKS`) in the NLP,
-        scaled."""
-        return self.backoffs.get(check, BACKOFF)
+    def backoff(self, check: str, case: int) -> float:
+        """The back-off of ``check`` (a name of the machine's ``CHECKS``) in case ``case`` (index into
+        ``cases``) in the NLP, scaled."""
+        return self.backoffs.get(self.tags[case], {}).get(check, BACKOFF)
+
+    def largest_backoff(self, default: float = BACKOFF) -> float:
+        """The largest back-off of any check in any case (scaled; ``default`` where none is set)."""
+        return max((b for by in self.backoffs.values() for b in by.values()), default=default)
 
     #: the checks through the manoeuvres are not static: derivatives of :meth:`nlp`, not of its static forms
     STATIC = False

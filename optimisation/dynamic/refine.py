@@ -176,9 +176,9 @@ def _refined(problem, x0, p, fix_d, record, others, warm=None):
     for _ in range(MAX_ROUNDS):
         if not sol.feasible:
             return problem, sol
-        found = minima(problem, sol.xs, p, ADD_TOL + max(problem.backoffs.values(), default=0.0))
-        low = [m for m in found if m.value < problem.backoff(m.check) - 0.5 * BACKOFF]
-        more = [] if low else uncovered(problem, sol.xs, p, max(problem.backoffs.values(), default=BACKOFF))
+        found = minima(problem, sol.xs, p, ADD_TOL + problem.largest_backoff(0.0))
+        low = [m for m in found if m.value < problem.backoff(m.check, problem.selected[m.path]) - 0.5 * BACKOFF]
+        more = [] if low else uncovered(problem, sol.xs, p, problem.largest_backoff())
         if record is not None:
             record.rounds.append((float(min((m.value for m in found), default=np.inf)), len(low),
                                   [problem.cases[i].tag for i in more]))

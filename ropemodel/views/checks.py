@@ -203,5 +203,6 @@ class Vocabulary:
             text += (f"; the largest estimate {forces[worst] * 1e-3:.3g} kN{of}, "
                      f"{self.check_words(worst, parameters)}, {mesh['unsafe'][worst] * 1e-3:.3g} kN of it on the "
                      f"unsafe side, backed off by {mesh['backoffs'][worst] * 1e-3:.3g} kN")
-        return text + ("; each check through a manoeuvre is backed off by a little more than the part of its own "
-                       "estimate on the unsafe side")
+        return text + ("; each check through a manoeuvre, with the load at each place within reach of its limit, is "
+                       "backed off by a little more than the part of its own estimate there on the unsafe side or "
+                       "than the most a coarser mesh from the scene's judged it worse, whichever is more")

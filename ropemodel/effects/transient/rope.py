@@ -52,10 +52,11 @@ ROPE_DAMPING = Quantity("rope_damping", "s", "Kelvin-Voigt retardation time c/k 
 #: :mod:`optimisation.dynamic.mesh`); the simulator itself takes ``[numerics] segments`` as given
 MESH_TOL = Quantity("mesh_tol", "N", "tolerance on the forces of the rope's discretisation into elements: dynamic "
                     "sizing doubles [numerics] segments until the Richardson estimate of every force check's "
-                    "discretisation error is within it, and backs each check off by its estimate", "kN",
+                    "discretisation error is within it, and backs each check off, at each place of the load, by "
+                    "its estimate", "kN",
                     default=1000.0, guess=1000.0, warn_low=10.0, warn_high=1e5,
-                    default_note="not given: 1 kN (0.2 % of the Fig. 9 load's weight, 467 kN; a check's back-off "
-                                 "is at most this much force)",
+                    default_note="not given: 1 kN (0.2 % of the Fig. 9 load's weight, 467 kN; a force check's "
+                                 "estimated error is at most this much)",
                     usual_source="engineering judgement: 0.1 % to 1 % of the load's weight of a haulage",
                     **dom.domain(1e-3, dom.FORCE_MAX, "1 mN (below any force a design check reads) to "
                                                      "10^9 N (the largest force of a scene)"))
