@@ -42,6 +42,10 @@ from ropemodel.papers import route as rt
 
 SRC = "Krauze et al. 2025"
 LEAST = "least tension along the side, docs/physics.md §4 (not in the paper)"
+#: how a least tension is computed where its closed form is too long to show (a route of many segments)
+LEAST_METHOD = ("the least of the side's tension at every joint of the route and on either side of the load "
+                "(between its ends, which have checks of their own), each F_nwl/2 plus the rope's weight and "
+                "resistance summed piece by piece from the return sheave (docs/physics.md §4)")
 LEAST_SENSE = ("least",)
 LEAST_FORCES = ("F_S_least_up", "F_S_least_down", "F_C_least_up", "F_C_least_down")
 
@@ -166,9 +170,11 @@ class DesignChecks(Submodel):
             pull = rt.load_pull(v["G_ml"], v["T_m"], v["G_m"], s, a)
             if len(route.lengths) > 1:     # one piece: the unwinding rope has nothing between its ends
                 eqs.append(Equation(f"F_S_least_{way}", v[f"F_S_least_{way}"]
-                                    - rt.least_rope_tension(F_end, q_l, route.lengths, unwind), LEAST))
+                                    - rt.least_rope_tension(F_end, q_l, route.lengths, unwind), LEAST,
+                                    method=LEAST_METHOD))
             eqs.append(Equation(f"F_C_least_{way}", v[f"F_C_least_{way}"]
-                                - rt.least_rope_tension(F_end, q_l, route.lengths, wind, v["x_m"], pull), LEAST))
+                                - rt.least_rope_tension(F_end, q_l, route.lengths, wind, v["x_m"], pull), LEAST,
+                                method=LEAST_METHOD))
         return eqs
 
     def _route_margin(self, v, way: str):
