@@ -40,6 +40,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ropemodel.studykit import PEAK_RSS
+
 ROOT = Path(__file__).resolve().parents[1]
 NAME = "sweep_performance"
 CLI = "import sys; from ropemodel.cli import main; sys.exit(main(sys.argv[1:]))"
@@ -182,20 +184,7 @@ def scaling(tmp: Path, sizes, repeat: int) -> list[dict]:
              "numpy_s": min(t_np[a, b]), "ratio": min(t_rm[a, b]) / min(t_np[a, b])} for a, b in grids]
 
 
-PEAK = r'''
-def peak_rss():
-    """Peak resident set of this process [bytes]: VmHWM (Linux; reset by exec, unlike ru_maxrss,
-    which a child inherits from the parent it was forked from)."""
-    try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith("VmHWM:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        pass
-    import resource, sys
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024)
-'''
+PEAK = PEAK_RSS
 
 MEMORY = PEAK + r'''
 import sys, time
