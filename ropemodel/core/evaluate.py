@@ -52,6 +52,10 @@ COMPILE_MIN = 20000  # "auto" compiles to C only for at least this many points (
 #: constant input at every point (a 3000-segment route's model evaluated at 3000 places of the load: 18·10^6
 #: numbers), so the constants are folded into the Function first (:func:`folded`)
 FOLD_MIN = 10**6
+#: constant inputs above which they are folded in whatever the points: CasADi warns of a Function (and a map) of
+#: more than 10 000 inputs on stderr, and hashing and mapping one costs more than folding its constants once (a
+#: 10 000-segment route's model has 20 000)
+FOLD_INPUTS = 1000
 
 
 @dataclass
@@ -312,7 +316,8 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     The same engine as a sweep (compiled once per process, threads, bounded memory), without
     validation or files: a drop-in body for ``Problem.evaluate``.  ``block``: points per call of
     the compiled map (:class:`Job`).  Evaluated by CasADi with many constants at many points (above
-    :data:`FOLD_MIN`), the constants are folded in first (:func:`folded`): memory linear in the points.
+    :data:`FOLD_MIN`, or more of them than :data:`FOLD_INPUTS`), the constants are folded in first (:func:`folded`):
+    memory linear in the points.
     """
     columns = {k: np.ascontiguousarray(v, dtype=float).ravel() for k, v in columns.items()}
     n_points = len(next(iter(columns.values()))) if columns else 1
@@ -335,7 +340,8 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     if hit is None or hit[0] is not function:
         hit = _remember(_REORDERED, key, (function, reordered(function, order, outputs)))
     fun = hit[1]
-    if backend == "casadi" and fun.is_a("SXFunction") and len(constants) * n > FOLD_MIN:
+    if backend == "casadi" and fun.is_a("SXFunction") and (len(constants) * n > FOLD_MIN
+                                                           or len(constants) > FOLD_INPUTS):
         job: Job | _FoldedJob = _FoldedJob(fun, list(columns), list(constants.values()), threads)
     else:
         job = Job(fun, list(columns), constants, backend=backend, threads=threads, block=block)

@@ -81,7 +81,13 @@ class Equation:
         """Every quantity the equation involves."""
         if self.call is not None:
             return [self.defines, *self.call[1]]
-        return [s.name() for s in ca.symvar(self.residual)] if self.residual is not None else [self.defines]
+        if self.residual is None:
+            return [self.defines]
+        r = self.residual
+        if r.is_scalar() and r.is_op(ca.OP_SUB) and r.dep(0).is_symbolic() and r.dep(1).is_symbolic():
+            # y - x, as a route's 10 000 segments define their coefficients: what symvar gives, without its cost
+            return list(dict.fromkeys((r.dep(0).name(), r.dep(1).name())))
+        return [s.name() for s in ca.symvar(r)]
 
 
 class Symbols(dict):
@@ -166,8 +172,11 @@ class Submodel:
     def sibling(self, effect: str) -> Submodel:
         """The chosen variant of another ``effect`` of this model (built with the same options and effects),
         for what only it knows (e.g. the route's segments), found through the registry."""
-        spec = REGISTRY[self.model][effect]
-        return spec.variants[self.effects.get(effect, spec.default)](self.options, self.effects)
+        siblings = self.__dict__.setdefault("_siblings", {})    # built once: a route's knows 10 000 segments
+        if effect not in siblings:
+            spec = REGISTRY[self.model][effect]
+            siblings[effect] = spec.variants[self.effects.get(effect, spec.default)](self.options, self.effects)
+        return siblings[effect]
 
 
 @dataclass
