@@ -266,13 +266,14 @@ def _build(code: str) -> Path:
 
 
 def reordered(function: ca.Function, order, outputs=None) -> ca.Function:
-    """``function`` with its inputs in ``order`` (names) and only ``outputs`` (default all); SX stays SX."""
-    syms = {k: ca.MX.sym(k) for k in function.name_in()}
+    """``function`` with its inputs in ``order`` (names) and only ``outputs`` (default all); SX stays SX (called on SX
+    symbols: the same operations as an MX call expanded, without the MX graph of a route's 20 000 inputs)."""
+    sym = ca.SX.sym if function.is_a("SXFunction") else ca.MX.sym
+    syms = {k: sym(k) for k in function.name_in()}
     res = function.call(syms)
     outputs = list(function.name_out()) if outputs is None else list(outputs)
-    out = ca.Function(function.name(), [syms[k] for k in order], [res[o] for o in outputs], list(order), outputs,
-                      MANY_INPUTS)
-    return out.expand(function.name(), MANY_INPUTS) if function.is_a("SXFunction") else out
+    return ca.Function(function.name(), [syms[k] for k in order], [res[o] for o in outputs], list(order), outputs,
+                       MANY_INPUTS)
 
 
 def folded(function: ca.Function, n_var: int, constants: list[float]) -> tuple[ca.Function | None, dict[str, float]]:

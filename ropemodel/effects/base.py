@@ -87,7 +87,8 @@ class Equation:
         if r.is_scalar() and r.is_op(ca.OP_SUB) and r.dep(0).is_symbolic() and r.dep(1).is_symbolic():
             # y - x, as a route's 10 000 segments define their coefficients: what symvar gives, without its cost
             return list(dict.fromkeys((r.dep(0).name(), r.dep(1).name())))
-        return [s.name() for s in ca.symvar(r)]
+        # symvar's names, in its order, as one list of strings (a route's sums name 20 000 symbols)
+        return list(ca.Function("names", [], [r], {"allow_free": True}).get_free())
 
 
 class Symbols(dict):
