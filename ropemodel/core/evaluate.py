@@ -38,6 +38,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -268,8 +269,8 @@ def _build(code: str) -> Path:
 def reordered(function: ca.Function, order, outputs=None) -> ca.Function:
     """``function`` with its inputs in ``order`` (names) and only ``outputs`` (default all); SX stays SX (called on SX
     symbols: the same operations as an MX call expanded, without the MX graph of a route's 20 000 inputs)."""
-    sym = ca.SX.sym if function.is_a("SXFunction") else ca.MX.sym
-    syms = {k: sym(k) for k in function.name_in()}
+    sym: Any = ca.SX.sym if function.is_a("SXFunction") else ca.MX.sym
+    syms: dict[str, Any] = {k: sym(k) for k in function.name_in()}
     res = function.call(syms)
     outputs = list(function.name_out()) if outputs is None else list(outputs)
     return ca.Function(function.name(), [syms[k] for k in order], [res[o] for o in outputs], list(order), outputs,
