@@ -283,9 +283,13 @@ def folded(function: ca.Function, n_var: int, constants: list[float]) -> tuple[c
     Function of the first ``n_var`` inputs to the outputs that still depend on them (None if none does), and the
     values of the others (a route's sums, its segments' coefficients: one number each, not one per point)."""
     syms = [ca.SX.sym(k) for k in function.name_in()[:n_var]]
-    out = function.call(syms + [ca.SX(float(c)) for c in constants])
-    fixed = {k: float(ca.DM(e)) for k, e in zip(function.name_out(), out) if e.is_constant()}
-    moving = [k for k in function.name_out() if k not in fixed]
+    numbers = ca.vertsplit(ca.SX(ca.DM(list(map(float, constants))))) if constants else []   # one conversion
+    out = function.call(syms + numbers)
+    names = function.name_out()
+    still = [e.is_constant() for e in out]
+    values = np.asarray(ca.evalf(ca.vertcat(*[e for e, c in zip(out, still) if c]))).ravel() if any(still) else []
+    fixed = dict(zip((k for k, c in zip(names, still) if c), map(float, values)))
+    moving = [k for k in names if k not in fixed]
     if not moving:
         return None, fixed
     return ca.Function(function.name(), syms, [out[function.index_out(k)] for k in moving],
