@@ -277,23 +277,26 @@ def reordered(function: ca.Function, order, outputs=None) -> ca.Function:
                        MANY_INPUTS)
 
 
-def folded(function: ca.Function, n_var: int, constants: list[float]) -> tuple[ca.Function | None, dict[str, float]]:
-    """The SX ``function`` with its inputs after the first ``n_var`` fixed at ``constants``: CasADi does the
-    arithmetic on numbers once, here (the same operations in the same order, so the same results).  Returns the
-    Function of the first ``n_var`` inputs to the outputs that still depend on them (None if none does), and the
-    values of the others (a route's sums, its segments' coefficients: one number each, not one per point)."""
-    syms = [ca.SX.sym(k) for k in function.name_in()[:n_var]]
-    numbers = ca.vertsplit(ca.SX(ca.DM(list(map(float, constants))))) if constants else []   # one conversion
-    out = function.call(syms + numbers)
-    names = function.name_out()
+def folded(function: ca.Function, varied: list[str], constants: dict[str, float],
+           outputs=None) -> tuple[ca.Function | None, dict[str, float]]:
+    """The SX ``function`` with its inputs other than ``varied`` (names) fixed at ``constants`` (name → value):
+    CasADi does the arithmetic on numbers once, here (the same operations in the same order, so the same results).
+    Returns the Function of the ``varied`` inputs (in that order) to the ``outputs`` (default all) that still
+    depend on them (None if none does), and the values of the others (a route's sums, its segments' coefficients:
+    one number each, not one per point)."""
+    syms = {k: ca.SX.sym(k) for k in varied}
+    names = list(function.name_out()) if outputs is None else list(outputs)
+    numbers = ca.vertsplit(ca.SX(ca.DM(list(map(float, constants.values()))))) if constants else []  # converted once
+    got = function.call({**syms, **dict(zip(constants, numbers))})
+    out = [got[k] for k in names]
     still = [e.is_constant() for e in out]
     values = np.asarray(ca.evalf(ca.vertcat(*[e for e, c in zip(out, still) if c]))).ravel() if any(still) else []
     fixed = dict(zip((k for k, c in zip(names, still) if c), map(float, values)))
-    moving = [k for k in names if k not in fixed]
+    moving = [(k, e) for k, e in zip(names, out) if k not in fixed]
     if not moving:
         return None, fixed
-    return ca.Function(function.name(), syms, [out[function.index_out(k)] for k in moving],
-                       function.name_in()[:n_var], moving, MANY_INPUTS), fixed
+    return ca.Function(function.name(), [syms[k] for k in varied], [e for _, e in moving], list(varied),
+                       [k for k, _ in moving], MANY_INPUTS), fixed
 
 
 class _FoldedJob:
@@ -301,8 +304,9 @@ class _FoldedJob:
     built here and not cached (a Function for one set of constants); the outputs that no longer vary are
     repeated, not evaluated at every point."""
 
-    def __init__(self, function: ca.Function, varied: list[str], constants: list[float], threads: int):
-        moving, self.fixed = folded(function, len(varied), constants)
+    def __init__(self, function: ca.Function, varied: list[str], constants: dict[str, float], threads: int,
+                 outputs=None):
+        moving, self.fixed = folded(function, varied, constants, outputs)
         self.varied = varied
         self.mapped = None if moving is None else _Mapped(moving, len(varied), threads)
 
@@ -341,17 +345,19 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     missing = [k for k in function.name_in() if k not in given]
     if missing:
         raise InputError(f"no value for {', '.join(missing)}")
-    key = (id(function), tuple(order), None if outputs is None else tuple(outputs))
-    hit = _REORDERED.get(key)
-    if hit is None or hit[0] is not function:
-        hit = _remember(_REORDERED, key, (function, reordered(function, order, outputs)))
-    fun = hit[1]
-    if backend == "casadi" and fun.is_a("SXFunction") and (len(constants) * n > FOLD_MIN
-                                                           or len(constants) > FOLD_INPUTS):
-        job: Job | _FoldedJob = _FoldedJob(fun, list(columns), list(constants.values()), threads)
+    job: Job | _FoldedJob
+    if backend == "casadi" and function.is_a("SXFunction") and (len(constants) * n > FOLD_MIN
+                                                                or len(constants) > FOLD_INPUTS):
+        job = _FoldedJob(function, list(columns), constants, threads, outputs)    # by name: no reordering first
+        names = list(function.name_out()) if outputs is None else list(outputs)
     else:
-        job = Job(fun, list(columns), constants, backend=backend, threads=threads, block=block)
-    out = {o: np.empty(n) for o in fun.name_out()}
+        key = (id(function), tuple(order), None if outputs is None else tuple(outputs))
+        hit = _REORDERED.get(key)
+        if hit is None or hit[0] is not function:
+            hit = _remember(_REORDERED, key, (function, reordered(function, order, outputs)))
+        job = Job(hit[1], list(columns), constants, backend=backend, threads=threads, block=block)
+        names = list(hit[1].name_out())
+    out = {o: np.empty(n) for o in names}
     for s in range(0, n, chunk):
         e = min(n, s + chunk)
         for o, v in job({k: c[s:e] for k, c in columns.items()}).items():
