@@ -290,7 +290,7 @@ def folded(function: ca.Function, varied: list[str], constants: dict[str, float]
     got = function.call({**syms, **dict(zip(constants, numbers))})
     out = [got[k] for k in names]
     still = [e.is_constant() for e in out]
-    values = np.asarray(ca.evalf(ca.vertcat(*[e for e, c in zip(out, still) if c]))).ravel() if any(still) else []
+    values: Any = np.asarray(ca.evalf(ca.vertcat(*[e for e, c in zip(out, still) if c]))).ravel() if any(still) else []
     fixed = dict(zip((k for k, c in zip(names, still) if c), map(float, values)))
     moving = [(k, e) for k, e in zip(names, out) if k not in fixed]
     if not moving:
