@@ -20,14 +20,30 @@ class _Reads(dict):
         return self[key]
 
 
-def nlp_function(fun: ca.Function, checks, sizing, args) -> ca.Function:
-    """``fun`` with only the outputs the NLP reads (each check in its ``nlp_form``, the primary objective): a
-    route's model has an output per segment, and every derivative of the NLP would carry them."""
+def nlp_outputs(names, checks, sizing, args) -> list[str]:
+    """The outputs among ``names`` the NLP reads (each check in its ``nlp_form``, the primary objective), in
+    their order."""
     out = _Reads()
     for c in checks:
         sizing.nlp_form(c, out, args)
     wanted = {sizing.PRIMARY, *checks, *out}
-    return reordered(fun, fun.name_in(), [k for k in fun.name_out() if k in wanted])
+    return [k for k in names if k in wanted]
+
+
+def nlp_function(fun: ca.Function, checks, sizing, args) -> ca.Function:
+    """``fun`` with only the outputs the NLP reads (:func:`nlp_outputs`): a route's model has an output per
+    segment, and every derivative of the NLP would carry them."""
+    return reordered(fun, fun.name_in(), nlp_outputs(fun.name_out(), checks, sizing, args))
+
+
+def restricted(model: ca.Function, outputs) -> ca.Function:
+    """``model`` (:func:`vector_model`) with only ``outputs``: the same expressions, called on its three vectors
+    (not built again from the scene's model of one input per known: a route's has 20 000)."""
+    sym: Any = ca.SX.sym if model.is_a("SXFunction") else ca.MX.sym
+    args = {k: sym(k, model.size1_in(k)) for k in model.name_in()}
+    out = model.call(args)
+    return ca.Function(model.name(), [args[k] for k in model.name_in()], [out[k] for k in outputs],
+                       list(model.name_in()), list(outputs))
 
 
 def vector_model(fun: ca.Function, variables, params, free, given) -> ca.Function:

@@ -30,7 +30,7 @@ from functools import cached_property
 import casadi as ca
 import numpy as np
 
-from optimisation.nlp_parts import Ends, depends, nlp_function, vector_model
+from optimisation.nlp_parts import Ends, depends, nlp_function, nlp_outputs, restricted, vector_model
 from ropemodel.envelope import Envelope, LoadCase, envelope, free, load_cases
 from ropemodel.envelope.cases import distinct, joint_ends
 from ropemodel.envelope.prune import prune
@@ -283,8 +283,7 @@ class SizingProblem:
         then left out of the derivatives in the parameters (:mod:`optimisation.sensitivity`)."""
         made = [self._made[i] for i in taken]
         checks = list(dict.fromkeys(c for c, _ in made))
-        model = vector_model(nlp_function(self.problem.function, checks, self.sizing, self._args), self.variables,
-                              self.params, self.free, self.problem.given)
+        model = restricted(self._nlp_model, nlp_outputs(self._nlp_model.name_out(), checks, self.sizing, self._args))
         _, g, _, out, _ = self._constraints(model, self._args, self.p, only=made)
         g_s = ca.vertcat(*g) / ca.DM(self.g_scale[list(taken)]) if taken else ca.MX(0, 1)
         return self._objective(out[self.sizing.PRIMARY] / self.m_ref), g_s
