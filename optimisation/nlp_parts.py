@@ -53,7 +53,7 @@ def vector_model(fun: ca.Function, variables, params, free, given) -> ca.Functio
     derivatives are those of one SX Function."""
     sym: Any = ca.SX.sym if fun.is_a("SXFunction") else ca.MX.sym
     x, p, c = sym("x", len(variables)), sym("p", len(params)), sym("c", len(free))
-    env = {**{k: p[i] for i, k in enumerate(params)}, **{k: c[i] for i, k in enumerate(free)},
+    env = {**dict(zip(params, ca.vertsplit(p) if params else [])), **{k: c[i] for i, k in enumerate(free)},
            **{k: x[i] for i, k in enumerate(variables)}, **{k: 0.0 for k in given}}
     out = fun.call({k: env[k] for k in fun.name_in() if k in env})
     return ca.Function("nlp_model", [x, p, c], [out[k] for k in fun.name_out()], ["x", "p", "c"],

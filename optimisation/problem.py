@@ -199,7 +199,7 @@ class SizingProblem:
     def _knowns(self, p, x_si) -> dict:
         """Every known of the model by name: the parameters from ``p``, the design ``x_si`` (SI), a check held at 0
         where its dimension is a result."""
-        args = {k: p[i] for i, k in enumerate(self.params)}
+        args = dict(zip(self.params, ca.vertsplit(p) if self.params else []))     # one node, not one per parameter
         args.update({k: x_si[i] for i, k in enumerate(self.variables)})
         args.update({k: 0.0 for k in self.problem.given})
         return args
