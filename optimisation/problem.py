@@ -30,7 +30,7 @@ from functools import cached_property
 import casadi as ca
 import numpy as np
 
-from optimisation.nlp_parts import Ends, depends, nlp_function, nlp_outputs, restricted, vector_model
+from optimisation.nlp_parts import Ends, depends, nlp_outputs, restricted, vector_model
 from ropemodel.envelope import Envelope, LoadCase, envelope, free, load_cases
 from ropemodel.envelope.cases import distinct, joint_ends
 from ropemodel.envelope.prune import prune
@@ -173,8 +173,8 @@ class SizingProblem:
         self.xs, self.p = ca.MX.sym("x", len(self.variables)), ca.MX.sym("p", len(self.params))
         self._args = self._knowns(self.p, self.xs * ca.DM(self.x_scale))
         self.checks = self.machine.checks(self.problem.unknowns)
-        self._nlp_model = vector_model(nlp_function(fun, self.checks, sizing, self._args), self.variables,
-                                        self.params, self.free, self.problem.given)
+        self._nlp_model = vector_model(fun, self.variables, self.params, self.free, self.problem.given,
+                                        nlp_outputs(fun.name_out(), self.checks, sizing, self._args))
         unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
         q = scene.built.quantities
         #: each check's scale in the NLP (g = its NLP form over this)
