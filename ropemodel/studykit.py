@@ -15,8 +15,8 @@ from pathlib import Path
 
 #: Python source of ``peak_rss()``, for the code of a fresh process that measures its own peak memory: VmHWM
 #: (Linux), which exec resets.  Not ru_maxrss: a child inherits its parent's peak through fork and exec, so a
-#: process started from a test worker reports the worker's peak (1.9 GB in CI's slow tier for a sizing that takes
-#: 0.8 GB alone).  Elsewhere ru_maxrss (macOS: bytes; Linux fallback: kB).
+#: process started from a test worker reports the worker's peak (1.9 GB in CI's slow tier for a sizing that stays
+#: under 1 GB alone).  Elsewhere ru_maxrss (macOS: bytes; Linux fallback: kB).
 PEAK_RSS = r'''
 def peak_rss():
     """Peak resident set of this process [bytes]: VmHWM (Linux; reset by exec, unlike ru_maxrss,

@@ -184,9 +184,7 @@ def scaling(tmp: Path, sizes, repeat: int) -> list[dict]:
              "numpy_s": min(t_np[a, b]), "ratio": min(t_rm[a, b]) / min(t_np[a, b])} for a, b in grids]
 
 
-PEAK = PEAK_RSS
-
-MEMORY = PEAK + r'''
+MEMORY = PEAK_RSS + r'''
 import sys, time
 import ropemodel as rm
 n_alpha, n_load, path = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
@@ -196,7 +194,7 @@ rm.sweep(rm.load_scene(), {"alpha_u": f"5deg:45deg:{n_alpha}", "G_m": f"300kN:50
 print(peak_rss(), time.perf_counter() - t)
 '''
 
-BASELINE = PEAK + r'''
+BASELINE = PEAK_RSS + r'''
 import ropemodel as rm, ropemodel.sweeps, pyarrow.parquet
 rm.sweep(rm.load_scene(), {"alpha_u": [0.1, 0.2]}, progress=False)
 print(peak_rss())
