@@ -9,8 +9,8 @@ shipped scene with a 2 s ramp, 4 rope elements per span and 12 s manoeuvres (no 
 
 Contenders, each in this process, CPU seconds of the process (``time.process_time``: a shared machine's other
 work does not count, and every contender runs on one thread), the shipped scene in ``rounds`` (three)
-interleaved rounds, the route in one (a quarter of an hour each); each ratio is the median over the rounds of that
-round's two contenders, measured back to back (the seconds shown: medians):
+interleaved rounds, the route in one (each sizing about 10 CPU minutes); each ratio is the median over the
+rounds of that round's two contenders, measured back to back (the seconds shown: medians):
 
 * **peer** — one simulation of the four manoeuvres (start and stop, up and down) at the final design, at the
   final mesh, each with the load where that manoeuvre governs, by the project's hybrid simulator
