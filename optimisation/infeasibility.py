@@ -232,10 +232,17 @@ def _freeing(problem, gfun, i, sense, quantity, p):
     t = ca.MX.sym("t")
     scale = abs(p[i]) or 1.0
     if np.array_equal(p, problem.p0):     # the other parameters folded in (a route's sums are numbers)
-        g = ca.Function("g_free", [problem.xs, t], [freeing(problem, i, t * scale)])(xs := ca.MX.sym("x", 3), t)
+        g_free = ca.Function("g_free", [problem.xs, t], [freeing(problem, i, t * scale)])
+        g = g_free(xs := ca.MX.sym("x", 3), t)
+
+        def g_at(zz):      # the same arithmetic as gfun at p with p_i = t (folded), not a pass over the route
+            return g_free(zz[:3], zz[3])
     else:
         xs = ca.MX.sym("x", 3)
         g = gfun(xs, ca.vertcat(*[t * scale if j == i else problem.p[j] for j in range(len(p))]))
+
+        def g_at(zz):
+            return gfun(zz[:3], np.where(np.arange(len(p)) == i, zz[3] * scale, p))
     z = ca.vertcat(xs, t)
     solver = ca.nlpsol("free", "ipopt", {"x": z, "p": problem.p, "f": t if sense == "min" else -t, "g": g}, OPTS)
     lo = quantity.low / scale if math.isfinite(quantity.low) else -np.inf
@@ -245,7 +252,7 @@ def _freeing(problem, gfun, i, sense, quantity, p):
         r = solver(x0=np.concatenate([x0, [1.0]]), p=p, lbx=np.concatenate([lbx, [lo]]),
                    ubx=np.concatenate([ubx, [hi]]), lbg=0.0, ubg=np.inf)
         zz = np.asarray(r["x"]).ravel()
-        g = np.asarray(gfun(zz[:3], np.where(np.arange(len(p)) == i, zz[3] * scale, p))).ravel()
+        g = np.asarray(g_at(zz)).ravel()
         if not solver.stats()["success"] or g.min() < -1e-7 or not quantity.in_range(zz[3] * scale):
             return None
         return float(zz[3] * scale)

@@ -20,28 +20,41 @@ class _Reads(dict):
         return self[key]
 
 
-def nlp_function(fun: ca.Function, checks, sizing, args) -> ca.Function:
-    """``fun`` with only the outputs the NLP reads (each check in its ``nlp_form``, the primary objective): a
-    route's model has an output per segment, and every derivative of the NLP would carry them."""
+def nlp_outputs(names, checks, sizing, args) -> list[str]:
+    """The outputs among ``names`` the NLP reads (each check in its ``nlp_form``, the primary objective), in
+    their order."""
     out = _Reads()
     for c in checks:
         sizing.nlp_form(c, out, args)
     wanted = {sizing.PRIMARY, *checks, *out}
-    return reordered(fun, fun.name_in(), [k for k in fun.name_out() if k in wanted])
+    return [k for k in names if k in wanted]
 
 
-def vector_model(fun: ca.Function, variables, params, free, given) -> ca.Function:
+def restricted(model: ca.Function, outputs) -> ca.Function:
+    """``model`` (:func:`vector_model`) with only ``outputs``: the same expressions, called on its three vectors
+    (not built again from the scene's model of one input per known: a route's has 20 000)."""
+    sym: Any = ca.SX.sym if model.is_a("SXFunction") else ca.MX.sym
+    args = {k: sym(k, model.size1_in(k)) for k in model.name_in()}
+    out = model.call(args)
+    return ca.Function(model.name(), [args[k] for k in model.name_in()], [out[k] for k in outputs],
+                       list(model.name_in()), list(outputs))
+
+
+def vector_model(fun: ca.Function, variables, params, free, given, outputs=None) -> ca.Function:
     """``fun`` (one scalar input per known) as a Function of three vectors: the design ``x`` (SI, in the order of
     ``variables``), the NLP's parameters ``p`` (``params``) and the case inputs ``c`` (``free``); the ``given``
-    outputs 0.  Each case of the NLP is one call of it, not a node per parameter (a route has thousands), and its
-    derivatives are those of one SX Function."""
+    outputs 0; only ``outputs`` (default all; the NLP's: :func:`nlp_outputs`, a route's model has an output per
+    segment, and every derivative of the NLP would carry them).  Each case of the NLP is one call of it, not a node
+    per parameter (a route has thousands), and its derivatives are those of one SX Function."""
+    if outputs is not None and not fun.is_a("SXFunction"):   # an MX call node evaluates every output of its Function
+        fun = reordered(fun, fun.name_in(), outputs)
     sym: Any = ca.SX.sym if fun.is_a("SXFunction") else ca.MX.sym
     x, p, c = sym("x", len(variables)), sym("p", len(params)), sym("c", len(free))
-    env = {**{k: p[i] for i, k in enumerate(params)}, **{k: c[i] for i, k in enumerate(free)},
+    env = {**dict(zip(params, ca.vertsplit(p) if params else [])), **{k: c[i] for i, k in enumerate(free)},
            **{k: x[i] for i, k in enumerate(variables)}, **{k: 0.0 for k in given}}
     out = fun.call({k: env[k] for k in fun.name_in() if k in env})
-    return ca.Function("nlp_model", [x, p, c], [out[k] for k in fun.name_out()], ["x", "p", "c"],
-                       list(fun.name_out()))
+    names = list(fun.name_out()) if outputs is None else list(outputs)
+    return ca.Function("nlp_model", [x, p, c], [out[k] for k in names], ["x", "p", "c"], names)
 
 
 class Ends:

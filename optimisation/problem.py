@@ -30,7 +30,7 @@ from functools import cached_property
 import casadi as ca
 import numpy as np
 
-from optimisation.nlp_parts import Ends, depends, nlp_function, vector_model
+from optimisation.nlp_parts import Ends, depends, nlp_outputs, restricted, vector_model
 from ropemodel.envelope import Envelope, LoadCase, envelope, free, load_cases
 from ropemodel.envelope.cases import distinct, joint_ends
 from ropemodel.envelope.prune import prune
@@ -173,8 +173,8 @@ class SizingProblem:
         self.xs, self.p = ca.MX.sym("x", len(self.variables)), ca.MX.sym("p", len(self.params))
         self._args = self._knowns(self.p, self.xs * ca.DM(self.x_scale))
         self.checks = self.machine.checks(self.problem.unknowns)
-        self._nlp_model = vector_model(nlp_function(fun, self.checks, sizing, self._args), self.variables,
-                                        self.params, self.free, self.problem.given)
+        self._nlp_model = vector_model(fun, self.variables, self.params, self.free, self.problem.given,
+                                        nlp_outputs(fun.name_out(), self.checks, sizing, self._args))
         unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
         q = scene.built.quantities
         #: each check's scale in the NLP (g = its NLP form over this)
@@ -199,7 +199,7 @@ class SizingProblem:
     def _knowns(self, p, x_si) -> dict:
         """Every known of the model by name: the parameters from ``p``, the design ``x_si`` (SI), a check held at 0
         where its dimension is a result."""
-        args = {k: p[i] for i, k in enumerate(self.params)}
+        args = dict(zip(self.params, ca.vertsplit(p) if self.params else []))     # one node, not one per parameter
         args.update({k: x_si[i] for i, k in enumerate(self.variables)})
         args.update({k: 0.0 for k in self.problem.given})
         return args
@@ -283,8 +283,7 @@ class SizingProblem:
         then left out of the derivatives in the parameters (:mod:`optimisation.sensitivity`)."""
         made = [self._made[i] for i in taken]
         checks = list(dict.fromkeys(c for c, _ in made))
-        model = vector_model(nlp_function(self.problem.function, checks, self.sizing, self._args), self.variables,
-                              self.params, self.free, self.problem.given)
+        model = restricted(self._nlp_model, nlp_outputs(self._nlp_model.name_out(), checks, self.sizing, self._args))
         _, g, _, out, _ = self._constraints(model, self._args, self.p, only=made)
         g_s = ca.vertcat(*g) / ca.DM(self.g_scale[list(taken)]) if taken else ca.MX(0, 1)
         return self._objective(out[self.sizing.PRIMARY] / self.m_ref), g_s

@@ -13,6 +13,25 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+#: Python source of ``peak_rss()``, for the code of a fresh process that measures its own peak memory: VmHWM
+#: (Linux), which exec resets.  Not ru_maxrss: a child inherits its parent's peak through fork and exec, so a
+#: process started from a test worker reports the worker's peak (1.9 GB in CI's slow tier for a sizing that stays
+#: under 1 GB alone).  Elsewhere ru_maxrss (macOS: bytes; Linux fallback: kB).
+PEAK_RSS = r'''
+def peak_rss():
+    """Peak resident set of this process [bytes]: VmHWM (Linux; reset by exec, unlike ru_maxrss,
+    which a child inherits from the parent it was forked from)."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    import resource, sys
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024)
+'''
+
 
 def output_dir(script: str, out_dir=None) -> Path:
     """``out_dir``, or ``studies/out/<name>/`` beside ``script`` (a study's ``__file__``); created."""

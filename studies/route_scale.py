@@ -2,10 +2,11 @@
 
 A 2 km incline (10 deg on average with a 700 m undulation of +-15 m, falling away from the drive) surveyed at
 n points is written as a profile file (``[route_profile]``, ``distance [m],height [m]``) and each command
-runs on it in a fresh process, timed (wall clock and CPU time, imports included) with its peak memory (max
-RSS).  The peer, measured in the same run: a plain numpy evaluation of the steady rope forces at the drum with
-the load at every joint of the route, both directions (docs/physics.md §4, the closed forms of the sums over
-segments, written out here), whose worst ``F_C_up`` each ``run`` must equal to 1e-12.
+runs on it in a fresh process, timed (wall clock and CPU time, imports included) with its peak memory (VmHWM,
+the peak resident set of that process alone: :data:`ropemodel.studykit.PEAK_RSS`).  The peer, measured in the
+same run: a plain numpy evaluation of the steady rope forces at the drum with the load at every joint of the
+route, both directions (docs/physics.md §4, the closed forms of the sums over segments, written out here), whose
+worst ``F_C_up`` each ``run`` must equal to 1e-12.
 
 Printed: time (wall, CPU) and memory per command and n, the time relative to the smallest n (growth) and to
 the numpy peer.  ``--fast``: n = 10, 30, 100 (what the test runs); full: n = 10, 30, 100, 300, 1000, 3000,
@@ -27,7 +28,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ropemodel.studykit import cli, output_dir, save_figure
+from ropemodel.studykit import PEAK_RSS, cli, output_dir, save_figure
 
 G_M, Q_L, F_NWL, MU, G = 467e3, 80.0, 40e3, 0.05, 9.80665
 PARAMETERS = """mu_pm = 0.05
@@ -70,7 +71,7 @@ SIZE_UP_TO = 10_000
 COMMANDS = {"run": (RUN, ["run", "--json"]), "trip": (RUN, ["trip", "--json"]),
             "size": (SIZE, ["size", "--json", "--no-limit"])}    # above 50 segments: above the route-sizing budget
 #: in a fresh process: the command, then its wall time and peak memory on the last line of stdout
-PROBE = """import io, resource, sys, time
+PROBE = PEAK_RSS + """import io, resource, sys, time
 from contextlib import redirect_stdout
 t0 = time.perf_counter()
 from ropemodel.cli import main
@@ -79,7 +80,7 @@ with redirect_stdout(buf):
     code = main(sys.argv[1:])
 print(buf.getvalue())
 use = resource.getrusage(resource.RUSAGE_SELF)
-print(code, time.perf_counter() - t0, use.ru_maxrss, use.ru_utime + use.ru_stime)
+print(code, time.perf_counter() - t0, peak_rss(), use.ru_utime + use.ru_stime)
 """
 
 
@@ -111,12 +112,12 @@ def _probe(folder: Path, argv: list[str]) -> tuple[dict, float, float, float]:
     done = subprocess.run([sys.executable, "-c", PROBE, *argv, str(folder / "scene.toml")], capture_output=True,
                           text=True, cwd=folder, check=False)
     *body, last = done.stdout.strip().splitlines()
-    code, seconds, rss_kb, cpu = last.split()
+    code, seconds, rss, cpu = last.split()
     if code != "0":
         raise RuntimeError(f"{argv[0]} failed on {folder}: {done.stderr.strip()[-400:]}")
     if "WARNING(" in done.stderr:     # CasADi's, e.g. "many inputs"
         raise RuntimeError(f"{argv[0]} on {folder} printed a solver warning: {done.stderr.strip()[-400:]}")
-    return json.loads("\n".join(body)), float(seconds), float(rss_kb) / 1024.0, float(cpu)
+    return json.loads("\n".join(body)), float(seconds), float(rss) / 2**20, float(cpu)
 
 
 def measure(n: int, folder: Path, size_up_to: int) -> list[dict]:

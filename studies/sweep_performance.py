@@ -40,6 +40,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ropemodel.studykit import PEAK_RSS
+
 ROOT = Path(__file__).resolve().parents[1]
 NAME = "sweep_performance"
 CLI = "import sys; from ropemodel.cli import main; sys.exit(main(sys.argv[1:]))"
@@ -182,22 +184,7 @@ def scaling(tmp: Path, sizes, repeat: int) -> list[dict]:
              "numpy_s": min(t_np[a, b]), "ratio": min(t_rm[a, b]) / min(t_np[a, b])} for a, b in grids]
 
 
-PEAK = r'''
-def peak_rss():
-    """Peak resident set of this process [bytes]: VmHWM (Linux; reset by exec, unlike ru_maxrss,
-    which a child inherits from the parent it was forked from)."""
-    try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith("VmHWM:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        pass
-    import resource, sys
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024)
-'''
-
-MEMORY = PEAK + r'''
+MEMORY = PEAK_RSS + r'''
 import sys, time
 import ropemodel as rm
 n_alpha, n_load, path = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
@@ -207,7 +194,7 @@ rm.sweep(rm.load_scene(), {"alpha_u": f"5deg:45deg:{n_alpha}", "G_m": f"300kN:50
 print(peak_rss(), time.perf_counter() - t)
 '''
 
-BASELINE = PEAK + r'''
+BASELINE = PEAK_RSS + r'''
 import ropemodel as rm, ropemodel.sweeps, pyarrow.parquet
 rm.sweep(rm.load_scene(), {"alpha_u": [0.1, 0.2]}, progress=False)
 print(peak_rss())

@@ -24,8 +24,7 @@ def test_sizing_checks_seven_of_a_hundred_places(tmp_path):
     assert len({c.joint for c in problem.cases}) == 7
 
 
-@pytest.mark.slow
-@pytest.mark.exhaustive     # minutes: not in CI (CONTRIBUTING, "Test tiers")
+@pytest.mark.slow      # about 12 s: nine commands in fresh processes (it was minutes before constraint generation)
 def test_route_scale_study(tmp_path):
     table = load_study("route_scale").main(tmp_path, fast=True)
     assert (tmp_path / "route_scale.png").stat().st_size > 0

@@ -90,8 +90,9 @@ def _explicit_solver(model, structure: Structure, name: str) -> ca.Function | No
         eqs = [model.equations[i] for i in block.equations]
         if any(eq.call is not None for eq in eqs):
             return None
-        x = ca.vertcat(*[model.symbols[u] for u in block.unknowns])
-        sol = _definition(eqs[0].residual, x) if len(eqs) == 1 else None
+        x = ca.vertcat(*[model.symbols[u] for u in block.unknowns]) if len(block.unknowns) > 1 else \
+            model.symbols[block.unknowns[0]]
+        sol = _definition(eqs[0].residual, x, block.unknowns[0]) if len(eqs) == 1 else None
         sol = linear_solution(ca.vertcat(*[eq.residual for eq in eqs]), x) if sol is None else sol
         if sol is None:
             return None
@@ -103,13 +104,18 @@ def _explicit_solver(model, structure: Structure, name: str) -> ca.Function | No
                        list(structure.knowns), list(structure.unknowns), MANY_INPUTS)
 
 
-def _definition(res: ca.SX, x: ca.SX) -> ca.SX | None:
-    """``f`` of a definition ``res = x − f`` with ``f`` free of ``x``, else None: what :func:`linear_solution`
-    gives, −(0 − f)/1, which CasADi simplifies to ``f`` itself, without its Jacobian and substitution (a
-    route of thousands of segments defines thousands of coefficients)."""
-    if res.is_scalar() and res.is_op(ca.OP_SUB) and ca.is_equal(res.dep(0), x) and not ca.depends_on(res.dep(1), x):
-        return res.dep(1)
-    return None
+def _definition(res: ca.SX, x: ca.SX, name: str) -> ca.SX | None:
+    """``f`` of a definition ``res = x − f`` with ``f`` free of ``x`` (the model's symbol ``name``: one symbol per
+    name), else None: what :func:`linear_solution` gives, −(0 − f)/1, which CasADi simplifies to ``f`` itself,
+    without its Jacobian and substitution (a route of thousands of segments defines thousands of coefficients,
+    each a symbol: told apart from ``x`` by name)."""
+    if not (res.is_scalar() and res.is_op(ca.OP_SUB)):
+        return None
+    y, f = res.dep(0), res.dep(1)
+    if not (y.is_symbolic() and y.name() == name):
+        return None
+    free = f.name() != name if f.is_symbolic() else not ca.depends_on(f, x)
+    return f if free else None
 
 
 def linear_solution(res: ca.SX, x: ca.SX) -> ca.SX | None:

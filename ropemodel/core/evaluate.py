@@ -38,6 +38,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -52,6 +53,10 @@ COMPILE_MIN = 20000  # "auto" compiles to C only for at least this many points (
 #: constant input at every point (a 3000-segment route's model evaluated at 3000 places of the load: 18·10^6
 #: numbers), so the constants are folded into the Function first (:func:`folded`)
 FOLD_MIN = 10**6
+#: constant inputs above which they are folded in whatever the points: CasADi warns of a Function (and a map) of
+#: more than 10 000 inputs on stderr, and hashing and mapping one costs more than folding its constants once (a
+#: 10 000-segment route's model has 20 000)
+FOLD_INPUTS = 1000
 
 
 @dataclass
@@ -262,28 +267,36 @@ def _build(code: str) -> Path:
 
 
 def reordered(function: ca.Function, order, outputs=None) -> ca.Function:
-    """``function`` with its inputs in ``order`` (names) and only ``outputs`` (default all); SX stays SX."""
-    syms = {k: ca.MX.sym(k) for k in function.name_in()}
+    """``function`` with its inputs in ``order`` (names) and only ``outputs`` (default all); SX stays SX (called on SX
+    symbols: the same operations as an MX call expanded, without the MX graph of a route's 20 000 inputs)."""
+    sym: Any = ca.SX.sym if function.is_a("SXFunction") else ca.MX.sym
+    syms: dict[str, Any] = {k: sym(k) for k in function.name_in()}
     res = function.call(syms)
     outputs = list(function.name_out()) if outputs is None else list(outputs)
-    out = ca.Function(function.name(), [syms[k] for k in order], [res[o] for o in outputs], list(order), outputs,
-                      MANY_INPUTS)
-    return out.expand(function.name(), MANY_INPUTS) if function.is_a("SXFunction") else out
+    return ca.Function(function.name(), [syms[k] for k in order], [res[o] for o in outputs], list(order), outputs,
+                       MANY_INPUTS)
 
 
-def folded(function: ca.Function, n_var: int, constants: list[float]) -> tuple[ca.Function | None, dict[str, float]]:
-    """The SX ``function`` with its inputs after the first ``n_var`` fixed at ``constants``: CasADi does the
-    arithmetic on numbers once, here (the same operations in the same order, so the same results).  Returns the
-    Function of the first ``n_var`` inputs to the outputs that still depend on them (None if none does), and the
-    values of the others (a route's sums, its segments' coefficients: one number each, not one per point)."""
-    syms = [ca.SX.sym(k) for k in function.name_in()[:n_var]]
-    out = function.call(syms + [ca.SX(float(c)) for c in constants])
-    fixed = {k: float(ca.DM(e)) for k, e in zip(function.name_out(), out) if e.is_constant()}
-    moving = [k for k in function.name_out() if k not in fixed]
+def folded(function: ca.Function, varied: list[str], constants: dict[str, float],
+           outputs=None) -> tuple[ca.Function | None, dict[str, float]]:
+    """The SX ``function`` with its inputs other than ``varied`` (names) fixed at ``constants`` (name → value):
+    CasADi does the arithmetic on numbers once, here (the same operations in the same order, so the same results).
+    Returns the Function of the ``varied`` inputs (in that order) to the ``outputs`` (default all) that still
+    depend on them (None if none does), and the values of the others (a route's sums, its segments' coefficients:
+    one number each, not one per point)."""
+    syms = {k: ca.SX.sym(k) for k in varied}
+    names = list(function.name_out()) if outputs is None else list(outputs)
+    numbers = ca.vertsplit(ca.SX(ca.DM(list(map(float, constants.values()))))) if constants else []  # converted once
+    got = function.call({**syms, **dict(zip(constants, numbers))})
+    out = [got[k] for k in names]
+    still = [e.is_constant() for e in out]
+    values: Any = np.asarray(ca.evalf(ca.vertcat(*[e for e, c in zip(out, still) if c]))).ravel() if any(still) else []
+    fixed = dict(zip((k for k, c in zip(names, still) if c), map(float, values)))
+    moving = [(k, e) for k, e in zip(names, out) if k not in fixed]
     if not moving:
         return None, fixed
-    return ca.Function(function.name(), syms, [out[function.index_out(k)] for k in moving],
-                       function.name_in()[:n_var], moving, MANY_INPUTS), fixed
+    return ca.Function(function.name(), [syms[k] for k in varied], [e for _, e in moving], list(varied),
+                       [k for k, _ in moving], MANY_INPUTS), fixed
 
 
 class _FoldedJob:
@@ -291,8 +304,9 @@ class _FoldedJob:
     built here and not cached (a Function for one set of constants); the outputs that no longer vary are
     repeated, not evaluated at every point."""
 
-    def __init__(self, function: ca.Function, varied: list[str], constants: list[float], threads: int):
-        moving, self.fixed = folded(function, len(varied), constants)
+    def __init__(self, function: ca.Function, varied: list[str], constants: dict[str, float], threads: int,
+                 outputs=None):
+        moving, self.fixed = folded(function, varied, constants, outputs)
         self.varied = varied
         self.mapped = None if moving is None else _Mapped(moving, len(varied), threads)
 
@@ -312,7 +326,8 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     The same engine as a sweep (compiled once per process, threads, bounded memory), without
     validation or files: a drop-in body for ``Problem.evaluate``.  ``block``: points per call of
     the compiled map (:class:`Job`).  Evaluated by CasADi with many constants at many points (above
-    :data:`FOLD_MIN`), the constants are folded in first (:func:`folded`): memory linear in the points.
+    :data:`FOLD_MIN`, or more of them than :data:`FOLD_INPUTS`), the constants are folded in first (:func:`folded`):
+    memory linear in the points.
     """
     columns = {k: np.ascontiguousarray(v, dtype=float).ravel() for k, v in columns.items()}
     n_points = len(next(iter(columns.values()))) if columns else 1
@@ -330,16 +345,19 @@ def evaluate_columns(function: ca.Function, columns: dict, constants: dict, thre
     missing = [k for k in function.name_in() if k not in given]
     if missing:
         raise InputError(f"no value for {', '.join(missing)}")
-    key = (id(function), tuple(order), None if outputs is None else tuple(outputs))
-    hit = _REORDERED.get(key)
-    if hit is None or hit[0] is not function:
-        hit = _remember(_REORDERED, key, (function, reordered(function, order, outputs)))
-    fun = hit[1]
-    if backend == "casadi" and fun.is_a("SXFunction") and len(constants) * n > FOLD_MIN:
-        job: Job | _FoldedJob = _FoldedJob(fun, list(columns), list(constants.values()), threads)
+    job: Job | _FoldedJob
+    if backend == "casadi" and function.is_a("SXFunction") and (len(constants) * n > FOLD_MIN
+                                                                or len(constants) > FOLD_INPUTS):
+        job = _FoldedJob(function, list(columns), constants, threads, outputs)    # by name: no reordering first
+        names = list(function.name_out()) if outputs is None else list(outputs)
     else:
-        job = Job(fun, list(columns), constants, backend=backend, threads=threads, block=block)
-    out = {o: np.empty(n) for o in fun.name_out()}
+        key = (id(function), tuple(order), None if outputs is None else tuple(outputs))
+        hit = _REORDERED.get(key)
+        if hit is None or hit[0] is not function:
+            hit = _remember(_REORDERED, key, (function, reordered(function, order, outputs)))
+        job = Job(hit[1], list(columns), constants, backend=backend, threads=threads, block=block)
+        names = list(hit[1].name_out())
+    out = {o: np.empty(n) for o in names}
     for s in range(0, n, chunk):
         e = min(n, s + chunk)
         for o, v in job({k: c[s:e] for k, c in columns.items()}).items():

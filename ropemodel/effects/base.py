@@ -81,7 +81,14 @@ class Equation:
         """Every quantity the equation involves."""
         if self.call is not None:
             return [self.defines, *self.call[1]]
-        return [s.name() for s in ca.symvar(self.residual)] if self.residual is not None else [self.defines]
+        if self.residual is None:
+            return [self.defines]
+        r = self.residual
+        if r.is_scalar() and r.is_op(ca.OP_SUB) and r.dep(0).is_symbolic() and r.dep(1).is_symbolic():
+            # y - x, as a route's 10 000 segments define their coefficients: what symvar gives, without its cost
+            return list(dict.fromkeys((r.dep(0).name(), r.dep(1).name())))
+        # symvar's names, in its order, as one list of strings (a route's sums name 20 000 symbols)
+        return list(ca.Function("names", [], [r], {"allow_free": True}).get_free())
 
 
 class Symbols(dict):
@@ -166,8 +173,11 @@ class Submodel:
     def sibling(self, effect: str) -> Submodel:
         """The chosen variant of another ``effect`` of this model (built with the same options and effects),
         for what only it knows (e.g. the route's segments), found through the registry."""
-        spec = REGISTRY[self.model][effect]
-        return spec.variants[self.effects.get(effect, spec.default)](self.options, self.effects)
+        siblings = self.__dict__.setdefault("_siblings", {})    # built once: a route's knows 10 000 segments
+        if effect not in siblings:
+            spec = REGISTRY[self.model][effect]
+            siblings[effect] = spec.variants[self.effects.get(effect, spec.default)](self.options, self.effects)
+        return siblings[effect]
 
 
 @dataclass

@@ -15,8 +15,11 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import NamedTuple
+
+import casadi as ca
 
 from ropemodel.effects.base import Equation, Submodel, register
 from ropemodel.effects import domains as dom
@@ -128,6 +131,7 @@ def segment_lengths(values) -> list:
     return out
 
 
+@functools.lru_cache(maxsize=1 << 16)     # Quantity is frozen: a route of 10 000 segments declares them once
 def segment_quantities(i: int, has_mu: bool) -> tuple:
     """The parameters of segment ``i`` (1 = at the drive): ``L_i``, ``alpha_i``, ``mu_wi``."""
     return (
@@ -179,8 +183,9 @@ class SegmentedRoute(Submodel):
         L, alpha, mu = self.profile(v)
         x, G_m = v["x_m"], v["G_m"]
         src = "route of segments"
-        eqs = [Equation(f"mu_w{i}", v[f"mu_w{i}"] - v["mu_pl"], "mu_winding not given: mu_pl")
-               for i, has in enumerate(self.segments, start=1) if not has]
+        plain = [i for i, has in enumerate(self.segments, start=1) if not has]
+        residuals = ca.vertsplit(ca.vertcat(*[v[f"mu_w{i}"] for i in plain]) - v["mu_pl"]) if plain else []
+        eqs = [Equation(f"mu_w{i}", r, "mu_winding not given: mu_pl") for i, r in zip(plain, residuals)]
         if self.point_A:
             A, q = v["L_ul"], v["q_l"]
             eqs += [Equation("G_l1", v["G_l1"] - rt.rope_weight_between(q, L, alpha, A, v["L_u"]), f"eq. (3), {src}"),
