@@ -45,10 +45,22 @@ from ropemodel.dynamics import smooth_mode
 #: cvodes tolerances of the NLP's integration: relative, and absolute in the states' units (m, m/s, J)
 RTOL = 1e-10
 ATOL = 1e-11
+#: ``second_order_correction`` off: the Newton iteration of the forward-sensitivity system (the Jacobian IPOPT and
+#: the warm re-solves ask) solves with its block-diagonal part only, leaving out the second derivatives' product
+#: (CasADi's ``fwd_jtimes``, a forward derivative of the Jacobian-times-vector per direction and step).  The Newton
+#: iteration converges to the same corrector either way and cvodes' error test is the same, so only the work
+#: changes: measured on the shipped sizing scene (8 elements a span, four cases), one Jacobian of the dynamic NLP
+#: 0.49 -> 0.25 CPU-s, equal to 2e-8 in scaled units (the back-off is 1e-4)
 OPTS = {"reltol": RTOL, "abstol": ATOL, "max_num_steps": 100000, "show_eval_warnings": False,
-        "disable_internal_warnings": True}
+        "disable_internal_warnings": True, "second_order_correction": False}
 #: integrators at numbers kept per path (:meth:`Path._integrator`)
 KEPT = 16
+#: samplings at numbers kept per path (:meth:`Path.samples`): one sizing reads the same design through the same
+#: case on the same dense grid several times in a row — the screening of the cases left out at an optimum, the
+#: mesh control's every case there, the next problem's screening from it, the refinement's minima.  Measured on
+#: the shipped sizing scene: 264 samplings, 72 of them repeats (1.9 of 9.4 CPU-s).  One is kept: the repeats
+#: follow each other, and at 32 elements a span one sampling holds ~2 MB of states
+KEPT_SAMPLES = 1
 
 
 class Path:
@@ -61,22 +73,42 @@ class Path:
 
     def __init__(self, manoeuvre: Manoeuvre, scene, names):
         self.manoeuvre, self.names = manoeuvre, tuple(names)
-        self.sm = smooth_mode(scene, self.names)
-        outs = self.sm.out.name_out()
-        self.n_elements = self.sm.out.size1_out("T")
+        self.sm = smooth_mode(scene, self.names, whole=False)       # integrated phase by phase: the pieces
+        outs = self.sm.pieces[0].out.name_out()
+        self.n_elements = self.sm.pieces[0].out.size1_out("T")
         # an inextensible rope has no element and no take-up (its carriage does not move): no tension or take-up
         # check to make through a manoeuvre (the static stroke check, eq. (23), stays)
         self.checks = [c for c in declared(scene).CHECKS
                        if c.needs in outs and (c.needs not in ("T", "take_up") or self.n_elements)]
         self._dae = []
-        tau, pp, x = ca.SX.sym("tau"), ca.SX.sym("pp", len(self.names)), ca.SX.sym("x", self.sm.layout.nx)
-        ends = ca.SX.sym("ends", 2)
+        tau, x, ends = ca.SX.sym("tau"), ca.SX.sym("x", self.sm.layout.nx), ca.SX.sym("ends", 2)
+        self.moving, q, pp = self._moving()
         for piece in self.sm.pieces:
             h = ends[1] - ends[0]
             ode = h * piece.f(x, ends[0] + h * tau, pp)
-            self._dae.append({"x": x, "t": tau, "p": ca.vertcat(pp, ends), "ode": ode})
+            self._dae.append({"x": x, "t": tau, "p": ca.vertcat(q, ends), "ode": ode})
+        self._x0 = ca.Function("x0", [q], [self.sm.x0(pp)])
+        self._bounds = ca.Function("bounds", [q], list(self.sm.bounds(pp)))
         self._steps: dict = {}
         self._numeric: dict = {}
+        self._sampled: dict = {}
+
+    def _moving(self):
+        """(indices into ``names`` of the parameters the transient moves with, their symbols q, ``pp`` in terms of
+        q): those the right-hand sides, the start state or the phases' ends depend on.  Only q enters the
+        integrators, so a parameter only a check reads (the stroke, against the take-up) takes no direction of
+        their forward sensitivities: CasADi drops a direction whose seeds are structurally zero, and each one
+        integrates the state's sensitivities again (measured on the shipped sizing scene: three directions -> two,
+        one Jacobian of the dynamic NLP 0.32 -> 0.25 CPU-s on the same loaded machine)."""
+        pp, x, t = ca.SX.sym("pp", len(self.names)), ca.SX.sym("x", self.sm.layout.nx), ca.SX.sym("t")
+        exprs = [piece.f(x, t, pp) for piece in self.sm.pieces] + [self.sm.x0(pp), *self.sm.bounds(pp)]
+        depends = ca.which_depends(ca.vertcat(*exprs), pp, 1, False)
+        moving = [i for i, d in enumerate(depends) if d]
+        q = ca.SX.sym("q", len(moving))
+        full = ca.SX.zeros(len(self.names))        # the others: any value (nothing here depends on them)
+        for j, i in enumerate(moving):
+            full[i] = q[j]
+        return moving, q, full
 
     # ------------------------------------------------------------------ grids
     def phase_bounds(self, pp) -> np.ndarray:
@@ -103,10 +135,26 @@ class Path:
         sample; MX when ``pp`` is, numpy arrays for numbers.
 
         Each phase contributes its own τ = 0 (the state where the previous phase ended, with this
-        phase's drive acceleration) and τ = 1: both one-sided values at a step of acceleration."""
-        symbolic = isinstance(pp, ca.MX)
-        t0s, t1s = self.sm.bounds(pp)
-        x = self.sm.x0(pp)
+        phase's drive acceleration) and τ = 1: both one-sided values at a step of acceleration.  At numbers the
+        last :data:`KEPT_SAMPLES` results are kept (read-only arrays) and returned again for the same numbers
+        and grid."""
+        if isinstance(pp, ca.MX):
+            return self._samples(pp, grid, name, True)
+        key = (np.asarray(pp, float).tobytes(), tuple(np.asarray(g, float).tobytes() for g in grid))
+        if key not in self._sampled:
+            times, outputs, states = self._samples(pp, grid, name, False)
+            for a in (times, states, *outputs.values()):
+                a.flags.writeable = False
+            self._sampled[key] = (times, outputs, states)
+            while len(self._sampled) > KEPT_SAMPLES:
+                self._sampled.pop(next(iter(self._sampled)))
+        times, outputs, states = self._sampled[key]
+        return times, dict(outputs), states
+
+    def _samples(self, pp, grid, name: str, symbolic: bool):
+        q = pp[self.moving] if symbolic else np.asarray(pp, float).ravel()[self.moving]
+        t0s, t1s = self._bounds(q)
+        x = self._x0(q)
         times: list = []
         cols: dict[str, list] = {}
         states: list = []
@@ -114,7 +162,7 @@ class Path:
             tau = np.asarray(tau, float)
             t0, t1 = t0s[k], t1s[k]
             integ = self._integrator(k, tau, name, symbolic)
-            X = integ(x0=x, p=ca.vertcat(pp, t0, t1))["xf"]
+            X = integ(x0=x, p=ca.vertcat(q, t0, t1))["xf"]
             X = ca.horzcat(x, X)
             t = t0 + (t1 - t0) * ca.DM(tau).T
             out = piece.out.map(len(tau))(X, t, pp)

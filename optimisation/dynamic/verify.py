@@ -119,7 +119,8 @@ def integrated(problem, xs, dt: float) -> list[Verdict]:
     for i, (m, path) in enumerate(zip(problem.cases, problem.all_paths)):
         pp = problem.pp0(path, xs, p)
         t, o, _ = path.samples(pp, path.uniform_grid(pp, dt))
-        o = {k: np.min(np.atleast_2d(v), axis=0) for k, v in o.items()}    # a tension's least over the elements
+        # a tension's least over the elements (an inextensible rope has none: no tension to check through a manoeuvre)
+        o = {k: np.min(np.atleast_2d(v), axis=0) for k, v in o.items() if np.size(v)}
         v = Verdict(m.label, m.x_m, m.where, i in problem.selected, True)
         for c in path.checks:
             series = np.asarray(c.margin(o, a), float).ravel()

@@ -93,9 +93,10 @@ class TransientSystem:
             p.publish(v, mode[p.effect])
         return v
 
-    def assemble(self, phase, mode: Mode):
-        """(ẋ in layout order, switches, history columns) of ``mode`` in ``phase``, as SX in (x, t)."""
-        v = self.variables(phase, mode)
+    def assemble(self, phase, mode: Mode, v: Variables | None = None):
+        """(ẋ in layout order, switches, history columns) of ``mode`` in ``phase``, as SX in (x, t); ``v``: what
+        :meth:`variables` published for them, when the caller has it (and reads more of it afterwards)."""
+        v = self.variables(phase, mode) if v is None else v
         rhs = {}
         for p in self.parts:
             rhs.update(p.set_rhs(v, mode[p.effect]))
