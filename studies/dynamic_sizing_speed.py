@@ -24,8 +24,8 @@ rounds of that round's two contenders, measured back to back (the seconds shown:
 * **dynamic** — ``size_dynamic(scene)`` (``ropemodel size --dynamic``): static optimum, dynamic NLP on its refined
   grid and controlled mesh, catalogue design, that design simulated in every case (each manoeuvre at each place
   of the load: on the shipped scene 12 simulations, three peers' worth);
-* **no design** — the same on the 2 s ramp: the starts, the least violation, the scan of the design box, the
-  remedies;
+* **no design** — the same on the 2 s ramp: the scan of the design box (which finds no design, so the NLP is not
+  started), the least violation, the seven remedies;
 * **static** — ``optimisation.design.size(scene)`` (``ropemodel size``), for the ratio the issue asks too;
 * **IPOPT re-solves** — ``size_dynamic(scene)`` with every re-solve of the dynamic NLP by IPOPT (the Newton
   step on the previous optimum's active set, :mod:`optimisation.dynamic.warm`, switched off): the peer of the
@@ -163,18 +163,23 @@ def design_case(name: str, scene, rounds: int) -> dict:
             "goal": GOAL_DESIGN if design.feasible else GOAL_NO_DESIGN, "message": design.message.splitlines()[0]}
 
 
-def no_design_case(name: str, scene) -> dict:
-    """The "no design" answer of ``scene`` (with its scan and remedies) against the peer at its static optimum."""
+def no_design_case(name: str, scene, rounds: int = 1) -> dict:
+    """The "no design" answer of ``scene`` (with its scan and remedies) against the peer at its static optimum, in
+    ``rounds`` rounds (medians; each ratio that of its own round's two contenders)."""
     from optimisation.design import size
     from optimisation.dynamic import size_dynamic
 
-    design, t_dyn = cpu(lambda: size_dynamic(scene))
-    t_peer = peer(scene, static_optimum(scene), {})
-    t_static = cpu(lambda: size(scene, with_sensitivities=False))[1]
-    return {"case": name, "answer": "design" if design.feasible else "no design", "dynamic [CPU s]": t_dyn,
-            "peer [CPU s]": t_peer, "static [CPU s]": t_static, "ratio to peer": t_dyn / t_peer,
-            "ratio to static": t_dyn / t_static, "goal": GOAL_DESIGN if design.feasible else GOAL_NO_DESIGN,
-            "message": design.message.splitlines()[0]}
+    seen: dict = {}
+    for _ in range(rounds):
+        design, t_dyn = cpu(lambda: size_dynamic(scene))
+        t_peer = peer(scene, static_optimum(scene), {})
+        t_static = cpu(lambda: size(scene, with_sensitivities=False))[1]
+        for key, value in (("dynamic [CPU s]", t_dyn), ("peer [CPU s]", t_peer), ("static [CPU s]", t_static),
+                           ("ratio to peer", t_dyn / t_peer), ("ratio to static", t_dyn / t_static)):
+            seen.setdefault(key, []).append(value)
+    return {"case": name, "answer": "design" if design.feasible else "no design", "rounds": rounds,
+            **{key: float(np.median(values)) for key, values in seen.items()},
+            "goal": GOAL_DESIGN if design.feasible else GOAL_NO_DESIGN, "message": design.message}
 
 
 def main(out_dir=None, fast: bool = False, rounds: int = 3) -> pd.DataFrame:
@@ -182,7 +187,7 @@ def main(out_dir=None, fast: bool = False, rounds: int = 3) -> pd.DataFrame:
     rows = [design_case("shipped scene, 4 s ramp", shipped(4.0), rounds)]
     if not fast:
         rows.append(design_case("three-segment route, 4 s ramp", route3(), 1))
-        rows.append(no_design_case("shipped scene, 2 s ramp, 4 elements (no design)", short_ramp()))
+        rows.append(no_design_case("shipped scene, 2 s ramp, 4 elements (no design)", short_ramp(), rounds))
     df = pd.DataFrame(rows)
     df["meets goal"] = df["ratio to peer"] <= df["goal"]
     df.to_csv(out / f"{NAME}.csv", index=False)

@@ -6,7 +6,9 @@ Steps of :func:`size_dynamic`: the transient made from the scene
 (:func:`~optimisation.dynamic.transient.transient_scene`); the static optimum (:mod:`optimisation.design`);
 the static design with the dynamic factors its own transient shows
 (:func:`~optimisation.dynamic.start.factored_start`, the start); the cases that govern a check there
-(:mod:`optimisation.dynamic.screen`); the dynamic NLP on a refined time grid, with every case that comes
+(:mod:`optimisation.dynamic.screen`); the scan of the design box from the start outwards to its first design
+(:mod:`optimisation.dynamic.scan`; none: no design, :mod:`optimisation.dynamic.diagnose` says why and what would
+help); the dynamic NLP on a refined time grid, with every case that comes
 within the back-off at its optimum (:func:`~optimisation.dynamic.refine.solve_refined`); the rope's
 elements per span chosen from the force tolerance ``mesh_tol``, and the NLP solved again there with each
 check backed off by the Richardson estimate of its discretisation error
@@ -36,6 +38,7 @@ from optimisation.dynamic.manoeuvres import declared
 from optimisation.dynamic.mesh import converge, segments_of
 from optimisation.dynamic.problem import DynamicSizingProblem
 from optimisation.dynamic.refine import Refinement, solve_refined
+from optimisation.dynamic.scan import scan_box
 from optimisation.dynamic.start import DT_DENSE, factored_start, fallback_starts
 from optimisation.dynamic.transient import transient_effects_of
 from optimisation.dynamic.verify import by_manoeuvre, integrated, verify
@@ -130,33 +133,38 @@ def _static(scene):
 
 def continuous_optimum(problem, static_xs, record: Refinement | None = None, say=None):
     """The continuous dynamic optimum from the static optimum ``static_xs`` (scaled): (problem on its refined
-    grid, solution, None), or (problem, solution, the diagnosis) when no design exists.
+    grid, solution, None), or (problem, None, the diagnosis) when no design exists.
 
-    Starts: the static design with the factors its transient shows (:func:`factored_start`), then the
-    static design with the flat factor (:func:`fallback_starts`); when neither ends in a design, the
-    least-violation problem (:func:`diagnose_dynamic`) decides: no design, or a design IPOPT missed, from
-    which the NLP is solved again (measured: the 600 m route at 25 deg with a 3 s ramp, where both starts
-    ended infeasible and the least-violation problem found a design)."""
+    First the scan of the design box (:func:`~optimisation.dynamic.scan.scan_box`) from the start, the static
+    design with the factors its transient shows (:func:`factored_start`), outwards, to the first design it finds.
+    It finds one: IPOPT from the start, then from the scan's design and from the static design with the flat
+    factor (:func:`fallback_starts`).  It finds none: the least-violation problem and the remedies
+    (:func:`decided`), with no start of the NLP (measured on the test scene with a 2 s ramp: IPOPT from the two
+    starts to their iteration limit took 356 CPU-s, the scan 6; when the least violation finds a design the scan
+    missed between its points, the NLP is solved from there)."""
+    say = say or (lambda text: None)
     start = factored_start(problem, static_xs)
     problem = problem.screened(start)
-    problem, sol = solve_refined(problem, start, record=record, others=fallback_starts(problem, static_xs),
-                                 screen=False)
-    if sol.feasible:
-        return problem, sol, None
-    return decided(problem, sol, record, say)
+    scan = scan_box(problem, first=True, near=start)
+    if not scan.designs:
+        return decided(problem, start, record, say, scan)
+    problem, sol = solve_refined(problem, start, record=record, screen=False,
+                                 others=(scan.designs[0], *fallback_starts(problem, static_xs)))
+    return (problem, sol, None) if sol.feasible else decided(problem, sol.xs, record, say, scan)
 
 
-def decided(problem, sol, record: Refinement | None = None, say=None):
-    """The least-violation problem (:func:`diagnose_dynamic`) on ``problem`` whose NLP ended infeasible at
-    ``sol``: (problem, solution, the diagnosis) when no design exists, else the NLP solved again from the
-    design it found: (problem, solution, None)."""
-    diagnosis, x_least = diagnose_dynamic(problem, sol.xs, say)
+def decided(problem, x0, record: Refinement | None = None, say=None, scan=None):
+    """The least-violation problem (:func:`diagnose_dynamic`, after ``scan`` of the design box, or a scan of its
+    own) on ``problem`` from the scaled design ``x0``: (problem, None, the diagnosis) when no design exists, else the
+    NLP solved again from the design it found: (problem, solution, None)."""
+    diagnosis, x_least = diagnose_dynamic(problem, x0, say, scan)
     if not diagnosis.feasible:
-        return problem, sol, diagnosis
+        return problem, None, diagnosis
     problem, sol = solve_refined(problem, x_least, record=record)
     if not sol.feasible:
         raise SolveError("a design keeping every check through the manoeuvres exists (the least-violation problem "
-                         "found one), but the sizing NLP did not converge from it; report it")
+                         "or the scan of the design box found one), but the sizing NLP did not converge from it; "
+                         "report it")
     return problem, sol, None
 
 
@@ -236,7 +244,7 @@ def _size(scene: Scene, with_sensitivities: bool, say: Callable[[str], None]) ->
         problem, sol, found = converge(problem, sol, record, say)
         design.mesh = mesh_record(problem, found, n_scene, time.perf_counter() - t1)
         if not sol.feasible:        # none on the finer mesh with the back-offs, or one the NLP missed
-            problem, sol, diagnosis = decided(problem, sol, record, say)
+            problem, sol, diagnosis = decided(problem, sol.xs, record, say)
     design.refinement = record.to_dict()
     if diagnosis is not None:
         design.diagnosis = diagnosis

@@ -1,18 +1,20 @@
 """No design keeps every check through the manoeuvres: which checks conflict, and what would help.
 
 The same questions as :mod:`optimisation.infeasibility` asks of the static problem, on the dynamic NLP
-(with its Hessian of :attr:`~optimisation.dynamic.problem.DynamicSizingProblem.ipopt_options`):
+(with its Hessian of :attr:`~optimisation.dynamic.problem.DynamicSizingProblem.ipopt_options`), after a scan of the
+design box (:func:`~optimisation.dynamic.scan.scan_box`) that looks for a design at every catalogue diameter and a
+grid of pretensions, because both questions are local.  The scan finds one: it is returned as the design to solve
+again from (a design the local solvers missed).  It finds none: the verdict says how fine the scan was
+(``Diagnosis.backing``, ``Diagnosis.scan``), and
 
-1. the least maximum violation, min t s.t. g_i(x) + t ≥ 0: t* > 0 says no design exists; the checks
-   with a nonzero multiplier there conflict (named with their manoeuvre and instant);
+1. the least maximum violation, min t s.t. g_i(x) + t ≥ 0, from the least violated of the caller's design and the
+   scan's points that failed by least: t* > 0 says no design exists; the checks with a nonzero multiplier there
+   conflict (named with their manoeuvre and instant); t* = 0: a design between the scan's points;
 2. in the user's terms: each scene parameter that relaxes a conflicting check (:data:`REMEDIES`, the
    static ones and the ramp time, which lowers every dynamic force) is freed alone, d anywhere in the
-   catalogue's range, and the NLP finds the value at which a design just exists: "needs t_ramp >= 7.3 s".
-
-Both are local: before the verdict, a scan of the design box (:func:`~optimisation.dynamic.scan.scan_box`)
-looks for a design at every catalogue diameter and a grid of pretensions.  None found: the verdict says how fine
-the scan was (``Diagnosis.backing``, ``Diagnosis.scan``); one found: it is returned as the design to solve again
-from (a design the local solvers missed).
+   catalogue's range, and the value at which a design just exists is found: "needs t_ramp >= 7.3 s" — by Newton on
+   the least violation's active set (:mod:`optimisation.dynamic.remedy`), by IPOPT where that does not answer;
+   each value verified: every check of the NLP holds there.
 """
 
 from __future__ import annotations
@@ -22,14 +24,21 @@ import math
 import casadi as ca
 import numpy as np
 
+from optimisation.dynamic.remedy import active_of, holding, newton_remedy
 from optimisation.dynamic.scan import scan_box
 from optimisation.infeasibility import REMEDIES as STATIC_REMEDIES
 from optimisation.infeasibility import Diagnosis, remedy_text
+from ropemodel.errors import SolveError
 from ropemodel.papers import en12385 as ropes
+from ropemodel.units import factor
 
 OPTS = {"ipopt.tol": 1e-9, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False,
         "ipopt.sb": "yes", "ipopt.max_iter": 150}   # measured 22-105 iterations (see diagnose_dynamic)
 TOL = 1e-7
+#: the scan's points that failed by least tried as starts of the least-violation problem, besides the starts' end
+STARTS = 4
+#: the least-violation problem starts on the cases of the checks violated by at least this fraction of the worst
+NEAR_WORST = 0.5
 _RAMP = ("t_ramp", "min")
 #: check → the parameters that relax it, and which way ("min": the least value that lets a design exist)
 REMEDIES = {
@@ -62,49 +71,87 @@ def _solver(problem, name, x, g, f):
 
 
 def _catalogue_bounds(problem):
+    """The scaled bounds of the design: the catalogue's diameters, the box's held variables at their values (every
+    check gains from more of them: :data:`~ropemodel.machines.base.DesignBox`; a winch's stroke: the smooth mode
+    does not depend on it, so the least violation and the remedies are those of any stroke as long)."""
     lbx, ubx = problem.bounds((ropes.diameters()[0], ropes.diameters()[-1]))
+    for name, value in problem.machine.manoeuvres.BOX.held.items():
+        j = problem.variables.index(name)
+        lbx[j] = ubx[j] = value / problem.x_scale[j]
     return lbx, ubx
 
 
-def diagnose_dynamic(problem, x0, say=None) -> tuple[Diagnosis, np.ndarray]:
-    """Why ``problem`` (a :class:`~optimisation.dynamic.problem.DynamicSizingProblem`) has no design; and the
-    (scaled) design of least maximum violation (a design, when the diagnosis finds one feasible).
+def _least_start(problem, p, candidates, lbx, ubx) -> np.ndarray:
+    """Of the scaled designs ``candidates``, the one whose largest violation of the NLP's checks is least."""
+    gfun = problem.g_function
+    xs = [np.clip(np.asarray(x, float), lbx, np.where(np.isfinite(ubx), ubx, x)) for x in candidates]
+    return min(xs, key=lambda x: -float(np.asarray(gfun(x, p)).min()))
 
-    Each question is an NLP through the four manoeuvres (measured on the test scene with a 2 s ramp: the
-    least violation 33 iterations, 25 s; each parameter freed 22-105 iterations, 17-95 s): ``say`` is told
-    which one is being asked (the command line's status line)."""
+
+def diagnose_dynamic(problem, x0, say=None, scan=None) -> tuple[Diagnosis, np.ndarray]:
+    """Why ``problem`` (a :class:`~optimisation.dynamic.problem.DynamicSizingProblem`) has no design; and the
+    (scaled) design of least maximum violation (a design, when the scan or the least violation finds one).
+
+    First the scan of the design box (``scan``, when the caller has it: :func:`~optimisation.dynamic.scan.scan_box`);
+    none found, the least-violation problem from the least violated of ``x0`` and the scan's points that failed by
+    least (:data:`STARTS`), then each remedy (:func:`remedies`).  ``say`` is told which question is being asked
+    (the command line's status line).  Measured on the test scene with a 2 s ramp, before: the least violation
+    from where the starts ended 95 CPU-s, each remedy by IPOPT 83-498 CPU-s."""
     say = say or (lambda text: None)
-    say("no design from the starts: the least violation of the checks")
     p = problem.p0
     lbx, ubx = _catalogue_bounds(problem)
-    x0 = np.clip(np.asarray(x0, float), lbx, np.where(np.isfinite(ubx), ubx, x0))
-    gfun = problem.g_function
-    t = ca.MX.sym("t")
-    z = ca.vertcat(problem.xs, t)
-    g = gfun(problem.xs, problem.p)
-    s1 = _solver(problem, "minmax", z, g + t, t)
-    g0 = np.asarray(gfun(x0, p)).ravel()
-    r = s1(x0=np.concatenate([x0, [max(0.0, -g0.min())]]), p=p, lbx=np.concatenate([lbx, [0.0]]),
-           ubx=np.concatenate([ubx, [np.inf]]), lbg=0.0, ubg=np.inf)
-    zz = np.asarray(r["x"]).ravel()
+    if scan is None:
+        say("no design from the starts: a scan of the design box")
+        scan = scan_box(problem, p)
+    if scan.designs:
+        return Diagnosis(True, 0.0, backing=scan.text(), scan=scan.to_dict()), scan.designs[0]
+    say("no design in the scan: the least violation of the checks")
+    x0 = _least_start(problem, p, [x0, *scan.least_violated(STARTS)], lbx, ubx)
+    zz, r, sub = least_violation(problem, x0, lbx, ubx)
     t_star = float(zz[3])
     if t_star <= TOL:
-        return Diagnosis(True, t_star), zz[:3]
-    say("no design from the least violation: a scan of the design box")
-    scan = scan_box(problem, p)
-    if scan.designs:
-        return Diagnosis(True, t_star, backing=scan.text(), scan=scan.to_dict()), scan.designs[0]
-    lam = np.abs(np.asarray(r["lam_g"]).ravel())
-    conflicting = [c for c, value in zip(problem.constraints, lam) if value > 1e-6]
-    gz = np.asarray(gfun(zz[:3], p)).ravel()
+        return Diagnosis(True, t_star, backing=scan.text(), scan=scan.to_dict()), zz[:3]
+    lam_g, lam_x = (np.asarray(r[k]).ravel() for k in ("lam_g", "lam_x"))
+    conflicting, bounds = active_of(sub, lam_g, lam_x, zz[:3], lbx, ubx)
+    gz = np.asarray(problem.g_function(zz[:3], p)).ravel()
     margins = {c: float(v * s) for c, v, s in zip(problem.constraints, gz, problem.g_scale) if c in conflicting}
-    needs = remedies(problem, conflicting, lbx, ubx, zz[:3], say)
+    needs = remedies(problem, conflicting, lbx, ubx, zz[:3], say, bounds)
     return Diagnosis(False, t_star, conflicting, {}, {}, margins, " through the manoeuvres", needs, scan.text(),
                      scan.to_dict()), zz[:3]
 
 
-def remedies(problem, conflicting, lbx, ubx, x0, say=None) -> list[str]:
-    """"NAME >= value" for each parameter that relaxes a conflicting check, d anywhere in the catalogue."""
+def least_violation(problem, x0, lbx, ubx):
+    """min t s.t. g(x) + t ≥ 0 over every case ``problem`` integrates, from the scaled design ``x0``, by constraint
+    generation (exchange method, Blankenship & Falk 1976): on the cases of the checks violated within
+    :data:`NEAR_WORST` of the worst at ``x0``; at its optimum every case is evaluated and the cases of the checks
+    violated by more than t* are added, until none is.  Then t* and its point are those of every case: no check
+    is violated by more, and with fewer checks t* cannot be larger.  Returns (x and t, IPOPT's answer, the problem of
+    the cases it ended on: its multipliers are of that problem's checks)."""
+    p = problem.p0
+    g = np.asarray(problem.g_function(x0, p)).ravel()
+    names = [c for c, v in zip(problem.constraints, g) if v < NEAR_WORST * min(g.min(), 0.0)]
+    z = np.concatenate([x0, [max(0.0, -g.min())]])
+    for _ in range(len(problem.selected) + 1):
+        sub = holding(problem, names)
+        t = ca.MX.sym("t")
+        solver = _solver(sub, "minmax", ca.vertcat(sub.xs, t), sub.g_function(sub.xs, sub.p) + t, t)
+        r = solver(x0=z, p=p, lbx=np.concatenate([lbx, [0.0]]), ubx=np.concatenate([ubx, [np.inf]]), lbg=0.0,
+                   ubg=np.inf)
+        z = np.asarray(r["x"]).ravel()
+        g = np.asarray(problem.g_function(z[:3], p)).ravel()
+        worse = [c for c, v in zip(problem.constraints, g) if v + z[3] < -TOL and c not in sub.constraints]
+        if not worse:
+            return z, r, sub
+        names += worse
+        z[3] = max(z[3], -g.min())
+    raise SolveError("the least-violation problem did not settle on its cases; report it")
+
+
+def remedies(problem, conflicting, lbx, ubx, x0, say=None, bounds=None) -> list[str]:
+    """"NAME >= value" for each parameter that relaxes a conflicting check, d anywhere in the catalogue: by Newton
+    on the least-violation optimum's active set (``conflicting`` and ``bounds``, at ``x0``;
+    :func:`~optimisation.dynamic.remedy.newton_remedy`), by IPOPT (:func:`free_by_ipopt`) where that does not
+    give the answer."""
     q = problem.scene.built.quantities
     names: dict[str, str] = {}     # parameter → "min" or "max", the first check that names it decides
     for base in dict.fromkeys(_base(c) for c in conflicting):
@@ -116,14 +163,42 @@ def remedies(problem, conflicting, lbx, ubx, x0, say=None) -> list[str]:
         if say is not None:
             say(f"no design: the {'least' if sense == 'min' else 'largest'} {name} with a design "
                 f"({k + 1} of {len(names)})")
-        value = _free(problem, name, sense, q[name], lbx, ubx, x0)
+        lo, hi = _range(problem, name, q[name])
+        scale = abs(problem.p0[problem.params.index(name)]) or 1.0
+
+        def verified(value, x, name=name, sense=sense):
+            return _holds(problem, name, sense, value, x, q[name])
+
+        value = newton_remedy(problem, name, sense, x0, conflicting, bounds or {}, (lbx, ubx, lo / scale, hi / scale),
+                              verified)
+        if value is None:
+            value = free_by_ipopt(problem, name, sense, q[name], lbx, ubx, x0)
         if value is not None:
             out.append(remedy_text(name, sense, value, q[name]))
     return out
 
 
-def _free(problem, name, sense, quantity, lbx, ubx, x0):
-    """The least (``"min"``) or largest (``"max"``) value of parameter ``name`` with a design, or None."""
+def _range(problem, name, quantity) -> tuple[float, float]:
+    """The valid range [SI] of parameter ``name`` as a remedy (the ramp must end before the transient does)."""
+    lo = quantity.low if math.isfinite(quantity.low) else -np.inf
+    hi = quantity.high if math.isfinite(quantity.high) else np.inf
+    if name == "t_ramp":
+        hi = min(hi, 0.999 * problem.scene.parameters["t_end"])
+    return lo, hi
+
+
+def _holds(problem, name, sense, value, x, quantity) -> bool:
+    """Whether a design ``x`` (scaled) keeps every check of ``problem`` with parameter ``name`` at the value its
+    remedy's text shows for ``value`` [SI] (four digits, rounded away from the infeasible side; the scene's rules
+    applied), and that value is in the parameter's valid range."""
+    shown = float(remedy_text(name, sense, value, quantity).split()[2]) / factor(quantity.unit, quantity.display_unit)
+    gz = np.asarray(problem.g_function(x, problem.p_of({name: shown}))).ravel()
+    return bool(gz.min() >= -TOL and quantity.in_range(shown))
+
+
+def free_by_ipopt(problem, name, sense, quantity, lbx, ubx, x0):
+    """The least (``"min"``) or largest (``"max"``) value of parameter ``name`` with a design, by IPOPT from the
+    scaled design ``x0`` and the parameter's value, verified (:func:`_holds`), or None."""
     p = problem.p0
     i = problem.params.index(name)
     scale = abs(p[i]) or 1.0
@@ -131,16 +206,9 @@ def _free(problem, name, sense, quantity, lbx, ubx, x0):
     pv = ca.vertcat(*[t * scale if j == i else problem.p[j] for j in range(len(p))])
     g = problem.g_function(problem.xs, pv)
     solver = _solver(problem, f"free_{name}", ca.vertcat(problem.xs, t), g, t if sense == "min" else -t)
-    lo = quantity.low / scale if math.isfinite(quantity.low) else -np.inf
-    hi = quantity.high / scale if math.isfinite(quantity.high) else np.inf
-    if name == "t_ramp":            # the ramp must end before the transient does
-        hi = min(hi, 0.999 * problem.scene.parameters["t_end"] / scale)
-    r = solver(x0=np.concatenate([x0, [1.0]]), p=p, lbx=np.concatenate([lbx, [lo]]), ubx=np.concatenate([ubx, [hi]]),
-               lbg=0.0, ubg=np.inf)
+    lo, hi = _range(problem, name, quantity)
+    r = solver(x0=np.concatenate([x0, [p[i] / scale]]), p=p, lbx=np.concatenate([lbx, [lo / scale]]),
+               ubx=np.concatenate([ubx, [hi / scale]]), lbg=0.0, ubg=np.inf)
     zz = np.asarray(r["x"]).ravel()
     value = float(zz[3] * scale)
-    gz = np.asarray(problem.g_function(zz[:3], problem.p_of({name: value}))).ravel()
-    if not solver.stats()["success"] or gz.min() < -1e-7 or not quantity.in_range(value):
-        return None
-    return value
-
+    return value if solver.stats()["success"] and _holds(problem, name, sense, value, zz[:3], quantity) else None

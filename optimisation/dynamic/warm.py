@@ -189,3 +189,8 @@ def _kkt(jac, new, x0, p, rows, fixed, lbx, ubx, start=None):
     lam_x = np.zeros(len(x))
     lam_x[fixed] = -bounds
     return x, g, lam_g, lam_x, float(np.asarray(f).ravel()[0])
+
+
+#: public for the remedies of a "no design" (:mod:`optimisation.dynamic.remedy`: Newton on the least violation's
+#: active set, each check's peak followed by the instant in its constraint's name)
+newton, instant = _newton, _instant
