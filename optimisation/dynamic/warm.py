@@ -52,7 +52,7 @@ def _jacobian(problem):
     return jac
 
 
-def _instant(name: str) -> tuple[str, float | None]:
+def instant(name: str) -> tuple[str, float | None]:
     """(``check[e] @ manoeuvre, place``, t [s]) of a dynamic constraint's name; (name, None) of a static one."""
     head, sep, tail = name.rpartition(", t = ")
     return (head, float(tail.removesuffix(" s"))) if sep else (name, None)
@@ -63,14 +63,14 @@ def _candidates(old_active: list[str], new, g0: np.ndarray) -> list[int]:
     where: dict[str, list[tuple[float, int]]] = {}
     index: dict[str, int] = {}
     for k, name in enumerate(new.constraints):
-        head, t = _instant(name)
+        head, t = instant(name)
         if t is None:
             index.setdefault(name, k)
         else:
             where.setdefault(head, []).append((t, k))
     out: list[int] = []
     for name in old_active:
-        head, t = _instant(name)
+        head, t = instant(name)
         i: int | None
         if t is None:
             i = index.get(name)
@@ -91,7 +91,7 @@ def _residual(problem) -> ca.Function:
     return problem.__dict__["_warm_g"]
 
 
-def _newton(jac, residual, x, p, rows, fixed, lbx, start=None):
+def newton(jac, residual, x, p, rows, fixed, lbx, start=None):
     """Newton on g[rows] = 0 with x[fixed] = lbx[fixed]: the point, or None (singular, not converging).
 
     Chord steps: the Jacobian of the first point is kept while each step at least halves the last, and taken
@@ -152,7 +152,7 @@ def on_active_set(old, sol, new, p=None, fix_d: float | None = None) -> Solution
 
 
 def _carried(old, sol, new, p, candidates: list[int], g0: np.ndarray):
-    """(g0, J) for :func:`_newton`'s first chord on ``new``: J the previous problem's Jacobian at its optimum
+    """(g0, J) for :func:`newton`'s first chord on ``new``: J the previous problem's Jacobian at its optimum
     ``sol`` (kept from its own KKT test, :func:`~optimisation.ipopt.jacobian_at`), each candidate row the row of
     the previous active check it stands for (:func:`_candidates`: the same check, its instant moved within
     :data:`NEAR`) — rather than a Jacobian of ``new`` at a point that is not yet its solution: a Jacobian costs
@@ -170,7 +170,7 @@ def _carried(old, sol, new, p, candidates: list[int], g0: np.ndarray):
 
 def _kkt(jac, new, x0, p, rows, fixed, lbx, ubx, start=None):
     """(x, g, lam_g, lam_x, f) when Newton on ``rows`` and ``fixed`` ends at a KKT point of ``new``, else None."""
-    x = _newton(jac, _residual(new), x0.copy(), p, rows, fixed, lbx, start)
+    x = newton(jac, _residual(new), x0.copy(), p, rows, fixed, lbx, start)
     if x is None or np.any(x < lbx - 1e-12) or np.any(x > ubx + 1e-12):
         return None
     g, J, grad, f = (np.asarray(a) for a in jac(x, p))
@@ -190,7 +190,3 @@ def _kkt(jac, new, x0, p, rows, fixed, lbx, ubx, start=None):
     lam_x[fixed] = -bounds
     return x, g, lam_g, lam_x, float(np.asarray(f).ravel()[0])
 
-
-#: public for the remedies of a "no design" (:mod:`optimisation.dynamic.remedy`: Newton on the least violation's
-#: active set, each check's peak followed by the instant in its constraint's name)
-newton, instant = _newton, _instant
