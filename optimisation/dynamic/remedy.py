@@ -30,6 +30,7 @@ import casadi as ca
 import numpy as np
 
 from optimisation.dynamic.refine import MAX_ROUNDS, add_points, shortfalls
+from optimisation.dynamic.screen import uncovered
 from optimisation.dynamic.warm import LAM_TOL, instant, newton
 
 #: a multiplier of the least-violation problem above this marks an active check or bound
@@ -48,8 +49,9 @@ def between_points(problem, solve, at):
     As the sizing's refinement (:func:`~optimisation.dynamic.refine.shortfalls`): each check's exact local minima
     at the remedy's design and shown value, the ones short of their back-off less half the integration's added to
     the grid, and the remedy solved again on that grid — Newton's active checks move onto the added points where
-    they are lower (the peaks between points) — until every minimum keeps that margin
-    (:data:`~optimisation.dynamic.refine.MAX_ROUNDS` rounds at most)."""
+    they are lower (the peaks between points) — until every minimum keeps that margin; then the cases the NLP
+    leaves out are screened there (:func:`~optimisation.dynamic.screen.uncovered`), one where a check comes within
+    the back-off joins the problem, solved again (:data:`~optimisation.dynamic.refine.MAX_ROUNDS` rounds in all)."""
     for _ in range(MAX_ROUNDS):
         found = solve(problem)
         if found is None:
@@ -57,9 +59,11 @@ def between_points(problem, solve, at):
         value, xs = found
         p = at(problem, value)
         low = shortfalls(problem, xs, p)[1]
-        if not low:
+        more = [] if low else uncovered(problem, xs, p, problem.largest_backoff())
+        if not low and not more:
             return found
-        problem = problem.refined(add_points(problem, problem.grids, low, p))
+        problem = problem.refined(add_points(problem, problem.grids, low, p)) if low else \
+            problem.with_cases([*problem.selected, *more])
     return None
 
 
