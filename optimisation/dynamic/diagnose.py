@@ -14,7 +14,8 @@ again from (a design the local solvers missed).  It finds none: the verdict says
    static ones and the ramp time, which lowers every dynamic force) is freed alone, d anywhere in the
    catalogue's range, and the value at which a design just exists is found: "needs t_ramp >= 7.3 s" — by Newton on
    the least violation's active set (:mod:`optimisation.dynamic.remedy`), by IPOPT where that does not answer;
-   each value verified: every check of the NLP holds there.
+   each value verified: every check of the NLP holds there, between its grid points too
+   (:func:`~optimisation.dynamic.remedy.between_points`).
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ import math
 import casadi as ca
 import numpy as np
 
-from optimisation.dynamic.remedy import active_of, holding, newton_remedy
+from optimisation.dynamic.remedy import active_of, between_points, holding, newton_remedy
 from optimisation.dynamic.scan import scan_box
 from optimisation.infeasibility import REMEDIES as STATIC_REMEDIES
 from optimisation.infeasibility import Diagnosis, remedy_text
@@ -163,19 +164,35 @@ def remedies(problem, conflicting, lbx, ubx, x0, say=None, bounds=None) -> list[
         if say is not None:
             say(f"no design: the {'least' if sense == 'min' else 'largest'} {name} with a design "
                 f"({k + 1} of {len(names)})")
-        lo, hi = _range(problem, name, q[name])
-        scale = abs(problem.p0[problem.params.index(name)]) or 1.0
-
-        def verified(value, x, name=name, sense=sense):
-            return _holds(problem, name, sense, value, x, q[name])
-
-        value = newton_remedy(problem, name, sense, x0, conflicting, bounds or {}, (lbx, ubx, lo / scale, hi / scale),
-                              verified)
-        if value is None:
-            value = free_by_ipopt(problem, name, sense, q[name], lbx, ubx, x0)
-        if value is not None:
-            out.append(remedy_text(name, sense, value, q[name]))
+        found = remedy(problem, name, sense, q[name], (conflicting, bounds or {}, x0), (lbx, ubx))
+        if found is not None:
+            out.append(remedy_text(name, sense, found[0], q[name]))
     return out
+
+
+def remedy(problem, name, sense, quantity, least, box):
+    """(the least (``sense`` "min") or largest ("max") value [SI] of parameter ``name`` with a design, the scaled
+    design there) or None: by Newton on the least-violation optimum's active set (``least``: its active checks,
+    active bounds and design; :func:`~optimisation.dynamic.remedy.newton_remedy`), by IPOPT
+    (:func:`free_by_ipopt`) where that does not give the answer; every check holding between the grid points too
+    at the value the answer shows (:func:`~optimisation.dynamic.remedy.between_points`).  ``box``: (lbx, ubx), the
+    design's scaled bounds."""
+    conflicting, bounds, x0 = least
+    lbx, ubx = box
+    lo, hi = _range(problem, name, quantity)
+    scale = abs(problem.p0[problem.params.index(name)]) or 1.0
+
+    def solve(grid):
+        seen = {}
+
+        def verified(value, x):
+            seen["x"] = x
+            return _holds(grid, name, sense, value, x, quantity)
+
+        value = newton_remedy(grid, name, sense, x0, conflicting, bounds, (lbx, ubx, lo / scale, hi / scale), verified)
+        return (value, seen["x"]) if value is not None else free_by_ipopt(grid, name, sense, quantity, lbx, ubx, x0)
+
+    return between_points(problem, solve, lambda grid, value: grid.p_of({name: _shown(name, sense, value, quantity)}))
 
 
 def _range(problem, name, quantity) -> tuple[float, float]:
@@ -187,18 +204,24 @@ def _range(problem, name, quantity) -> tuple[float, float]:
     return lo, hi
 
 
+def _shown(name, sense, value, quantity) -> float:
+    """The value [SI] the remedy's text shows for ``value`` [SI] (four digits, rounded away from the infeasible
+    side)."""
+    return float(remedy_text(name, sense, value, quantity).split()[2]) / factor(quantity.unit, quantity.display_unit)
+
+
 def _holds(problem, name, sense, value, x, quantity) -> bool:
     """Whether a design ``x`` (scaled) keeps every check of ``problem`` with parameter ``name`` at the value its
     remedy's text shows for ``value`` [SI] (four digits, rounded away from the infeasible side; the scene's rules
     applied), and that value is in the parameter's valid range."""
-    shown = float(remedy_text(name, sense, value, quantity).split()[2]) / factor(quantity.unit, quantity.display_unit)
+    shown = _shown(name, sense, value, quantity)
     gz = np.asarray(problem.g_function(x, problem.p_of({name: shown}))).ravel()
     return bool(gz.min() >= -TOL and quantity.in_range(shown))
 
 
 def free_by_ipopt(problem, name, sense, quantity, lbx, ubx, x0):
-    """The least (``"min"``) or largest (``"max"``) value of parameter ``name`` with a design, by IPOPT from the
-    scaled design ``x0`` and the parameter's value, verified (:func:`_holds`), or None."""
+    """(the least (``"min"``) or largest (``"max"``) value [SI] of parameter ``name`` with a design, the scaled design
+    there) by IPOPT from the scaled design ``x0`` and the parameter's value, verified (:func:`_holds`), or None."""
     p = problem.p0
     i = problem.params.index(name)
     scale = abs(p[i]) or 1.0
@@ -211,4 +234,5 @@ def free_by_ipopt(problem, name, sense, quantity, lbx, ubx, x0):
                ubx=np.concatenate([ubx, [hi / scale]]), lbg=0.0, ubg=np.inf)
     zz = np.asarray(r["x"]).ravel()
     value = float(zz[3] * scale)
-    return value if solver.stats()["success"] and _holds(problem, name, sense, value, zz[:3], quantity) else None
+    return (value, zz[:3]) if solver.stats()["success"] and _holds(problem, name, sense, value, zz[:3], quantity) \
+        else None

@@ -113,6 +113,14 @@ def _value_at(path, k, x_a, t_a, t, pp, value) -> float:
     return float(value(path.sm.pieces[k].out.call({"x": x, "t": t, "p": pp})))
 
 
+def shortfalls(problem, xs, p=None) -> tuple[list[Minimum], list[Minimum]]:
+    """(every exact local minimum of every check within :data:`ADD_TOL` of the largest back-off at scaled design
+    ``xs`` and parameters ``p``, those of them that do not keep their check's back-off less half the
+    integration's): the points the refinement adds to the grid."""
+    found = minima(problem, xs, p, ADD_TOL + problem.largest_backoff(0.0))
+    return found, [m for m in found if m.value < problem.backoff(m.check, problem.selected[m.path]) - 0.5 * BACKOFF]
+
+
 def add_points(problem, grids, points: list[Minimum], p=None):
     """``grids`` with the times of ``points`` added (as each phase's τ at the parameters ``p``)."""
     grids = [list(map(np.asarray, g)) for g in grids]
@@ -176,8 +184,7 @@ def _refined(problem, x0, p, fix_d, record, others, warm=None):
     for _ in range(MAX_ROUNDS):
         if not sol.feasible:
             return problem, sol
-        found = minima(problem, sol.xs, p, ADD_TOL + problem.largest_backoff(0.0))
-        low = [m for m in found if m.value < problem.backoff(m.check, problem.selected[m.path]) - 0.5 * BACKOFF]
+        found, low = shortfalls(problem, sol.xs, p)
         more = [] if low else uncovered(problem, sol.xs, p, problem.largest_backoff())
         if record is not None:
             record.rounds.append((float(min((m.value for m in found), default=np.inf)), len(low),
