@@ -184,6 +184,13 @@ def remedy_text(name: str, sense: str, value: float, quantity) -> str:
     return f"{name} {'>=' if sense == 'min' else '<='} {shown:.4g}{quantity.unit_text}"
 
 
+def shown_value(sense: str, value: float, quantity) -> float:
+    """The SI value :func:`remedy_text` shows for the SI ``value`` (four significant digits in the display unit,
+    rounded away from the infeasible side)."""
+    shown = float(f"{_safe_round(quantity.to_display(value), up=sense == 'min'):.4g}")
+    return shown / quantity.to_display(1.0)
+
+
 def _diameters(lbx, ubx, problem) -> list[float]:
     """The catalogue diameters [m] within the bounds of d (one fixed diameter if d is fixed)."""
     lo, hi = lbx[0] * problem.x_scale[0], ubx[0] * problem.x_scale[0]

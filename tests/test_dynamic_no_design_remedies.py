@@ -47,15 +47,11 @@ def _newton(least, name, sense):
     quantity = problem.scene.built.quantities[name]
     lo, hi = diagnose._range(problem, name, quantity)
     scale = abs(problem.p0[problem.params.index(name)])
-    found = {}
-
-    def kept(value, xs):
-        found["x"] = xs
-        return diagnose._holds(problem, name, sense, value, xs, quantity)
-
-    value = newton_remedy(problem, name, sense, x, checks, bounds, (lbx, ubx, lo / scale, hi / scale), kept)
-    assert value is not None
-    return _relaxes(problem, name, sense, value), problem.to_si(found["x"]), quantity
+    found = newton_remedy(problem, name, sense, x, checks, bounds, (lbx, ubx, lo / scale, hi / scale),
+                          lambda value, xs: diagnose._holds(problem, name, sense, value, xs, quantity))
+    assert found is not None
+    value, xs = found
+    return _relaxes(problem, name, sense, value), problem.to_si(xs), quantity
 
 
 def _relaxes(problem, name, sense, value):

@@ -28,10 +28,9 @@ import numpy as np
 from optimisation.dynamic.remedy import active_of, between_points, holding, newton_remedy
 from optimisation.dynamic.scan import scan_box
 from optimisation.infeasibility import REMEDIES as STATIC_REMEDIES
-from optimisation.infeasibility import Diagnosis, remedy_text
+from optimisation.infeasibility import Diagnosis, remedy_text, shown_value
 from ropemodel.errors import SolveError
 from ropemodel.papers import en12385 as ropes
-from ropemodel.units import factor
 
 OPTS = {"ipopt.tol": 1e-9, "ipopt.print_level": 0, "print_time": False, "show_eval_warnings": False,
         "ipopt.sb": "yes", "ipopt.max_iter": 150}   # measured 22-105 iterations (see diagnose_dynamic)
@@ -109,16 +108,17 @@ def diagnose_dynamic(problem, x0, say=None, scan=None) -> tuple[Diagnosis, np.nd
     say("no design in the scan: the least violation of the checks")
     x0 = _least_start(problem, p, [x0, *scan.least_violated(STARTS)], lbx, ubx)
     zz, r, sub = least_violation(problem, x0, lbx, ubx)
-    t_star = float(zz[3])
+    n = len(problem.variables)
+    t_star = float(zz[n])
     if t_star <= TOL:
-        return Diagnosis(True, t_star, backing=scan.text(), scan=scan.to_dict()), zz[:3]
+        return Diagnosis(True, t_star, backing=scan.text(), scan=scan.to_dict()), zz[:n]
     lam_g, lam_x = (np.asarray(r[k]).ravel() for k in ("lam_g", "lam_x"))
-    conflicting, bounds = active_of(sub, lam_g, lam_x, zz[:3], lbx, ubx)
-    gz = np.asarray(problem.g_function(zz[:3], p)).ravel()
+    conflicting, bounds = active_of(sub, lam_g, lam_x, zz[:n], lbx, ubx)
+    gz = np.asarray(problem.g_function(zz[:n], p)).ravel()
     margins = {c: float(v * s) for c, v, s in zip(problem.constraints, gz, problem.g_scale) if c in conflicting}
-    needs = remedies(problem, conflicting, lbx, ubx, zz[:3], say, bounds)
+    needs = remedies(problem, conflicting, lbx, ubx, zz[:n], say, bounds)
     return Diagnosis(False, t_star, conflicting, {}, {}, margins, " through the manoeuvres", needs, scan.text(),
-                     scan.to_dict()), zz[:3]
+                     scan.to_dict()), zz[:n]
 
 
 def least_violation(problem, x0, lbx, ubx):
@@ -128,7 +128,7 @@ def least_violation(problem, x0, lbx, ubx):
     violated by more than t* are added, until none is.  Then t* and its point are those of every case: no check
     is violated by more, and with fewer checks t* cannot be larger.  Returns (x and t, IPOPT's answer, the problem of
     the cases it ended on: its multipliers are of that problem's checks)."""
-    p = problem.p0
+    p, n = problem.p0, len(problem.variables)
     g = np.asarray(problem.g_function(x0, p)).ravel()
     names = [c for c, v in zip(problem.constraints, g) if v < NEAR_WORST * min(g.min(), 0.0)]
     z = np.concatenate([x0, [max(0.0, -g.min())]])
@@ -139,12 +139,12 @@ def least_violation(problem, x0, lbx, ubx):
         r = solver(x0=z, p=p, lbx=np.concatenate([lbx, [0.0]]), ubx=np.concatenate([ubx, [np.inf]]), lbg=0.0,
                    ubg=np.inf)
         z = np.asarray(r["x"]).ravel()
-        g = np.asarray(problem.g_function(z[:3], p)).ravel()
-        worse = [c for c, v in zip(problem.constraints, g) if v + z[3] < -TOL and c not in sub.constraints]
+        g = np.asarray(problem.g_function(z[:n], p)).ravel()
+        worse = [c for c, v in zip(problem.constraints, g) if v + z[n] < -TOL and c not in sub.constraints]
         if not worse:
             return z, r, sub
         names += worse
-        z[3] = max(z[3], -g.min())
+        z[n] = max(z[n], -g.min())
     raise SolveError("the least-violation problem did not settle on its cases; report it")
 
 
@@ -183,16 +183,11 @@ def remedy(problem, name, sense, quantity, least, box):
     scale = abs(problem.p0[problem.params.index(name)]) or 1.0
 
     def solve(grid):
-        seen = {}
+        found = newton_remedy(grid, name, sense, x0, conflicting, bounds, (lbx, ubx, lo / scale, hi / scale),
+                              lambda value, x: _holds(grid, name, sense, value, x, quantity))
+        return found if found is not None else free_by_ipopt(grid, name, sense, quantity, lbx, ubx, x0)
 
-        def verified(value, x):
-            seen["x"] = x
-            return _holds(grid, name, sense, value, x, quantity)
-
-        value = newton_remedy(grid, name, sense, x0, conflicting, bounds, (lbx, ubx, lo / scale, hi / scale), verified)
-        return (value, seen["x"]) if value is not None else free_by_ipopt(grid, name, sense, quantity, lbx, ubx, x0)
-
-    return between_points(problem, solve, lambda grid, value: grid.p_of({name: _shown(name, sense, value, quantity)}))
+    return between_points(problem, solve, lambda grid, value: grid.p_of({name: shown_value(sense, value, quantity)}))
 
 
 def _range(problem, name, quantity) -> tuple[float, float]:
@@ -204,17 +199,11 @@ def _range(problem, name, quantity) -> tuple[float, float]:
     return lo, hi
 
 
-def _shown(name, sense, value, quantity) -> float:
-    """The value [SI] the remedy's text shows for ``value`` [SI] (four digits, rounded away from the infeasible
-    side)."""
-    return float(remedy_text(name, sense, value, quantity).split()[2]) / factor(quantity.unit, quantity.display_unit)
-
-
 def _holds(problem, name, sense, value, x, quantity) -> bool:
     """Whether a design ``x`` (scaled) keeps every check of ``problem`` with parameter ``name`` at the value its
     remedy's text shows for ``value`` [SI] (four digits, rounded away from the infeasible side; the scene's rules
     applied), and that value is in the parameter's valid range."""
-    shown = _shown(name, sense, value, quantity)
+    shown = shown_value(sense, value, quantity)
     gz = np.asarray(problem.g_function(x, problem.p_of({name: shown}))).ravel()
     return bool(gz.min() >= -TOL and quantity.in_range(shown))
 
@@ -233,6 +222,5 @@ def free_by_ipopt(problem, name, sense, quantity, lbx, ubx, x0):
     r = solver(x0=np.concatenate([x0, [p[i] / scale]]), p=p, lbx=np.concatenate([lbx, [lo / scale]]),
                ubx=np.concatenate([ubx, [hi / scale]]), lbg=0.0, ubg=np.inf)
     zz = np.asarray(r["x"]).ravel()
-    value = float(zz[3] * scale)
-    return (value, zz[:3]) if solver.stats()["success"] and _holds(problem, name, sense, value, zz[:3], quantity) \
-        else None
+    x, value = zz[:-1], float(zz[-1] * scale)
+    return (value, x) if solver.stats()["success"] and _holds(problem, name, sense, value, x, quantity) else None

@@ -98,7 +98,8 @@ def newton_remedy(problem, name: str, sense: str, least, checks, bounds, box, ve
     """The least (``sense`` "min") or largest ("max") value [SI] of parameter ``name`` with a design, by Newton on
     the least-violation optimum's active set (``least``: its design, scaled; ``checks``, ``bounds``:
     :func:`active_of`; ``box``: (lbx, ubx, lo, hi), the design's and τ's bounds); ``verified``: value, x → whether
-    every check of ``problem`` holds there (the caller's verification); None when it does not give the answer."""
+    every check of ``problem`` holds there (the caller's verification).  Returns (the value [SI], the scaled design
+    there), or None when it does not give the answer."""
     i = problem.params.index(name)
     scale = abs(problem.p0[i]) or 1.0
     sub = holding(problem, checks)
@@ -126,7 +127,7 @@ def newton_remedy(problem, name: str, sense: str, least, checks, bounds, box, ve
         if z is None or np.any(z[:-1] < lbx - 1e-12) or np.any(z[:-1] > ubx + 1e-12) or not lo <= z[-1] <= hi:
             continue
         if _kkt(jac(z, None)[1], list(rows), fixed, bounds, lbx, ubx, sense) and verified(z[-1] * scale, z[:-1]):
-            return float(z[-1] * scale)
+            return float(z[-1] * scale), z[:-1]
     return None
 
 
