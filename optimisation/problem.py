@@ -30,7 +30,7 @@ from functools import cached_property
 import casadi as ca
 import numpy as np
 
-from optimisation.nlp_parts import Ends, depends, nlp_outputs, restricted, vector_model
+from optimisation.nlp_parts import Ends, depends, nlp_outputs, partly_folded, restricted, vector_model
 from ropemodel.envelope import Envelope, LoadCase, envelope, free, load_cases
 from ropemodel.envelope.cases import distinct, joint_ends
 from ropemodel.envelope.prune import prune
@@ -277,16 +277,32 @@ class SizingProblem:
         first = at[min(at)] if at else at_case(0)     # the objective: the same in every case
         return labels, g, exprs, first, made
 
-    def nlp_of(self, taken) -> tuple:
+    def nlp_of(self, taken, kept=None) -> tuple:
         """(f, g_S) of the NLP (parametric) with the constraints S = ``taken`` (indices into :attr:`constraints`)
         alone, from a model of their checks alone: a route's least tensions, which the other checks need, are
-        then left out of the derivatives in the parameters (:mod:`optimisation.sensitivity`)."""
+        then left out of the derivatives in the parameters (:mod:`optimisation.sensitivity`).  ``kept``
+        (indices into :attr:`params`): only those parameters stay parameters, the NLP's ``p`` then being
+        :meth:`kept_p` of them; the others are folded in at ``p0`` (a long route's own values, which the design
+        does not vary: its sums become numbers and the derivatives do not carry them)."""
         made = [self._made[i] for i in taken]
         checks = list(dict.fromkeys(c for c, _ in made))
         model = restricted(self._nlp_model, nlp_outputs(self._nlp_model.name_out(), checks, self.sizing, self._args))
-        _, g, _, out, _ = self._constraints(model, self._args, self.p, only=made)
+        p, args = self.p, self._args
+        if kept is not None:
+            model, p = partly_folded(model, self.p0, kept), self.kept_p(kept)
+            args = self._knowns(ca.DM(self.p0), self.xs * ca.DM(self.x_scale))
+            args = {k: float(v) if isinstance(v, ca.DM) else v for k, v in args.items()}
+            args.update({self.params[i]: p[j] for j, i in enumerate(kept)})
+        _, g, _, out, _ = self._constraints(model, args, p, only=made)
         g_s = ca.vertcat(*g) / ca.DM(self.g_scale[list(taken)]) if taken else ca.MX(0, 1)
         return self._objective(out[self.sizing.PRIMARY] / self.m_ref), g_s
+
+    def kept_p(self, kept) -> ca.MX:
+        """The NLP's parameters ``kept`` (indices into :attr:`params`) as one symbol (:meth:`nlp_of`)."""
+        symbols = self.__dict__.setdefault("_kept_p", {})
+        if tuple(kept) not in symbols:
+            symbols[tuple(kept)] = ca.MX.sym("p", len(kept))
+        return symbols[tuple(kept)]
 
     def _ends(self, values, p):
         """The places' x_m (:func:`ropemodel.envelope.cases.joint_ends`): numbers where ``values`` are, else each

@@ -194,13 +194,16 @@ class SegmentedRoute(Submodel):
                              f"eq. (8), {src}"),
                     Equation("T_l2", v["T_l2"] - rt.rope_resistance_between(q, L, alpha, mu, 0.0, A),
                              f"eq. (9), {src}")]
+        # the load's segment's inclination α_j, looked up once for eq. (1), (5), (7) (each lookup passes every
+        # segment: on a long route, three would triple the work at each place of the load)
+        a_j = rt.at_position(x, L, alpha)
         return eqs + [
             Equation("L_u", v["L_u"] - rt.route_length(L), src),
-            Equation("G_ml", v["G_ml"] - rt.load_weight_along_route(G_m, x, L, alpha), f"eq. (1), {src}"),
+            Equation("G_ml", v["G_ml"] - kr.load_weight_along_incline(G_m, a_j), f"eq. (1), {src}"),
             Equation("G_l", v["G_l"] - rt.rope_weight_along_route(v["q_l"], L, alpha), f"eq. (2), {src}"),
-            Equation("G_mo", v["G_mo"] - rt.load_weight_normal_route(G_m, x, L, alpha), f"eq. (5), {src}"),
+            Equation("G_mo", v["G_mo"] - kr.load_weight_normal(G_m, a_j), f"eq. (5), {src}"),
             Equation("G_ls", v["G_ls"] - rt.rope_weight_along_route(v["q_l"], L, alpha), f"eq. (6), {src}"),
-            Equation("T_m", v["T_m"] - rt.load_resistance_route(v["mu_pm"], G_m, x, L, alpha), f"eq. (7), {src}"),
+            Equation("T_m", v["T_m"] - kr.load_resistance(v["mu_pm"], G_m, a_j), f"eq. (7), {src}"),
             Equation("T_l", v["T_l"] - rt.rope_resistance_along_route(v["q_l"], L, alpha, mu), f"eq. (10), {src}"),
             Equation("T_ls", v["T_ls"] - rt.rope_resistance_along_route(v["q_l"], L, alpha, [v["mu_pl"]] * n),
                      f"eq. (11), {src}"),
