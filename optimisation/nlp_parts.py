@@ -88,3 +88,17 @@ def depends(model: ca.Function, checks, free) -> dict[str, tuple[str, ...]]:
         pattern = model.sparsity_jac("c", check) if free else None
         out[check] = tuple(k for j, k in enumerate(free) if pattern is not None and pattern.has_nz(0, j))
     return out
+
+
+def check_work(scene, where: list, spanned: int) -> None:
+    """The NLP's size on a route, every check at every load case it is built at (the places that can govern, of
+    ``spanned`` cases) through every segment, against its budget."""
+    from ropemodel import budget
+
+    segments = len(scene.route)
+    if segments:
+        kept = "" if len(where) == spanned else f" (the cases that can govern of {spanned})"
+        budget.check("route sizing", len(where) * segments,
+                     f"sizing on a route of {segments} segments checks every check at {len(where)} load cases{kept}, "
+                     f"each through the {segments} segments: an NLP of {len(where)} x {segments}",
+                     "join neighbouring segments of nearly the same inclination")

@@ -57,7 +57,8 @@ def _kkt_p(problem: SizingProblem, taken: tuple[int, ...], kept: tuple[int, ...]
     if (taken, kept) not in built:
         n, p = problem.xs.numel(), problem.p
         if kept is not None:
-            (f, g), p = problem.nlp_of(taken, kept), problem.kept_p(kept)
+            p = ca.MX.sym("p", len(kept))
+            f, g = problem.nlp_of(taken, kept, p)
         elif getattr(problem, "STATIC", False):
             f, g = problem.nlp_of(taken)
         else:
