@@ -21,7 +21,7 @@ from typing import NamedTuple
 
 import casadi as ca
 
-from ropemodel.effects.base import Equation, Submodel, register
+from ropemodel.effects.base import Equation, Submodel, Symbols, register
 from ropemodel.effects import domains as dom
 from ropemodel.effects.transient.travel import X_M, beyond_route
 from ropemodel.effects.winch import JUDGEMENT, MODEL, POSITIVE, ROPE_MU, SRC, Q, usual
@@ -210,9 +210,16 @@ class SegmentedRoute(Submodel):
         ]
 
     def profile(self, v) -> Profile:
-        """The segments: L_i, α_i, μ_wi."""
+        """The segments: L_i, α_i, μ_wi; of the model's symbols (:class:`Symbols`), the same lists each time (their
+        columns are made once: :func:`ropemodel.papers.route_vector.column`)."""
+        kept = self.__dict__.get("_profile")
+        if kept is not None and kept[0] is v:
+            return kept[1]
         n = range(1, len(self.segments) + 1)
-        return Profile([v[f"L_{i}"] for i in n], [v[f"alpha_{i}"] for i in n], [v[f"mu_w{i}"] for i in n])
+        out = Profile([v[f"L_{i}"] for i in n], [v[f"alpha_{i}"] for i in n], [v[f"mu_w{i}"] for i in n])
+        if isinstance(v, Symbols):       # only ever grows: the lists stay the model's
+            self.__dict__["_profile"] = (v, out)
+        return out
 
     def transient_route(self, values: dict, numbers: dict):
         """The route as the transient's rope model asks it (:class:`ropemodel.effects.transient.route.Segments`):
