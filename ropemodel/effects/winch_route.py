@@ -122,13 +122,20 @@ class StraightRoute(Submodel):
 
 
 
+#: "L_1", "L_2", …: the segments' length names, made once (a route of 10 000 segments is read many times)
+_LENGTH_NAMES: list[str] = []
+
+
 def segment_lengths(values) -> list:
     """L_1, L_2, … of a route of segments, from a mapping of its values (none on a straight route)."""
-    out, i = [], 1
-    while f"L_{i}" in values:
-        out.append(values[f"L_{i}"])
-        i += 1
-    return out
+    global _LENGTH_NAMES
+    out, names = [], _LENGTH_NAMES
+    while True:
+        if len(out) == len(names):     # a longer list, each entry still "L_<its index + 1>" (threads share it)
+            names = _LENGTH_NAMES = [f"L_{i}" for i in range(1, 2 * len(out) + 2)]
+        if names[len(out)] not in values:
+            return out
+        out.append(values[names[len(out)]])
 
 
 @functools.lru_cache(maxsize=1 << 16)     # Quantity is frozen: a route of 10 000 segments declares them once
