@@ -129,7 +129,8 @@ _LENGTH_NAMES: list[str] = []
 def segment_lengths(values) -> list:
     """L_1, L_2, … of a route of segments, from a mapping of its values (none on a straight route)."""
     global _LENGTH_NAMES
-    out, names = [], _LENGTH_NAMES
+    out: list = []
+    names = _LENGTH_NAMES
     while True:
         if len(out) == len(names):     # a longer list, each entry still "L_<its index + 1>" (threads share it)
             names = _LENGTH_NAMES = [f"L_{i}" for i in range(1, 2 * len(out) + 2)]

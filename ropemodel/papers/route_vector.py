@@ -27,7 +27,10 @@ _LOCK = threading.Lock()
 
 
 def _made(items, kind: str, make):
-    """``make()`` for the list ``items``, made once while it is among the last :data:`_KEEP` (by identity)."""
+    """``make()`` for the list ``items``, made once while it is among the last :data:`_KEEP` (by identity), where
+    every entry is a CasADi expression (a list of numbers may be changed in place: made each time)."""
+    if not all(isinstance(e, ca.SX) for e in items):
+        return make()
     hit = _MADE.get((id(items), kind))
     if hit is None or hit[0] is not items:
         hit = (items, make())
