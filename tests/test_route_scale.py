@@ -78,6 +78,19 @@ def test_a_thousand_segment_trip_equals_its_tables_and_the_exact_trip(thousand, 
     assert got["E_regen"] == pytest.approx(ref["E_brake"], rel=1e-9, abs=1e-6)
 
 
+def test_the_load_is_placed_on_its_segment_once(thousand):
+    """The trip's forces at a place of the load on a 1000-segment route, the route's values folded in: the load's
+    segment is found once for eq. (1), (5), (7) (one comparison, one difference, one product and one sum per
+    segment, the joints and inclinations as constants: 6 operations a segment, not the 10 of three lookups), and
+    nothing else in F_C or the stroke's dF passes through the segments."""
+    segments, profile, _ = thousand
+    problem = Problem(profile)
+    fun = problem.function
+    constants = {k: profile.parameters[k] for k in fun.name_in() if k not in ("x_m", "a_h")}
+    moving, _ = ev.folded(fun, ["x_m", "a_h"], constants, ["F_C_up", "dF_up"])
+    assert moving is not None and moving.n_instructions() < 6 * len(segments) + 50
+
+
 def test_folded_constants_give_what_the_map_gives(monkeypatch):
     """The model of a 200-segment route at 500 places of the load, with its constants folded into the Function
     (FOLD_MIN lowered to 0) and passed to CasADi's map at every point (FOLD_MIN above the work): the same
@@ -144,7 +157,7 @@ def _pieces(segments, n: int) -> list[tuple[float, float]]:
     return [(L / k, a) for (L, a), k in zip(segments, counts) for _ in range(k)]
 
 
-# About 7 s, in the default suite on purpose: issue 22 asks that the 10 000-point profile be checked there.
+# About 8 s, in the default suite on purpose: issue 22 asks that the 10 000-point profile be checked there.
 def test_sizing_ten_thousand_points_equals_the_route_as_three_segments(tmp_path):
     """A 10 000-row profile that is the three segments of tests/test_route_sizing.py cut into pieces: ``size``
     (constraint generation over the places that can govern) gives the design of the same route as three
@@ -161,9 +174,17 @@ def test_sizing_ten_thousand_points_equals_the_route_as_three_segments(tmp_path)
     (tmp_path / "profile.toml").write_text(head + '[route_profile]\nfile = "route.csv"\n[parameters]\n' + params)
     (tmp_path / "tables.toml").write_text(head + "".join(f'[[route]]\nlength = "{L!r} m"\ninclination = "{a!r} deg"\n'
                                                          for L, a in three) + "[parameters]\n" + params)
-    profile = sizing.size(str(tmp_path / "profile.toml"), with_sensitivities=False)
-    tables = sizing.size(str(tmp_path / "tables.toml"), with_sensitivities=False)
+    profile = sizing.size(str(tmp_path / "profile.toml"))
+    tables = sizing.size(str(tmp_path / "tables.toml"))
     assert profile.feasible and tables.feasible
+    # the sensitivities: every parameter's but the 10 000 pieces' own (more than ROUTE_SENSITIVITIES), each the
+    # three segments' (the same optimum as a function of the same parameters) to 1e-8
+    segments = {f"{k}_{i}" for k in ("L", "alpha") for i in (1, 2, 3)}
+    assert set(profile.sensitivities) == set(tables.sensitivities) - segments
+    assert "10000 segments (more than 100)" in profile.to_dict()["sensitivities_left_out"]
+    for p, column in profile.sensitivities.items():
+        for k, v in column.items():
+            assert v == pytest.approx(tables.sensitivities[p][k], rel=1e-8, abs=1e-12), (p, k)
     assert profile.design == tables.design
     for k, v in tables.continuous.items():
         assert profile.continuous[k] == pytest.approx(v, rel=1e-10), k
