@@ -30,7 +30,7 @@ from functools import cached_property
 import casadi as ca
 import numpy as np
 
-from optimisation.nlp_parts import Ends, depends, nlp_outputs, restricted, vector_model
+from optimisation.nlp_parts import Ends, check_work, depends, nlp_outputs, partly_folded, restricted, vector_model
 from ropemodel.envelope import Envelope, LoadCase, envelope, free, load_cases
 from ropemodel.envelope.cases import distinct, joint_ends
 from ropemodel.envelope.prune import prune
@@ -94,20 +94,6 @@ def prepare(scene) -> Scene:
     return declaration(scene).prepare(scene)
 
 
-def _check_work(scene, where: list, spanned: int) -> None:
-    """The NLP's size on a route, every check at every load case it is built at (the places that can govern, of
-    ``spanned`` cases) through every segment, against its budget."""
-    from ropemodel import budget
-
-    segments = len(scene.route)
-    if segments:
-        kept = "" if len(where) == spanned else f" (the cases that can govern of {spanned})"
-        budget.check("route sizing", len(where) * segments,
-                     f"sizing on a route of {segments} segments checks every check at {len(where)} load cases{kept}, "
-                     f"each through the {segments} segments: an NLP of {len(where)} x {segments}",
-                     "join neighbouring segments of nearly the same inclination")
-
-
 def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
     """What the sizing of the (prepared) ``scene`` is computed from, and what it sets itself (name → how): its
     machine's sizing's ``reads`` (a winch: every check, the rope mass, the drive power, the load cases' places and
@@ -162,7 +148,7 @@ class SizingProblem:
         self.candidates = (prune(self.all_cases, scene.parameters, scene.built, weights) if prune_places
                            else self.all_cases)
         if not generate:
-            _check_work(scene, self.candidates, len(self.all_cases))    # before the model is compiled
+            check_work(scene, self.candidates, len(self.all_cases))    # before the model is compiled
         self.problem = Problem(scene, held, freed) if freed else Problem(scene)
         fun = self.problem.function
         self.params = [k for k in self.problem.knowns
@@ -277,16 +263,26 @@ class SizingProblem:
         first = at[min(at)] if at else at_case(0)     # the objective: the same in every case
         return labels, g, exprs, first, made
 
-    def nlp_of(self, taken) -> tuple:
+    def nlp_of(self, taken, kept=None, p_kept=None) -> tuple:
         """(f, g_S) of the NLP (parametric) with the constraints S = ``taken`` (indices into :attr:`constraints`)
         alone, from a model of their checks alone: a route's least tensions, which the other checks need, are
-        then left out of the derivatives in the parameters (:mod:`optimisation.sensitivity`)."""
+        then left out of the derivatives in the parameters (:mod:`optimisation.sensitivity`).  ``kept`` (indices
+        into :attr:`params`): only those stay parameters (``p_kept``), the others folded in at ``p0``."""
         made = [self._made[i] for i in taken]
         checks = list(dict.fromkeys(c for c, _ in made))
         model = restricted(self._nlp_model, nlp_outputs(self._nlp_model.name_out(), checks, self.sizing, self._args))
-        _, g, _, out, _ = self._constraints(model, self._args, self.p, only=made)
+        p, args = self.p, self._args
+        if kept is not None:
+            model, p = partly_folded(model, self.p0, kept), p_kept
+            args = {**self._at_p0(), **{self.params[i]: p_kept[j] for j, i in enumerate(kept)}}
+        _, g, _, out, _ = self._constraints(model, args, p, only=made)
         g_s = ca.vertcat(*g) / ca.DM(self.g_scale[list(taken)]) if taken else ca.MX(0, 1)
         return self._objective(out[self.sizing.PRIMARY] / self.m_ref), g_s
+
+    def _at_p0(self) -> dict:
+        """Every known at the scene's parameters ``p0`` (floats), the design a symbol."""
+        args = self._knowns(ca.DM(self.p0), self.xs * ca.DM(self.x_scale))
+        return {k: float(v) if isinstance(v, ca.DM) else v for k, v in args.items()}
 
     def _ends(self, values, p):
         """The places' x_m (:func:`ropemodel.envelope.cases.joint_ends`): numbers where ``values`` are, else each
@@ -311,9 +307,7 @@ class SizingProblem:
         def case(c) -> ca.Function:
             return ca.Function("nlp_case", [x], model.call([x, ca.DM(ca.evalf(c))]), ["x"], model.name_out())
 
-        args = self._knowns(ca.DM(self.p0), self.xs * ca.DM(self.x_scale))
-        args = {k: float(v) if isinstance(v, ca.DM) else v for k, v in args.items()}
-        _, g, _, out, _ = self._constraints(case, args, self.p)
+        _, g, _, out, _ = self._constraints(case, self._at_p0(), self.p)
         self.__dict__["folded_primary"] = out[self.sizing.PRIMARY] / self.m_ref
         return self.nlp(f=self._objective(self.__dict__["folded_primary"]), g=ca.vertcat(*g) / ca.DM(self.g_scale))
 
