@@ -157,16 +157,17 @@ class SizingProblem:
         self.F_ref = sizing.force_scale(scene)
         self.x_scale = sizing.x_scale(self.F_ref)
         self.xs, self.p = ca.MX.sym("x", len(self.variables)), ca.MX.sym("p", len(self.params))
-        self._args = self._knowns(self.p, self.xs * ca.DM(self.x_scale))
+        self._args = self.known_values(self.p, self.xs * ca.DM(self.x_scale))
         self.checks = self.machine.checks(self.problem.unknowns)
-        self._nlp_model = vector_model(fun, self.variables, self.params, self.free, self.problem.given,
-                                        nlp_outputs(fun.name_out(), self.checks, sizing, self._args))
+        #: the model the NLP's cases call, (x, p, c) -> its checks and outputs (:func:`~.nlp_parts.vector_model`)
+        self.nlp_model = vector_model(fun, self.variables, self.params, self.free, self.problem.given,
+                                      nlp_outputs(fun.name_out(), self.checks, sizing, self._args))
         unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
         q = scene.built.quantities
         #: each check's scale in the NLP (g = its NLP form over this)
         self.check_scale = {c: unit_scale[sizing.unit(c, q[c].unit)] for c in self.checks}
         #: the case inputs each check depends on (a check the same in every case is made once)
-        self.depends = depends(self._nlp_model, self.checks, self.free)
+        self.depends = depends(self.nlp_model, self.checks, self.free)
         self.cases = self.candidates
         if generate:
             from optimisation.generation import first_cases
@@ -182,7 +183,7 @@ class SizingProblem:
         first = float(np.asarray(xs, dtype=float).ravel()[0] * self.x_scale[0])
         return self.first_range[0] <= first <= self.first_range[1]
 
-    def _knowns(self, p, x_si) -> dict:
+    def known_values(self, p, x_si) -> dict:
         """Every known of the model by name: the parameters from ``p``, the design ``x_si`` (SI), a check held at 0
         where its dimension is a result."""
         args = dict(zip(self.params, ca.vertsplit(p) if self.params else []))     # one node, not one per parameter
@@ -206,8 +207,8 @@ class SizingProblem:
                   "_jac_folded"):
             self.__dict__.pop(k, None)
         sizing, xs, p = self.sizing, self.xs, self.p
-        self.constraints, self._g, self._margin_exprs, out, self._made = self._constraints(self._nlp_model, self._args,
-                                                                                           p)
+        self.constraints, self._g, self._margin_exprs, out, self._made = self.make_constraints(
+            self.nlp_model, self._args, p)
         self.units = {c: sizing.unit(c, self.scene.built.quantities[_base(c)].unit) for c in self.constraints}
         self.g_scale = np.array([self.check_scale[_base(c)] for c in self.constraints])
         self.g = ca.vertcat(*self._g) / ca.DM(self.g_scale)
@@ -228,7 +229,7 @@ class SizingProblem:
         return ca.Function("outputs", [self.xs, self.p], [every[n] for n in self.output_names],
                            ["x", "p"], self.output_names)
 
-    def _constraints(self, model, args, p, only=None, t=None) -> tuple[list, list, list, dict, list]:
+    def make_constraints(self, model, args, p, only=None, t=None) -> tuple[list, list, list, dict, list]:
         """Every check in every case it can differ in (a check that depends only on the manoeuvre once per
         manoeuvre, one that depends on neither once), or the (check, case index) pairs ``only``: their labels, the
         constraints g, the margins, the outputs at the first case and the pairs made.  The cases' places and
@@ -270,18 +271,18 @@ class SizingProblem:
         into :attr:`params`): only those stay parameters (``p_kept``), the others folded in at ``p0``."""
         made = [self._made[i] for i in taken]
         checks = list(dict.fromkeys(c for c, _ in made))
-        model = restricted(self._nlp_model, nlp_outputs(self._nlp_model.name_out(), checks, self.sizing, self._args))
+        model = restricted(self.nlp_model, nlp_outputs(self.nlp_model.name_out(), checks, self.sizing, self._args))
         p, args = self.p, self._args
         if kept is not None:
             model, p = partly_folded(model, self.p0, kept), p_kept
             args = {**self._at_p0(), **{self.params[i]: p_kept[j] for j, i in enumerate(kept)}}
-        _, g, _, out, _ = self._constraints(model, args, p, only=made)
+        _, g, _, out, _ = self.make_constraints(model, args, p, only=made)
         g_s = ca.vertcat(*g) / ca.DM(self.g_scale[list(taken)]) if taken else ca.MX(0, 1)
         return self._objective(out[self.sizing.PRIMARY] / self.m_ref), g_s
 
     def _at_p0(self) -> dict:
         """Every known at the scene's parameters ``p0`` (floats), the design a symbol."""
-        args = self._knowns(ca.DM(self.p0), self.xs * ca.DM(self.x_scale))
+        args = self.known_values(ca.DM(self.p0), self.xs * ca.DM(self.x_scale))
         return {k: float(v) if isinstance(v, ca.DM) else v for k, v in args.items()}
 
     def _ends(self, values, p):
@@ -299,15 +300,15 @@ class SizingProblem:
         """The NLP (:meth:`nlp`) at the scene's parameters ``p0``, folded into its expressions, each case's place and
         acceleration too (a route's sums and minima are numbers; the NLP's ``p`` is still there, unused): what
         IPOPT solves when ``p`` is ``p0``, its derivatives no longer carrying every segment's parameters."""
-        if not self._nlp_model.is_a("SXFunction"):
+        if not self.nlp_model.is_a("SXFunction"):
             return self.nlp()
         model = self.folded_model()
-        x = ca.SX.sym("x", self._nlp_model.size1_in("x"))
+        x = ca.SX.sym("x", self.nlp_model.size1_in("x"))
 
         def case(c) -> ca.Function:
             return ca.Function("nlp_case", [x], model.call([x, ca.DM(ca.evalf(c))]), ["x"], model.name_out())
 
-        _, g, _, out, _ = self._constraints(case, self._at_p0(), self.p)
+        _, g, _, out, _ = self.make_constraints(case, self._at_p0(), self.p)
         self.__dict__["folded_primary"] = out[self.sizing.PRIMARY] / self.m_ref
         return self.nlp(f=self._objective(self.__dict__["folded_primary"]), g=ca.vertcat(*g) / ca.DM(self.g_scale))
 
@@ -315,10 +316,10 @@ class SizingProblem:
         """The NLP's model (:func:`~optimisation.nlp_parts.vector_model`) at the scene's parameters ``p0`` (SX,
         folded): a Function (x SI, c)."""
         if "_folded" not in self.__dict__:
-            x, c = (ca.SX.sym(k, self._nlp_model.size1_in(k)) for k in ("x", "c"))
+            x, c = (ca.SX.sym(k, self.nlp_model.size1_in(k)) for k in ("x", "c"))
             self.__dict__["_folded"] = ca.Function("nlp_model_p0", [x, c],
-                                                   self._nlp_model.call([x, ca.DM(self.p0), c]), ["x", "c"],
-                                                   self._nlp_model.name_out())
+                                                   self.nlp_model.call([x, ca.DM(self.p0), c]), ["x", "c"],
+                                                   self.nlp_model.name_out())
         return self.__dict__["_folded"]
 
     def _objective(self, primary):

@@ -106,7 +106,7 @@ def sensitivities(problem: SizingProblem, sol: Solution, p=None, params=None) ->
     np.add.at(w_g.T, idx, Z[:, n:n + na].T)
     taken = tuple(sorted(set(idx)))
     kept = None
-    if params is not None and folded and problem._nlp_model.is_a("SXFunction"):
+    if params is not None and folded and problem.nlp_model.is_a("SXFunction"):
         wanted = set(params)
         kept = tuple(j for j, name in enumerate(problem.params) if name in wanted)
     dW = np.asarray(_kkt_p(problem, taken, kept)(x=sol.xs, p=p if kept is None else p[list(kept)],
