@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ropemodel.effects.winch_route import segment_lengths
+from ropemodel.effects.route_arrays import RouteArrays
 from ropemodel.envelope.cases import LoadCase
 from ropemodel.papers.route import G_N
 from ropemodel.papers.route_tables import WAYS, tables
@@ -40,14 +40,12 @@ def governing_places(params, accelerations, weights=(0.0, np.inf)) -> set[int]:
     """Joints (0 = the drive, k = the end of segment k) where the load can govern, for each acceleration a
     [m/s²] in ``accelerations`` and both directions (see the module docstring), for every rope weight q_l in
     ``weights`` [N/m] (low, high; default every q_l > 0).  ``params``: SI floats."""
-    L = np.asarray(segment_lengths(params), dtype=float)
-    n = len(L)
-    alpha = np.array([params[f"alpha_{i}"] for i in range(1, n + 1)], dtype=float)
-    mu = np.array([params.get(f"mu_w{i}", params["mu_pl"]) for i in range(1, n + 1)], dtype=float)
+    segments = RouteArrays.from_values(params)
+    n = segments.n
     seg = np.concatenate([[0], np.arange(n)])          # the load's segment at each place (0-based)
     keep = {0, n}
     for a in accelerations:
-        route = tables(L, alpha, mu, params["mu_pl"], a)
+        route = tables(segments.L, segments.alpha, segments.mu_w, params["mu_pl"], a)
         for way, s in WAYS:
             J = params["G_m"] * (route["sin"] + s * (params["mu_pm"] * route["cos"] + a / G_N))[seg]
             keep |= {int(np.argmax(J)), int(np.argmin(J))}
