@@ -71,3 +71,16 @@ def test_the_shipped_scenes_route_tables_read_as_arrays():
     assert np.allclose(r.alpha, [math.radians(22.0), math.radians(9.0), math.radians(3.0)], rtol=1e-15, atol=0)
     assert r.mu_w[0] == 0.06 and r.own_mu.tolist() == [True, False, False]
     assert r.mu_w.tolist()[1:] == [scene.parameters["mu_pl"]] * 2
+
+
+@pytest.mark.parametrize("argv, said", [
+    (["run", "--set", "L_5=3m"], "parameter L_5: the route has 3 segments, so its values are L_1 … L_3"),
+    (["run", "--set", "mu_w4=0.1"], "parameter mu_w4: the route has 3 segments, so its values are mu_w1 … mu_w3"),
+    (["solve", "--given", "L_4=3m", "--find", "F_nwl"], "given quantity L_4: the route has 3 segments"),
+])
+def test_a_segment_beyond_the_route_at_the_command_line_names_the_valid_ones(argv, said, capsys):
+    from ropemodel.cli import main as cli
+
+    assert cli([argv[0], "route_segments", *argv[1:]]) == 2
+    err = capsys.readouterr().err
+    assert said in err and "did you mean" not in err and "Traceback" not in err

@@ -33,6 +33,17 @@ def parse(text: str) -> tuple[str, int] | None:
     return None if found is None else (found[1] or found[2], int(found[3]) - 1)
 
 
+def beyond(text: str, n: int) -> str | None:
+    """Why ``text``, a segment's name, names no segment of a route of ``n`` (the valid names); None where it
+    does, or where ``text`` is not a segment's name."""
+    where = parse(text)
+    if where is None or where[1] < n:
+        return None
+    field = where[0]
+    return (f"{text}: the route has {n} segment{'s' * (n != 1)}, so its values are {name(field, 0)} … "
+            f"{name(field, n - 1)} (a longer route is one more [[route]] table, or line of its profile, each)")
+
+
 def _array(values) -> np.ndarray:
     out = np.array(values, dtype=float)
     out.flags.writeable = False
@@ -69,13 +80,9 @@ class RouteArrays:
 
     def problem(self, text: str) -> str | None:
         """Why ``text`` names no value of this route (a message naming the valid names), or None if it does."""
-        where = parse(text)
-        if where is None:
+        if parse(text) is None:
             return f"{text} is not a route segment's value: write L_i, alpha_i or mu_wi, i = 1 … {self.n}"
-        if where[1] >= self.n:
-            return (f"{text}: the route has {self.n} segment{'s' * (self.n != 1)}, so its values are "
-                    f"{name(where[0], 0)} … {name(where[0], self.n - 1)}")
-        return None
+        return beyond(text, self.n)
 
     def value(self, text: str) -> float:
         """The value named ``text`` (``L_2`` …); KeyError with :meth:`problem`'s message if there is none."""
