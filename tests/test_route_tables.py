@@ -70,6 +70,16 @@ def _mx(L, alpha, mu, places):
     return f, names
 
 
+def _functions(L, alpha, mu, places, loads, way):
+    """The named Functions (tables_function, places_function), their outputs as numpy, the least from them."""
+    T = tb.tables_function(len(L))
+    t = T(L=L, alpha=alpha, mu=mu, mu_pl=MU_PL, a_h=A_H)
+    p = tb.places_function(len(L), len(places))(**{"t_" + k: v for k, v in t.items()}, x_m=places)
+    got = {k: np.array(v).ravel() for k, v in p.items()}
+    got[f"least_{way}"] = np.asarray(tb.least_winding_tension(got, way, F_END, Q_L, loads))
+    return got
+
+
 @pytest.mark.parametrize("n, seed", [(1, 0), (2, 1), (3, 2), (7, 3), (25, 4)])
 def test_numbers_at_every_place_equal_a_brute_force_over_the_joints(n, seed):
     L, alpha, mu = _route(seed, n)
@@ -82,7 +92,8 @@ def test_numbers_at_every_place_equal_a_brute_force_over_the_joints(n, seed):
         loads = np.array([b["load"] for b in truth])
         least = np.asarray(tb.least_winding_tension(p, way, F_END, Q_L, loads))
         got_mx = dict(zip(names, (np.array(v).ravel() for v in f(L, alpha, mu, places, loads))))
-        for got in (dict(p, **{f"least_{way}": least}), got_mx):
+        named = _functions(L, alpha, mu, places, loads, way)
+        for got in (dict(p, **{f"least_{way}": least}), got_mx, named):
             for i, b in enumerate(truth):
                 assert int(got["j"][i]) == b["j"] and bool(got["before"][i]) == b["before"]
                 assert bool(got["beyond"][i]) == b["beyond"] and bool(got["joints"][i]) == (n > 1)

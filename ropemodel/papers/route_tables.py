@@ -166,3 +166,25 @@ def least_winding_tension(place, way, F_end, q_l, load):
     beside = F_end + q_l * place[f"B_{way}"]
     sides = fmin(if_else(place["inside0"], beside + load, beside), if_else(place["insideL"], beside, beside + load))
     return if_else(place["joints"], fmin(joints, sides), sides)
+
+
+def tables_function(n: int) -> ca.Function:
+    """:func:`tables` of a route of ``n`` segments as a CasADi Function ``route_tables``: inputs ``L``, ``alpha``,
+    ``mu`` (n each), ``mu_pl``, ``a_h``; outputs named as :func:`tables`' entries (built once per route shape,
+    evaluated once per route's values and acceleration)."""
+    ins = {"L": ca.MX.sym("L", n), "alpha": ca.MX.sym("alpha", n), "mu": ca.MX.sym("mu", n),
+           "mu_pl": ca.MX.sym("mu_pl"), "a_h": ca.MX.sym("a_h")}
+    out = tables(*ins.values())
+    return ca.Function("route_tables", list(ins.values()), list(out.values()), list(ins), list(out))
+
+
+def places_function(n: int, places: int) -> ca.Function:
+    """:func:`at_places` for a route of ``n`` segments at ``places`` places as a CasADi Function ``route_places``:
+    inputs the entries of :func:`tables`, named ``t_<entry>`` (the tables passed by reference), and ``x_m`` (a
+    column of ``places``); outputs named as :func:`at_places`' entries, each a column of ``places``."""
+    shapes = tables_function(n)
+    ins = {k: ca.MX.sym("t_" + k, shapes.size_out(k)) for k in shapes.name_out()}
+    x = ca.MX.sym("x_m", places)
+    out = {k: ca.MX(v) for k, v in at_places(ins, x).items()}
+    values = [ca.densify(ca.repmat(v, places, 1) if v.numel() == 1 else v) for v in out.values()]
+    return ca.Function("route_places", [*ins.values(), x], values, ["t_" + k for k in ins] + ["x_m"], list(out))
