@@ -110,11 +110,11 @@ def tables(L, alpha, mu, mu_pl, a_h):
 def _joints_before(inner, x):
     """How many inner joints lie strictly before x [m] (the load's segment, 0-based: a load on a joint belongs
     to the segment nearer the drive); ``inner`` ascending, a numpy array with x numeric, else an MX column."""
-    m = inner.shape[0] if isinstance(inner, np.ndarray) else inner.numel()
     if isinstance(inner, np.ndarray):
         return np.searchsorted(inner, x, side="left")
-    if m == 0:
-        return ca.densify(ca.MX.zeros(x.shape) if _symbolic(x) else ca.MX(0.0))
+    m = inner.numel()
+    if m == 0:                                   # one segment: the load is on it (x is an MX column here)
+        return ca.densify(ca.MX.zeros(x.shape))
     # count(inner >= x) = count(h <= −x) with h = −inner reversed, ascending (negation is exact: ties hold);
     # ca.low(h, v) is the i with h_i <= v < h_{i+1}, clamped to 0 … m − 2
     h, v = -_reversed(inner), -x
