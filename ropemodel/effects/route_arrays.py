@@ -5,7 +5,7 @@ resistance μ_w [-]), listed from the drive.  At the edges (``[[route]]`` tables
 sweeps, sensitivities, the report, ``--json``) each value keeps its name: ``L_i``, ``alpha_i``, ``mu_wi`` for
 segment i = 1…n (:func:`ropemodel.effects.winch_route.segment_quantities` declares them).  :func:`parse` and
 :func:`name` translate one way and the other, and :class:`RouteArrays` gathers, reads and replaces values by
-name, so no other module spells the names out.
+name, so a module that reads a route need not spell the names out.
 """
 
 from __future__ import annotations
