@@ -35,6 +35,11 @@ from ropemodel.machines.base import ManoeuvreCheck as Check
 ORDER = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
 #: the simulator's events that leave the smooth mode
 EVENTS = ("slip_fwd", "slip_back", "stroke_end", "stroke_start", "slack", "torque_limit")
+#: the parts of the transient whose leaving the smooth mode a check through the manoeuvre keeps from happening
+#: while it holds: the drum contact's slip (the slip checks, rho F_slack >= n_slip_dynamic F_tight, n_slip_dynamic
+#: >= 1) and the tensioner's stops (the stroke check); a torque-limited drive's limit has no check
+#: (:func:`optimisation.dynamic.verify.verified` simulates every case of a transient with another such part)
+CHECKED_MODES = ("drum_contact", "tensioner")
 #: what ``size --dynamic`` does, in words
 OBJECTIVE = "rope, pretension and stroke through four manoeuvres"
 #: the manoeuvres in words: ``all`` of them (the progress and the verdict), what they are (``kinds``: ``size
