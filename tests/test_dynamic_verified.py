@@ -52,8 +52,13 @@ def _run(monkeypatch, shift: float, parts=PARTS):
         return out
 
     monkeypatch.setattr(verify, "verify", simulated)
-    problem = SimpleNamespace(cases=[None] * 6, scene=None)
-    return [v.by for v in verify.verified(problem, None)]
+    return [v.by for v in verify.verified(_problem(_integrated()), None)]
+
+
+def _problem(verdicts):
+    """The cases of ``verdicts`` (manoeuvre label), each path with the checks a and b."""
+    return SimpleNamespace(cases=[SimpleNamespace(label=v.manoeuvre) for v in verdicts], scene=None,
+                           all_paths=[SimpleNamespace(checks=["a", "b"])] * len(verdicts))
 
 
 def test_the_cases_far_from_every_limit_are_left_to_the_integration_when_both_agree(monkeypatch):
@@ -78,3 +83,15 @@ def test_the_worst_peaks_are_the_simulated_cases():
     assert m["peaks"] == {"F": 2.0, "x_m_F": 0.0} and [p["judged_by"] for p in m["positions"]] == [SIMULATED,
                                                                                                    INTEGRATED]
     assert pytest.approx(m["x_m"]) == 0.0
+
+
+def test_no_more_places_than_checks_simulates_every_case_without_the_integration(monkeypatch):
+    """Two places, two checks in each manoeuvre (each place likely some check's least): every case simulated."""
+    two = [v for v in _integrated() if v.x_m < 75.0]
+
+    def refuse(*args):
+        raise AssertionError("integrated")
+
+    monkeypatch.setattr(verify, "integrated", refuse)
+    monkeypatch.setattr(verify, "verify", lambda problem, xs, values=None, which=None: ["simulated"] * len(two))
+    assert verify.verified(_problem(two), None) == ["simulated"] * 4
