@@ -84,14 +84,3 @@ def test_the_worst_peaks_are_the_simulated_cases():
                                                                                                    INTEGRATED]
     assert pytest.approx(m["x_m"]) == 0.0
 
-
-def test_no_more_places_than_checks_simulates_every_case_without_the_integration(monkeypatch):
-    """Two places, two checks in each manoeuvre (each place likely some check's least): every case simulated."""
-    two = [v for v in _integrated() if v.x_m < 75.0]
-
-    def refuse(*args):
-        raise AssertionError("integrated")
-
-    monkeypatch.setattr(verify, "integrated", refuse)
-    monkeypatch.setattr(verify, "verify", lambda problem, xs, values=None, which=None: ["simulated"] * len(two))
-    assert verify.verified(_problem(two), None) == ["simulated"] * 4

@@ -158,12 +158,8 @@ def verified(problem, xs) -> list[Verdict]:
     simulated case to within :data:`AGREE` on every check's least margin (one tenth of what the cases left out
     keep), and (3) every part of the transient that can leave its smooth mode is one a check keeps in it (the
     machine's ``CHECKED_MODES``: with the margins kept, the simulation stays in the smooth mode the NLP
-    integrates).  Else every case is simulated, as it is without the integration where no manoeuvre has more
-    places than checks (each place is then likely some check's least: the shipped scene).  The peaks (the
-    machine's ``PEAKS``) are the simulated cases': each check's least place is one."""
-    labels = [m.label for m in problem.cases]
-    if all(labels.count(m.label) <= len(path.checks) for m, path in zip(problem.cases, problem.all_paths)):
-        return verify(problem, xs)      # no more places than checks: each place is likely some check's least
+    integrates).  Else every case is simulated.  The peaks (the machine's ``PEAKS``) are the simulated cases':
+    each check's least place is one."""
     integ = integrated(problem, xs, DT_DENSE)
     first = to_simulate(integ)
     simulated = dict(zip(first, verify(problem, xs, which=first)))
