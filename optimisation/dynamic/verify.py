@@ -158,8 +158,9 @@ def verified(problem, xs) -> list[Verdict]:
     simulated case to within :data:`AGREE` on every check's least margin (one tenth of what the cases left out
     keep), and (3) every part of the transient that can leave its smooth mode is one a check keeps in it (the
     machine's ``CHECKED_MODES``: with the margins kept, the simulation stays in the smooth mode the NLP
-    integrates).  Else every case is simulated.  The peaks (the machine's ``PEAKS``) are the simulated cases':
-    each check's least place is one."""
+    integrates).  Else every case is simulated.  The peaks (the machine's ``PEAKS``) of a case left to the
+    integration are read from it (every DT_DENSE: a peak between samples missed by a few N); each check's least
+    place is simulated, so the worst peak of a manoeuvre that a check bounds is the simulator's."""
     integ = integrated(problem, xs, DT_DENSE)
     first = to_simulate(integ)
     simulated = dict(zip(first, verify(problem, xs, which=first)))
@@ -175,7 +176,8 @@ def verified(problem, xs) -> list[Verdict]:
 
 def integrated(problem, xs, dt: float) -> list[Verdict]:
     """Every case of ``problem`` at scaled design ``xs`` as the sizing NLP integrates it (its own integrator at
-    its own mesh, read every ``dt`` [s] and at each phase's ends; no simulator, no events, no peaks): the record
+    its own mesh, read every ``dt`` [s] and at each phase's ends; no simulator, no events; the peaks the machine
+    reads of an integration, ``integration_peaks``): the record
     of a design the answer reports but does not return, the continuous optimum, whose checks the NLP already
     holds between its grid points (:mod:`optimisation.dynamic.refine`) — the hybrid simulator verifies the
     catalogue design the answer returns, the same NLP's work one catalogue size up."""
@@ -197,6 +199,8 @@ def integrated(problem, xs, dt: float) -> list[Verdict]:
             v.scaled[c.name] = float(np.min(np.asarray(c.nlp(o, a), float))) / (problem.F_ref if c.unit == "N" else 1.0)
             if series[j] < 0:
                 v.failures.append(f"{c.name} {series[j]:.6g} at t = {t[j]:.4f} s")
+        if (peaks_of := getattr(machine, "integration_peaks", None)) is not None:
+            v.peaks, v.worst = peaks_of(problem, m, xs, p, t, o), dict(machine.PEAKS)
         v.ok = not v.failures
         out.append(v)
     return out
@@ -221,7 +225,7 @@ def by_manoeuvre(verdicts) -> list[dict]:
             v = min((v for v in mine if name in v.least), key=lambda v: v.least[name][0])
             least[name] = {"margin": v.least[name][0], "t": v.least[name][1], "x_m": v.x_m, "where": v.where,
                            **v.sides.get(name, {})}
-        peaks, seen = {}, [v for v in mine if v.peaks]
+        peaks, seen = {}, [v for v in mine if v.peaks]       # those with peaks
         for key, pick in (seen[0].worst if seen else {}).items():
             v = pick(seen, key=lambda v: v.peaks[key])
             peaks[key], peaks[f"x_m_{key}"] = v.peaks[key], v.x_m

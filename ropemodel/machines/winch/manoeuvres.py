@@ -168,6 +168,19 @@ def peaks(sim) -> dict:
             "dynamic_factor": s["dynamic_factor"], "t_F_C_max": float(t[int(np.argmax(h["F_C [N]"]))])}
 
 
+def integration_peaks(problem, case, xs, p, t, o) -> dict:
+    """:func:`peaks` of ``case`` (a manoeuvre at a place) read from the sizing NLP's integration of it at scaled
+    design ``xs`` and parameters ``p`` (``t`` [s] and ``o``, its samples: one row each, a tension's least over the
+    elements), for a case the hybrid simulator does not judge (:func:`optimisation.dynamic.verify.verified`); the
+    dynamic factor against the steady force at the load's place (the NLP's static model, as the simulator's)."""
+    i = int(np.argmax(o["F_C"]))
+    F_C_static = problem.static_at(xs, p, case.x_m)[f"F_C_{case.travel}"]
+    return {"F_C_max": float(o["F_C"][i]), "F_S_min": float(np.min(o["F_S"])),
+            # an inextensible rope: the carriage does not move
+            "take_up_max": float(np.max(o["take_up"])) if "take_up" in o else 0.0,
+            "dynamic_factor": float(o["F_C"][i]) / F_C_static, "t_F_C_max": float(t[i])}
+
+
 def peak_text(pk: dict) -> str:
     """A manoeuvre's worst peaks in words (``size --dynamic``'s title line of the manoeuvre)."""
     return (f"peak F_C {pk['F_C_max'] * 1e-3:.4g} kN (dynamic factor {pk['dynamic_factor']:.3g}), "
