@@ -3,6 +3,8 @@ sensitivities — or, when no design exists, which checks conflict and by how mu
 
 from __future__ import annotations
 
+import re
+
 from dataclasses import dataclass, field
 from typing import Any, cast
 
@@ -53,6 +55,8 @@ class Design(DesignViews):
     drive: dict[str, dict] = field(default_factory=dict)
     least_drum: float | None = None    # D_ratio_min * d [m] when the scene gives no drum diameter
     sensitivities: dict[str, dict[str, float]] = field(default_factory=dict)
+    #: the parameters left out of :attr:`sensitivities`, and why ("" where none is)
+    left_out: str = ""
     method: str = DEFAULT_DISCRETE
     diagnosis: Diagnosis | None = None
     units: dict[str, str] = field(default_factory=dict)
@@ -87,6 +91,8 @@ class Design(DesignViews):
         if self.least_drum is not None:
             out["D_min"] = self.least_drum
         out["sensitivities"] = self.sensitivities
+        if self.left_out:
+            out["sensitivities_left_out"] = self.left_out
         if self.diagnosis is not None and not self.diagnosis.feasible:
             infeasible = {"conflicting": self.diagnosis.conflicting,
                           "max_violation_scaled": self.diagnosis.max_violation,
@@ -222,6 +228,23 @@ def _diagnosed(problem: SizingProblem, **how) -> tuple[SizingProblem, Diagnosis]
     return problem, diag
 
 
+#: a route of more segments than this is sized without sensitivities in its segments' own values (L_i, alpha_i,
+#: mu_wi): a surveyed profile's points, which the design does not vary; a derivative in each would pass through
+#: every segment (20 000 of them at 10 000 points), and those values are folded in instead
+ROUTE_SENSITIVITIES = 100
+SEGMENTS_LEFT_OUT = ("L_i, alpha_i and mu_wi of the route's {n} segments (more than {most}): sweep a segment's value "
+                     "to see its effect")
+_SEGMENT = re.compile(r"(L_|alpha_|mu_w)\d+$")
+
+
+def _sensitive(problem: SizingProblem) -> list[str] | None:
+    """The parameters the sensitivities are taken in: every one (None), or on a route of more than
+    :data:`ROUTE_SENSITIVITIES` segments all but the segments' own values."""
+    if len(problem.scene.route) <= ROUTE_SENSITIVITIES:
+        return None
+    return [k for k in problem.params if not _SEGMENT.match(k)]
+
+
 def problem_range(scene: Scene):
     """The range of the first design variable the places that can govern are first found for: the machine's
     catalogue (a winch: its rope diameters), or None (every value)."""
@@ -303,7 +326,9 @@ def size(scene: SceneLike, method: str = DEFAULT_DISCRETE, with_sensitivities: b
     design.margins_continuous = at_design(problem, sol.xs)[0]
     design.lexicographic_ok = sol.lexicographic_ok
     if with_sensitivities:
-        design.sensitivities = with_rule_terms(problem.scene, sensitivities(problem, sol))
+        design.sensitivities = with_rule_terms(problem.scene, sensitivities(problem, sol, params=_sensitive(problem)))
+        design.left_out = "" if _sensitive(problem) is None else SEGMENTS_LEFT_OUT.format(
+            n=len(problem.scene.route), most=ROUTE_SENSITIVITIES)
     d_star = design.continuous["d"]
     if disc.solution is None:
         cat = ropes.diameters()

@@ -44,7 +44,7 @@ def _screen(problem: SizingProblem) -> tuple[ca.Function, np.ndarray]:
         x, c = ca.SX.sym("x", len(problem.variables)), ca.SX.sym("c", len(problem.free))
         x_si = x * ca.DM(problem.x_scale)
         out = model.call({"x": x_si, "c": c})
-        args = problem._knowns([float(v) for v in problem.p0], x_si)
+        args = problem.known_values([float(v) for v in problem.p0], x_si)
         g = [problem.sizing.nlp_form(k, out, args) / problem.check_scale[k] for k in problem.checks]
         params = problem.scene.parameters
         ends = joint_ends(params) if problem.scene.route else None

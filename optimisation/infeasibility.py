@@ -101,7 +101,8 @@ def diagnose(problem: SizingProblem, p=None, d_range=None, fix_d: float | None =
     # at the scene's parameters, the NLP with them folded in (a route's sums are numbers, as IPOPT solved it)
     folded = problem.at_scene["g"] if np.array_equal(p, problem.p0) else problem.g
     gfun = ca.Function("g", [problem.xs, problem.p], [folded])
-    xs = ca.MX.sym("x", 3)
+    n = len(problem.variables)
+    xs = ca.MX.sym("x", n)
     g = gfun(xs, problem.p)
 
     # 1. least maximum violation
@@ -111,9 +112,9 @@ def diagnose(problem: SizingProblem, p=None, d_range=None, fix_d: float | None =
     r1 = s1(x0=np.concatenate([x0, [max(0.0, -g0.min())]]), p=p, lbx=np.concatenate([lbx, [0.0]]),
             ubx=np.concatenate([ubx, [np.inf]]), lbg=0.0, ubg=np.inf)
     z1 = np.asarray(r1["x"]).ravel()
-    t_star = float(z1[3])
+    t_star = float(z1[n])
     lam = np.abs(np.asarray(r1["lam_g"]).ravel())
-    gz = np.asarray(gfun(z1[:3], p)).ravel()
+    gz = np.asarray(gfun(z1[:n], p)).ravel()
     if t_star <= TOL:
         return Diagnosis(True, t_star)
     conflicting = [c for c, m in zip(problem.constraints, lam) if m > 1e-6]
@@ -131,22 +132,22 @@ def diagnose(problem: SizingProblem, p=None, d_range=None, fix_d: float | None =
         r = solver(x0=z1, p=p, lbx=np.concatenate([lbx, [0.0]]), ubx=np.concatenate([ubx, [np.inf]]),
                    lbg=0.0, ubg=np.inf)
         z = np.asarray(r["x"]).ravel()
-        gg = np.asarray(gfun(z[:3], p)).ravel() + z[3] * e
+        gg = np.asarray(gfun(z[:n], p)).ravel() + z[n] * e
         ok = solver.stats()["success"] and np.all(gg >= -1e-7)
-        alone[c] = float(z[3] * problem.g_scale[i]) if ok else None
+        alone[c] = float(z[n] * problem.g_scale[i]) if ok else None
 
     # 3. elastic L1 relaxation
     sl = ca.MX.sym("sl", ng)
     s3 = ca.nlpsol("elastic", "ipopt", {"x": ca.vertcat(xs, sl), "p": problem.p, "f": ca.sum1(sl),
                                         "g": g + sl}, OPTS)
-    r3 = s3(x0=np.concatenate([z1[:3], np.maximum(0.0, -gz)]), p=p, lbx=np.concatenate([lbx, np.zeros(ng)]),
+    r3 = s3(x0=np.concatenate([z1[:n], np.maximum(0.0, -gz)]), p=p, lbx=np.concatenate([lbx, np.zeros(ng)]),
             ubx=np.concatenate([ubx, np.full(ng, np.inf)]), lbg=0.0, ubg=np.inf)
     z3 = np.asarray(r3["x"]).ravel()
-    elastic = {c: float(z3[3 + i] * problem.g_scale[i]) for i, c in enumerate(problem.constraints)
-               if z3[3 + i] > 1e-6}
+    elastic = {c: float(z3[n + i] * problem.g_scale[i]) for i, c in enumerate(problem.constraints)
+               if z3[n + i] > 1e-6}
     where = f" at d = {fix_d * 1e3:g} mm" if fix_d is not None else ""
-    needs = remedies(problem, conflicting, p, lbx, ubx, z1[:3])
-    return Diagnosis(False, t_star, conflicting, alone, elastic, margins, where, needs, x_least=z1[:3])
+    needs = remedies(problem, conflicting, p, lbx, ubx, z1[:n])
+    return Diagnosis(False, t_star, conflicting, alone, elastic, margins, where, needs, x_least=z1[:n])
 
 
 def remedies(problem: SizingProblem, conflicting, p, lbx, ubx, x0) -> list[str]:
@@ -211,24 +212,24 @@ def freeing(problem: SizingProblem, i: int, t: ca.MX) -> ca.MX:
     sums over segments are numbers): what the remedies solve, each evaluation no longer a pass over the route.
     A parameter a route's places follow (a segment's length) is not folded: g through the whole model then."""
     name = problem.params[i]
-    if not problem._nlp_model.is_a("SXFunction") or (problem.scene.route and name.startswith("L_")):
+    if not problem.nlp_model.is_a("SXFunction") or (problem.scene.route and name.startswith("L_")):
         whole = ca.Function("g", [problem.xs, problem.p], [problem.g])
         return whole(problem.xs, ca.vertcat(problem.p[:i], t, problem.p[i + 1:]))
-    x, ts = ca.SX.sym("x", problem._nlp_model.size1_in("x")), ca.SX.sym("t")
+    x, ts = ca.SX.sym("x", problem.nlp_model.size1_in("x")), ca.SX.sym("t")
     pv = ca.SX(ca.DM(problem.p0))
     pv[i] = ts
-    c = ca.SX.sym("c", problem._nlp_model.size1_in("c"))
-    model = ca.Function("nlp_model_free", [x, ts, c], problem._nlp_model.call([x, pv, c]), ["x", "t", "c"],
-                        problem._nlp_model.name_out())
+    c = ca.SX.sym("c", problem.nlp_model.size1_in("c"))
+    model = ca.Function("nlp_model_free", [x, ts, c], problem.nlp_model.call([x, pv, c]), ["x", "t", "c"],
+                        problem.nlp_model.name_out())
 
     def case(cv) -> ca.Function:
         return ca.Function("nlp_case", [x, ts], model.call([x, ts, ca.DM(ca.evalf(cv))]), ["x", "t"],
                            model.name_out())
 
-    args = problem._knowns(ca.DM(problem.p0), problem.xs * ca.DM(problem.x_scale))
+    args = problem.known_values(ca.DM(problem.p0), problem.xs * ca.DM(problem.x_scale))
     args = {k: float(v) if isinstance(v, ca.DM) else v for k, v in args.items()}
     args[name] = t
-    made = problem._constraints(case, args, problem.p, t=t)[1]
+    made = problem.make_constraints(case, args, problem.p, t=t)[1]
     return ca.vertcat(*made) / ca.DM(problem.g_scale)
 
 
@@ -236,20 +237,20 @@ def _freeing(problem, gfun, i, sense, quantity, p):
     """A function of the design's bounds and start: the least (``"min"``) or largest (``"max"``) value of
     parameter i with a feasible design within them, or None.  The NLP is built once and solved for each
     catalogue diameter (fixed through the bounds)."""
-    t = ca.MX.sym("t")
+    t, n = ca.MX.sym("t"), len(problem.variables)
     scale = abs(p[i]) or 1.0
     if np.array_equal(p, problem.p0):     # the other parameters folded in (a route's sums are numbers)
         g_free = ca.Function("g_free", [problem.xs, t], [freeing(problem, i, t * scale)])
-        g = g_free(xs := ca.MX.sym("x", 3), t)
+        g = g_free(xs := ca.MX.sym("x", n), t)
 
         def g_at(zz):      # the same arithmetic as gfun at p with p_i = t (folded), not a pass over the route
-            return g_free(zz[:3], zz[3])
+            return g_free(zz[:n], zz[n])
     else:
-        xs = ca.MX.sym("x", 3)
+        xs = ca.MX.sym("x", n)
         g = gfun(xs, ca.vertcat(*[t * scale if j == i else problem.p[j] for j in range(len(p))]))
 
         def g_at(zz):
-            return gfun(zz[:3], np.where(np.arange(len(p)) == i, zz[3] * scale, p))
+            return gfun(zz[:n], np.where(np.arange(len(p)) == i, zz[n] * scale, p))
     z = ca.vertcat(xs, t)
     solver = ca.nlpsol("free", "ipopt", {"x": z, "p": problem.p, "f": t if sense == "min" else -t, "g": g}, OPTS)
     lo = quantity.low / scale if math.isfinite(quantity.low) else -np.inf
@@ -260,7 +261,7 @@ def _freeing(problem, gfun, i, sense, quantity, p):
                    ubx=np.concatenate([ubx, [hi]]), lbg=0.0, ubg=np.inf)
         zz = np.asarray(r["x"]).ravel()
         g = np.asarray(g_at(zz)).ravel()
-        if not solver.stats()["success"] or g.min() < -1e-7 or not quantity.in_range(zz[3] * scale):
+        if not solver.stats()["success"] or g.min() < -1e-7 or not quantity.in_range(zz[n] * scale):
             return None
-        return float(zz[3] * scale)
+        return float(zz[n] * scale)
     return free

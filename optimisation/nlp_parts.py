@@ -40,6 +40,18 @@ def restricted(model: ca.Function, outputs) -> ca.Function:
                        list(model.name_in()), list(outputs))
 
 
+def partly_folded(model: ca.Function, p0, kept) -> ca.Function:
+    """The SX ``model`` (x, p, c) with its parameters other than ``kept`` (indices into p) fixed at ``p0``: a
+    Function (x, p_kept, c) in which CasADi has done the arithmetic on the fixed values once (a long route's sums
+    and minima are numbers, so its derivatives in the kept parameters no longer pass through every segment)."""
+    x, c = (ca.SX.sym(k, model.size1_in(k)) for k in ("x", "c"))
+    pk = ca.SX.sym("p", len(kept))
+    p = ca.SX(ca.DM(p0))
+    for j, i in enumerate(kept):
+        p[i] = pk[j]
+    return ca.Function(model.name(), [x, pk, c], model.call([x, p, c]), ["x", "p", "c"], model.name_out())
+
+
 def vector_model(fun: ca.Function, variables, params, free, given, outputs=None) -> ca.Function:
     """``fun`` (one scalar input per known) as a Function of three vectors: the design ``x`` (SI, in the order of
     ``variables``), the NLP's parameters ``p`` (``params``) and the case inputs ``c`` (``free``); the ``given``
@@ -76,3 +88,17 @@ def depends(model: ca.Function, checks, free) -> dict[str, tuple[str, ...]]:
         pattern = model.sparsity_jac("c", check) if free else None
         out[check] = tuple(k for j, k in enumerate(free) if pattern is not None and pattern.has_nz(0, j))
     return out
+
+
+def check_work(scene, where: list, spanned: int) -> None:
+    """The NLP's size on a route, every check at every load case it is built at (the places that can govern, of
+    ``spanned`` cases) through every segment, against its budget."""
+    from ropemodel import budget
+
+    segments = len(scene.route)
+    if segments:
+        kept = "" if len(where) == spanned else f" (the cases that can govern of {spanned})"
+        budget.check("route sizing", len(where) * segments,
+                     f"sizing on a route of {segments} segments checks every check at {len(where)} load cases{kept}, "
+                     f"each through the {segments} segments: an NLP of {len(where)} x {segments}",
+                     "join neighbouring segments of nearly the same inclination")

@@ -30,7 +30,7 @@ from functools import cached_property
 import casadi as ca
 import numpy as np
 
-from optimisation.nlp_parts import Ends, depends, nlp_outputs, restricted, vector_model
+from optimisation.nlp_parts import Ends, check_work, depends, nlp_outputs, partly_folded, restricted, vector_model
 from ropemodel.envelope import Envelope, LoadCase, envelope, free, load_cases
 from ropemodel.envelope.cases import distinct, joint_ends
 from ropemodel.envelope.prune import prune
@@ -94,20 +94,6 @@ def prepare(scene) -> Scene:
     return declaration(scene).prepare(scene)
 
 
-def _check_work(scene, where: list, spanned: int) -> None:
-    """The NLP's size on a route, every check at every load case it is built at (the places that can govern, of
-    ``spanned`` cases) through every segment, against its budget."""
-    from ropemodel import budget
-
-    segments = len(scene.route)
-    if segments:
-        kept = "" if len(where) == spanned else f" (the cases that can govern of {spanned})"
-        budget.check("route sizing", len(where) * segments,
-                     f"sizing on a route of {segments} segments checks every check at {len(where)} load cases{kept}, "
-                     f"each through the {segments} segments: an NLP of {len(where)} x {segments}",
-                     "join neighbouring segments of nearly the same inclination")
-
-
 def reads(scene: Scene) -> tuple[set[str], dict[str, str]]:
     """What the sizing of the (prepared) ``scene`` is computed from, and what it sets itself (name → how): its
     machine's sizing's ``reads`` (a winch: every check, the rope mass, the drive power, the load cases' places and
@@ -162,7 +148,7 @@ class SizingProblem:
         self.candidates = (prune(self.all_cases, scene.parameters, scene.built, weights) if prune_places
                            else self.all_cases)
         if not generate:
-            _check_work(scene, self.candidates, len(self.all_cases))    # before the model is compiled
+            check_work(scene, self.candidates, len(self.all_cases))    # before the model is compiled
         self.problem = Problem(scene, held, freed) if freed else Problem(scene)
         fun = self.problem.function
         self.params = [k for k in self.problem.knowns
@@ -171,16 +157,17 @@ class SizingProblem:
         self.F_ref = sizing.force_scale(scene)
         self.x_scale = sizing.x_scale(self.F_ref)
         self.xs, self.p = ca.MX.sym("x", len(self.variables)), ca.MX.sym("p", len(self.params))
-        self._args = self._knowns(self.p, self.xs * ca.DM(self.x_scale))
+        self._args = self.known_values(self.p, self.xs * ca.DM(self.x_scale))
         self.checks = self.machine.checks(self.problem.unknowns)
-        self._nlp_model = vector_model(fun, self.variables, self.params, self.free, self.problem.given,
-                                        nlp_outputs(fun.name_out(), self.checks, sizing, self._args))
+        #: the model the NLP's cases call, (x, p, c) -> its checks and outputs (:func:`~.nlp_parts.vector_model`)
+        self.nlp_model = vector_model(fun, self.variables, self.params, self.free, self.problem.given,
+                                      nlp_outputs(fun.name_out(), self.checks, sizing, self._args))
         unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
         q = scene.built.quantities
         #: each check's scale in the NLP (g = its NLP form over this)
         self.check_scale = {c: unit_scale[sizing.unit(c, q[c].unit)] for c in self.checks}
         #: the case inputs each check depends on (a check the same in every case is made once)
-        self.depends = depends(self._nlp_model, self.checks, self.free)
+        self.depends = depends(self.nlp_model, self.checks, self.free)
         self.cases = self.candidates
         if generate:
             from optimisation.generation import first_cases
@@ -196,7 +183,7 @@ class SizingProblem:
         first = float(np.asarray(xs, dtype=float).ravel()[0] * self.x_scale[0])
         return self.first_range[0] <= first <= self.first_range[1]
 
-    def _knowns(self, p, x_si) -> dict:
+    def known_values(self, p, x_si) -> dict:
         """Every known of the model by name: the parameters from ``p``, the design ``x_si`` (SI), a check held at 0
         where its dimension is a result."""
         args = dict(zip(self.params, ca.vertsplit(p) if self.params else []))     # one node, not one per parameter
@@ -220,8 +207,8 @@ class SizingProblem:
                   "_jac_folded"):
             self.__dict__.pop(k, None)
         sizing, xs, p = self.sizing, self.xs, self.p
-        self.constraints, self._g, self._margin_exprs, out, self._made = self._constraints(self._nlp_model, self._args,
-                                                                                           p)
+        self.constraints, self._g, self._margin_exprs, out, self._made = self.make_constraints(
+            self.nlp_model, self._args, p)
         self.units = {c: sizing.unit(c, self.scene.built.quantities[_base(c)].unit) for c in self.constraints}
         self.g_scale = np.array([self.check_scale[_base(c)] for c in self.constraints])
         self.g = ca.vertcat(*self._g) / ca.DM(self.g_scale)
@@ -242,7 +229,7 @@ class SizingProblem:
         return ca.Function("outputs", [self.xs, self.p], [every[n] for n in self.output_names],
                            ["x", "p"], self.output_names)
 
-    def _constraints(self, model, args, p, only=None, t=None) -> tuple[list, list, list, dict, list]:
+    def make_constraints(self, model, args, p, only=None, t=None) -> tuple[list, list, list, dict, list]:
         """Every check in every case it can differ in (a check that depends only on the manoeuvre once per
         manoeuvre, one that depends on neither once), or the (check, case index) pairs ``only``: their labels, the
         constraints g, the margins, the outputs at the first case and the pairs made.  The cases' places and
@@ -277,16 +264,26 @@ class SizingProblem:
         first = at[min(at)] if at else at_case(0)     # the objective: the same in every case
         return labels, g, exprs, first, made
 
-    def nlp_of(self, taken) -> tuple:
+    def nlp_of(self, taken, kept=None, p_kept=None) -> tuple:
         """(f, g_S) of the NLP (parametric) with the constraints S = ``taken`` (indices into :attr:`constraints`)
         alone, from a model of their checks alone: a route's least tensions, which the other checks need, are
-        then left out of the derivatives in the parameters (:mod:`optimisation.sensitivity`)."""
+        then left out of the derivatives in the parameters (:mod:`optimisation.sensitivity`).  ``kept`` (indices
+        into :attr:`params`): only those stay parameters (``p_kept``), the others folded in at ``p0``."""
         made = [self._made[i] for i in taken]
         checks = list(dict.fromkeys(c for c, _ in made))
-        model = restricted(self._nlp_model, nlp_outputs(self._nlp_model.name_out(), checks, self.sizing, self._args))
-        _, g, _, out, _ = self._constraints(model, self._args, self.p, only=made)
+        model = restricted(self.nlp_model, nlp_outputs(self.nlp_model.name_out(), checks, self.sizing, self._args))
+        p, args = self.p, self._args
+        if kept is not None:
+            model, p = partly_folded(model, self.p0, kept), p_kept
+            args = {**self._at_p0(), **{self.params[i]: p_kept[j] for j, i in enumerate(kept)}}
+        _, g, _, out, _ = self.make_constraints(model, args, p, only=made)
         g_s = ca.vertcat(*g) / ca.DM(self.g_scale[list(taken)]) if taken else ca.MX(0, 1)
         return self._objective(out[self.sizing.PRIMARY] / self.m_ref), g_s
+
+    def _at_p0(self) -> dict:
+        """Every known at the scene's parameters ``p0`` (floats), the design a symbol."""
+        args = self.known_values(ca.DM(self.p0), self.xs * ca.DM(self.x_scale))
+        return {k: float(v) if isinstance(v, ca.DM) else v for k, v in args.items()}
 
     def _ends(self, values, p):
         """The places' x_m (:func:`ropemodel.envelope.cases.joint_ends`): numbers where ``values`` are, else each
@@ -303,17 +300,15 @@ class SizingProblem:
         """The NLP (:meth:`nlp`) at the scene's parameters ``p0``, folded into its expressions, each case's place and
         acceleration too (a route's sums and minima are numbers; the NLP's ``p`` is still there, unused): what
         IPOPT solves when ``p`` is ``p0``, its derivatives no longer carrying every segment's parameters."""
-        if not self._nlp_model.is_a("SXFunction"):
+        if not self.nlp_model.is_a("SXFunction"):
             return self.nlp()
         model = self.folded_model()
-        x = ca.SX.sym("x", self._nlp_model.size1_in("x"))
+        x = ca.SX.sym("x", self.nlp_model.size1_in("x"))
 
         def case(c) -> ca.Function:
             return ca.Function("nlp_case", [x], model.call([x, ca.DM(ca.evalf(c))]), ["x"], model.name_out())
 
-        args = self._knowns(ca.DM(self.p0), self.xs * ca.DM(self.x_scale))
-        args = {k: float(v) if isinstance(v, ca.DM) else v for k, v in args.items()}
-        _, g, _, out, _ = self._constraints(case, args, self.p)
+        _, g, _, out, _ = self.make_constraints(case, self._at_p0(), self.p)
         self.__dict__["folded_primary"] = out[self.sizing.PRIMARY] / self.m_ref
         return self.nlp(f=self._objective(self.__dict__["folded_primary"]), g=ca.vertcat(*g) / ca.DM(self.g_scale))
 
@@ -321,10 +316,10 @@ class SizingProblem:
         """The NLP's model (:func:`~optimisation.nlp_parts.vector_model`) at the scene's parameters ``p0`` (SX,
         folded): a Function (x SI, c)."""
         if "_folded" not in self.__dict__:
-            x, c = (ca.SX.sym(k, self._nlp_model.size1_in(k)) for k in ("x", "c"))
+            x, c = (ca.SX.sym(k, self.nlp_model.size1_in(k)) for k in ("x", "c"))
             self.__dict__["_folded"] = ca.Function("nlp_model_p0", [x, c],
-                                                   self._nlp_model.call([x, ca.DM(self.p0), c]), ["x", "c"],
-                                                   self._nlp_model.name_out())
+                                                   self.nlp_model.call([x, ca.DM(self.p0), c]), ["x", "c"],
+                                                   self.nlp_model.name_out())
         return self.__dict__["_folded"]
 
     def _objective(self, primary):

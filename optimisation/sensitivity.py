@@ -46,30 +46,36 @@ def _kkt_x(problem: SizingProblem, folded: bool) -> ca.Function:
     return kept[folded]
 
 
-def _kkt_p(problem: SizingProblem, taken: tuple[int, ...]) -> ca.Function:
+def _kkt_p(problem: SizingProblem, taken: tuple[int, ...], kept: tuple[int, ...] | None = None) -> ca.Function:
     """(x, p, λ_S, w_x, w_S) → w_x ∂(∇_x L)/∂p + w_S ∂g_S/∂p, of the active constraints S = ``taken`` (an inactive
     one has neither a multiplier nor a weight; a static NLP's from a model of their checks alone,
     :meth:`SizingProblem.nlp_of`): the few rows of ∂x*/∂p wanted, one adjoint sweep per row (a route has thousands
-    of parameters: a Jacobian in them costs a forward sweep per colour)."""
-    kept = _KKT.setdefault(problem, {})
-    if taken not in kept:
-        n = problem.xs.numel()
-        if getattr(problem, "STATIC", False):
+    of parameters: a Jacobian in them costs a forward sweep per colour).  ``kept`` (indices into
+    ``problem.params``, a static NLP's): the derivatives in those parameters alone, the others folded in at
+    ``p0`` (:meth:`SizingProblem.nlp_of`); its ``p`` is then theirs."""
+    built = _KKT.setdefault(problem, {})
+    if (taken, kept) not in built:
+        n, p = problem.xs.numel(), problem.p
+        if kept is not None:
+            p = ca.MX.sym("p", len(kept))
+            f, g = problem.nlp_of(taken, kept, p)
+        elif getattr(problem, "STATIC", False):
             f, g = problem.nlp_of(taken)
         else:
             f, g = problem.f, problem.g[list(taken)] if taken else ca.MX(0, 1)
         lam, w_x, w_g = ca.MX.sym("lam", len(taken)), ca.MX.sym("w_x", n, n), ca.MX.sym("w_g", n, len(taken))
         lagrangian = f + ca.dot(lam, g)
         # row i: ∂/∂p of w_x,i ∇_x L (a forward derivative of L in x along w_x,i) + w_g,i g, by one adjoint sweep
-        rows = [ca.gradient(ca.jtimes(lagrangian, problem.xs, w_x[i, :].T) + ca.dot(w_g[i, :].T, g), problem.p).T
+        rows = [ca.gradient(ca.jtimes(lagrangian, problem.xs, w_x[i, :].T) + ca.dot(w_g[i, :].T, g), p).T
                 for i in range(n)]
-        kept[taken] = ca.Function("kkt_p", [problem.xs, problem.p, lam, w_x, w_g], [ca.vertcat(*rows)],
-                                  ["x", "p", "lam", "w_x", "w_g"], ["dW"])
-    return kept[taken]
+        built[(taken, kept)] = ca.Function("kkt_p", [problem.xs, p, lam, w_x, w_g], [ca.vertcat(*rows)],
+                                           ["x", "p", "lam", "w_x", "w_g"], ["dW"])
+    return built[(taken, kept)]
 
 
-def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, dict[str, float]]:
-    """∂{d, F_nwl, stroke}*/∂p_j in SI units for every scene parameter p_j.
+def sensitivities(problem: SizingProblem, sol: Solution, p=None, params=None) -> dict[str, dict[str, float]]:
+    """∂{d, F_nwl, stroke}*/∂p_j in SI units for every scene parameter p_j, or for those named in ``params``
+    (at the scene's parameters of a static NLP: the others are folded in, and no derivative in them is made).
 
     Returns ``{param: {"d": ∂d*/∂p, "F_nwl": ∂F_nwl*/∂p, "stroke": ∂stroke*/∂p}}``, or ``{}`` where the
     optimum is not regular (the KKT matrix is singular, e.g. a load G_m near 0 on which nothing
@@ -99,10 +105,15 @@ def sensitivities(problem: SizingProblem, sol: Solution, p=None) -> dict[str, di
     w_g = np.zeros((n, Jx.shape[0]))
     np.add.at(w_g.T, idx, Z[:, n:n + na].T)
     taken = tuple(sorted(set(idx)))
-    dW = np.asarray(_kkt_p(problem, taken)(x=sol.xs, p=p, lam=lam[list(taken)], w_x=Z[:, :n],
-                                           w_g=w_g[:, list(taken)])["dW"])
+    kept = None
+    if params is not None and folded and problem.nlp_model.is_a("SXFunction"):
+        wanted = set(params)
+        kept = tuple(j for j, name in enumerate(problem.params) if name in wanted)
+    dW = np.asarray(_kkt_p(problem, taken, kept)(x=sol.xs, p=p if kept is None else p[list(kept)],
+                                                 lam=lam[list(taken)], w_x=Z[:, :n], w_g=w_g[:, list(taken)])["dW"])
     dx = -dW * problem.x_scale[:, None]
     if not np.all(np.isfinite(dx)):
         return {}
-    return {name: {v: float(dx[i, j]) for i, v in enumerate(problem.variables)}
-            for j, name in enumerate(problem.params)}
+    names = problem.params if kept is None else [problem.params[j] for j in kept]
+    out = {name: {v: float(dx[i, j]) for i, v in enumerate(problem.variables)} for j, name in enumerate(names)}
+    return out if params is None else {k: v for k, v in out.items() if k in set(params)}

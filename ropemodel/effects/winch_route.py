@@ -21,7 +21,7 @@ from typing import NamedTuple
 
 import casadi as ca
 
-from ropemodel.effects.base import Equation, Submodel, register
+from ropemodel.effects.base import Equation, Submodel, Symbols, register
 from ropemodel.effects import domains as dom
 from ropemodel.effects.transient.travel import X_M, beyond_route
 from ropemodel.effects.winch import JUDGEMENT, MODEL, POSITIVE, ROPE_MU, SRC, Q, usual
@@ -122,13 +122,21 @@ class StraightRoute(Submodel):
 
 
 
+#: "L_1", "L_2", …: the segments' length names, made once (a route of 10 000 segments is read many times)
+_LENGTH_NAMES: list[str] = []
+
+
 def segment_lengths(values) -> list:
     """L_1, L_2, … of a route of segments, from a mapping of its values (none on a straight route)."""
-    out, i = [], 1
-    while f"L_{i}" in values:
-        out.append(values[f"L_{i}"])
-        i += 1
-    return out
+    global _LENGTH_NAMES
+    out: list = []
+    names = _LENGTH_NAMES
+    while True:
+        if len(out) == len(names):     # a longer list, each entry still "L_<its index + 1>" (threads share it)
+            names = _LENGTH_NAMES = [f"L_{i}" for i in range(1, 2 * len(out) + 2)]
+        if names[len(out)] not in values:
+            return out
+        out.append(values[names[len(out)]])
 
 
 @functools.lru_cache(maxsize=1 << 16)     # Quantity is frozen: a route of 10 000 segments declares them once
@@ -194,22 +202,32 @@ class SegmentedRoute(Submodel):
                              f"eq. (8), {src}"),
                     Equation("T_l2", v["T_l2"] - rt.rope_resistance_between(q, L, alpha, mu, 0.0, A),
                              f"eq. (9), {src}")]
+        # the load's segment's inclination α_j, looked up once for eq. (1), (5), (7) (each lookup passes every
+        # segment: on a long route, three would triple the work at each place of the load)
+        a_j = rt.at_position(x, L, alpha)
         return eqs + [
             Equation("L_u", v["L_u"] - rt.route_length(L), src),
-            Equation("G_ml", v["G_ml"] - rt.load_weight_along_route(G_m, x, L, alpha), f"eq. (1), {src}"),
+            Equation("G_ml", v["G_ml"] - kr.load_weight_along_incline(G_m, a_j), f"eq. (1), {src}"),
             Equation("G_l", v["G_l"] - rt.rope_weight_along_route(v["q_l"], L, alpha), f"eq. (2), {src}"),
-            Equation("G_mo", v["G_mo"] - rt.load_weight_normal_route(G_m, x, L, alpha), f"eq. (5), {src}"),
+            Equation("G_mo", v["G_mo"] - kr.load_weight_normal(G_m, a_j), f"eq. (5), {src}"),
             Equation("G_ls", v["G_ls"] - rt.rope_weight_along_route(v["q_l"], L, alpha), f"eq. (6), {src}"),
-            Equation("T_m", v["T_m"] - rt.load_resistance_route(v["mu_pm"], G_m, x, L, alpha), f"eq. (7), {src}"),
+            Equation("T_m", v["T_m"] - kr.load_resistance(v["mu_pm"], G_m, a_j), f"eq. (7), {src}"),
             Equation("T_l", v["T_l"] - rt.rope_resistance_along_route(v["q_l"], L, alpha, mu), f"eq. (10), {src}"),
             Equation("T_ls", v["T_ls"] - rt.rope_resistance_along_route(v["q_l"], L, alpha, [v["mu_pl"]] * n),
                      f"eq. (11), {src}"),
         ]
 
     def profile(self, v) -> Profile:
-        """The segments: L_i, α_i, μ_wi."""
+        """The segments: L_i, α_i, μ_wi; of the model's symbols (:class:`Symbols`), the same lists each time (their
+        columns are made once: :func:`ropemodel.papers.route_vector.column`)."""
+        kept = self.__dict__.get("_profile")
+        if kept is not None and kept[0] is v:
+            return kept[1]
         n = range(1, len(self.segments) + 1)
-        return Profile([v[f"L_{i}"] for i in n], [v[f"alpha_{i}"] for i in n], [v[f"mu_w{i}"] for i in n])
+        out = Profile([v[f"L_{i}"] for i in n], [v[f"alpha_{i}"] for i in n], [v[f"mu_w{i}"] for i in n])
+        if isinstance(v, Symbols):       # only ever grows: the lists stay the model's
+            self.__dict__["_profile"] = (v, out)
+        return out
 
     def transient_route(self, values: dict, numbers: dict):
         """The route as the transient's rope model asks it (:class:`ropemodel.effects.transient.route.Segments`):

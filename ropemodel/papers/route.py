@@ -53,7 +53,7 @@ def _vector(items):
     The symbolic forms keep q_l (and F_end) outside the sums over the route: with the route's values known (the
     scene's, folded in) each sum is one number, and the model's size in the rope and the pretension, which
     sizing varies, no longer grows with the segments."""
-    return ca.vertcat(*items) if _symbolic(*items) else None
+    return rv.column(items) if _symbolic(*items) else None
 
 
 def as_column(items):
@@ -145,8 +145,8 @@ def at_position(x, lengths, values):
     Symbolic, as vectors: with c_j = [x <= L_1 + … + L_j] (c_n = 1), rising once along the route, the value is
     Σ_j values[j] (c_j − c_{j−1}): exactly one term is the value itself, the others add zeros."""
     if len(values) > 1 and _symbolic(x, *lengths, *values):
-        L, v = ca.vertcat(*lengths), ca.vertcat(*values)
-        ends = ca.cumsum(L)[:-1]
+        v = rv.column(values)
+        ends = rv.ends(lengths)[:-1]
         inside = ca.vertcat(ends >= x, 1.0)                       # c_1 … c_n
         first = inside - ca.vertcat(0.0, inside[:-1])             # 1 on the load's segment only
         return _sum(first * v)
