@@ -125,3 +125,34 @@ def test_each_case_is_backed_off_by_its_own_need():
     assert mesh.backoffs(problem, found) == {"a": {"slip_margin_back": pytest.approx(1e-4 + 1.2 * 959.0 / 3e4)},
                                              "b": {"slip_margin_back": pytest.approx(1e-4 + 1.2 * 39.0 / 3e4)}}
     assert found.errors == {"slip_margin_back": 330.0} and found.coarse == {"slip_margin_back": 959.0}
+
+
+@pytest.mark.parametrize("p", [0.7, 1.0, 1.6])
+@pytest.mark.parametrize("C", [-2e4, 3e3])
+def test_the_error_from_the_coarser_meshes_is_a_power_laws_error(p, C):
+    """g(m) = g* + C m^-p on 8, 16, 32, 64: the error of g(32) from the coarser meshes (no 128) is |g(32) − g*|
+    exactly, at order p; the unsafe part is 0 where the margins rise (C < 0), all of it where they fall."""
+    g = _power_law(1e3, C, p, (8, 16, 32, 64))
+    e, order, unsafe = mesh.from_coarser(g, 32, 0, "slip_margin_back")
+    assert e == pytest.approx(abs(C) * 32 ** -p, rel=1e-9) and order == pytest.approx(p, rel=1e-9)
+    assert unsafe == (0.0 if C < 0 else e)
+    found = mesh.estimate(g, 32, {0: ["slip_margin_back"]}, ["case"])[("case", "slip_margin_back")]
+    assert found.error == pytest.approx(e, rel=1e-12) and found.order == pytest.approx(p, rel=1e-9)
+
+
+def test_the_coarser_meshes_must_show_the_asymptotic_range():
+    """No estimate from the coarser meshes (the finer mesh, 4n, is integrated instead) where the changes change
+    sign, where the order falls by more than P_DROP from one triple to the next, finer one, or where it is below
+    P_MIN; an order that rises is taken at the coarser triple's, the lower (a larger error)."""
+    def shape(values):
+        return {m: {0: {"c": v}} for m, v in zip((8, 16, 32, 64), values)}
+
+    assert mesh.from_coarser(shape([0.0, 8.0, 12.0, 11.0]), 32, 0, "c") is None       # changes change sign
+    assert mesh.from_coarser(shape([0.0, 8.0, 10.0, 10.9]), 32, 0, "c") is None       # order 2 then 1.15
+    assert mesh.from_coarser(shape([0.0, 4.0, 7.0, 9.5]), 32, 0, "c") is None         # order 0.26 below P_MIN
+    rising_order = shape([0.0, 8.0, 12.0, 13.0])                                       # orders 1 then 2
+    e, order, _ = mesh.from_coarser(rising_order, 32, 0, "c")
+    assert order == pytest.approx(1.0) and e == pytest.approx(1.0 / (1.0 - 0.5))
+    assert mesh.from_coarser(rising_order, 16, 0, "c") is None                       # no mesh 4 to compare
+    assert mesh.needs_finer(rising_order, 32, {0: ["c"]}, 1e3, {"c": "N"}) == {}
+    assert mesh.needs_finer(rising_order, 32, {0: ["c"]}, 1.0, {"c": "N"}) == {0: ["c"]}   # above the tolerance

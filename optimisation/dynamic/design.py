@@ -41,7 +41,7 @@ from optimisation.dynamic.refine import Refinement, solve_refined
 from optimisation.dynamic.scan import scan_box
 from optimisation.dynamic.start import DT_DENSE, factored_start, fallback_starts
 from optimisation.dynamic.transient import transient_effects_of
-from optimisation.dynamic.verify import by_manoeuvre, integrated, verify
+from optimisation.dynamic.verify import by_manoeuvre, integrated, verified
 from optimisation.infeasibility import diagnose
 from optimisation.problem import SizingProblem, load_sizing
 from ropemodel.errors import SolveError
@@ -100,7 +100,7 @@ class DynamicDesign(Design):
 def _checked(problem, xs, what: str, how=None) -> list:
     """The verdicts at ``xs`` in every case, of the hybrid simulator (:func:`verify`) or, ``how`` =
     :func:`integrated`, of the NLP's own integration at :data:`DT_DENSE`; a failure is an error."""
-    verdicts = verify(problem, xs) if how is None else how(problem, xs, DT_DENSE)
+    verdicts = verified(problem, xs) if how is None else how(problem, xs, DT_DENSE)
     bad = [f"{v.manoeuvre} at {v.where}: " + "; ".join(v.failures) for v in verdicts if not v.ok]
     if bad:
         by = "the hybrid simulator" if how is None else "the NLP's own integration"
@@ -294,7 +294,7 @@ def _catalogue(problem, sol, design: DynamicDesign, say) -> DynamicDesign:
         if prob.least_drum:
             design.least_drum = values["D"]
         design.message = (f"design found; every check holds through {prob.machine.manoeuvres.TEXT['all']} "
-                          "(verified by simulation)")
+                          "(verified by simulation where a check comes near its limit)")
         return design
     design.message = (f"no catalogue diameter from {d_star * 1e3:.4g} mm up keeps every check through the "
                       f"manoeuvres (the largest is {ropes.diameters()[-1] * 1e3:g} mm)")

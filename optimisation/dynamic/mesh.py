@@ -22,8 +22,11 @@ from the scene's ``segments`` up to n (cheap: no finer than the sizing's own), a
 least margin at n within :data:`~optimisation.dynamic.screen.SCREEN_TOL` of its limit, 5 % of the load's
 weight or 0.5 m of take-up, where it can govern; or within :data:`REACH` times its largest change from a coarser
 mesh, where an error or a coarser mesh could take it below its limit although it does not govern) — only those
-cases are integrated on 2n and 4n; the first n at which every such force check's E(n) is within the scene's
-``mesh_tol`` [N] is the mesh.  :func:`backoffs`: each check's back-off *in each case* is :data:`MARGIN` times
+cases are integrated on 2n, and on 4n only where the coarser meshes do not show the asymptotic range
+(:func:`from_coarser`: E(n) from n/4, n/2, n and 2n, the order of the finer triple not below the coarser one's by
+more than :data:`P_DROP`, taken at the lower of the two) or where their estimate of a force check is above the
+tolerance; the first n at which every such force check's E(n) is within the scene's ``mesh_tol`` [N] is the
+mesh.  :func:`backoffs`: each check's back-off *in each case* is :data:`MARGIN` times
 what its margin at n must keep (:attr:`CaseError.need`), plus the integration's
 :data:`~optimisation.dynamic.problem.BACKOFF`: the larger of the part of its E(n) on the unsafe side
 (:func:`unsafe_part`: all of it where the margins fall as the mesh is refined or show no steady trend, none
@@ -36,7 +39,9 @@ limit n → ∞, at every finer mesh while g(n) converges monotonically, and on 
 
 Measured on the three-segment route of issue 21 (8 elements a span; the mesh chosen, 32): the slip margin of
 the downward start with the load at 1550 m, the catalogue design's active check, went −948, −314, +11, +176 N
-at 8, 16, 32, 64 elements (rising: E(32) on the unsafe side 0).  Backed off only by its unsafe part, the design
+at 8, 16, 32, 64 elements (rising: E(32) on the unsafe side 0; orders 0.96 and 0.98 from 8-16-32 and 16-32-64,
+the asymptotic range: its 128 elements, a third of the sizing's time when every estimate integrated them, are
+not needed).  Backed off only by its unsafe part, the design
 held at 32 elements and in the limit but not with 16, twice the scene's: the coarser meshes' judgement is
 now part of each case's back-off.  Per case, because one check's error differs by orders of magnitude between
 places (the same check at the return sheave: 39 N).  On the test scene: the slip margins rise as the mesh is
@@ -67,6 +72,11 @@ MARGIN = 1.2
 #: 1/(1 − 2^(−P_MIN)) = 3.41 times the next change, times :data:`MARGIN`), nor does a coarser mesh judge it below
 #: its limit.  Where it is further off, no error this control could find reaches its limit
 REACH = MARGIN / (1.0 - 2.0 ** -P_MIN)
+#: the order of convergence may fall this much from one triple of meshes to the next, finer, one for the error to
+#: be estimated from the coarser meshes (:func:`from_coarser`): an order still falling that fast past n makes
+#: E(n) at most a few per cent larger than the estimate (at p = 1, 1/(1 − 2^−0.9) against 1/(1 − 2^−1): 7 %),
+#: within :data:`MARGIN`
+P_DROP = 0.1
 #: the finest mesh :func:`control` compares with (elements per span; ``[numerics] segments`` allows 400)
 SEGMENTS_MAX = 256
 #: re-solves of :func:`converge`
@@ -213,16 +223,65 @@ def within_reach(g: dict, n: int, limits: dict[str, float]) -> dict[int, list[st
     return out
 
 
+def from_coarser(g: dict, n: int, i: int, check: str) -> tuple[float, float, float] | None:
+    """(E(n), p, unsafe part) of ``check`` in case ``i`` from the meshes n/4, n/2, n and 2n of ``g`` (no 4n), or
+    None when they do not show the asymptotic range.  They show it when the three changes have one sign and the
+    order of the finer triple, p(n/2, n, 2n), is at least :data:`P_MIN` and not below the coarser triple's,
+    p(n/4, n/2, n), by more than :data:`P_DROP`; then E(n) = |g(n) − g(2n)| / (1 − 2^(−p)) with p the lower of
+    the two (clipped at :data:`P_MAX`) — the same change as Richardson's from n, 2n, 4n (:func:`richardson`), at
+    an order that is, with the order rising as the mesh is refined (the usual approach to the asymptotic range),
+    less than the finest triple would show, so a larger error.  The unsafe part is 0 where the margins rise
+    steadily (all three changes), else E(n)."""
+    meshes = (n // 4, n // 2, n, 2 * n)
+    if n % 4 or any(i not in g.get(m, {}) or check not in g[m][i] for m in meshes):
+        return None
+    v = [g[m][i][check] for m in meshes]
+    d = [v[k] - v[k + 1] for k in range(3)]
+    if not (all(x > 0.0 for x in d) or all(x < 0.0 for x in d)):
+        return None
+    p_coarse, p_fine = math.log2(d[0] / d[1]), math.log2(d[1] / d[2])
+    if p_fine < P_MIN or p_fine < p_coarse - P_DROP:
+        return None
+    p = min(p_coarse, p_fine, P_MAX)
+    e = abs(d[2]) / (1.0 - 2.0 ** -p)
+    return e, p, (0.0 if d[2] < 0.0 else e)
+
+
 def estimate(g: dict, n: int, near: dict[int, list[str]], tags: list[str]) -> dict:
     """(case tag, check) → :class:`CaseError` at ``n`` for each case's checks in ``near``, from ``g`` (mesh →
-    case → check → least margin, SI: ``near``'s cases on n, 2n, 4n, every case on the coarser meshes)."""
+    case → check → least margin, SI: ``near``'s cases on n and 2n, every case on the coarser meshes): from n, 2n
+    and 4n (:func:`richardson`, :func:`unsafe_part`) where ``g`` has the case on 4n, else from the coarser meshes
+    (:func:`from_coarser`)."""
     out = {}
     for i, checks in near.items():
         for check in checks:
-            three = (g[n][i][check], g[2 * n][i][check], g[4 * n][i][check])
-            e, p = richardson(*three)
-            coarse = max((three[0] - g[m][i][check] for m in g if m < n), default=0.0)
-            out[(tags[i], check)] = CaseError(three[0], e, p, unsafe_part(*three), max(coarse, 0.0))
+            g_n = g[n][i][check]
+            if i in g.get(4 * n, {}):
+                three = (g_n, g[2 * n][i][check], g[4 * n][i][check])
+                e, p = richardson(*three)
+                unsafe = unsafe_part(*three)
+            else:
+                found = from_coarser(g, n, i, check)
+                if found is None:
+                    raise ValueError(f"case {tags[i]}: {check} needs {4 * n} elements per span to be estimated")
+                e, p, unsafe = found
+            coarse = max((g_n - g[m][i][check] for m in g if m < n), default=0.0)
+            out[(tags[i], check)] = CaseError(g_n, e, p, unsafe, max(coarse, 0.0))
+    return out
+
+
+def needs_finer(g: dict, n: int, near: dict[int, list[str]], tol: float, units: dict[str, str]) -> dict:
+    """The cases of ``near`` (case → checks) to integrate on 4n: those where some check's margins on the coarser
+    meshes do not show the asymptotic range (:func:`from_coarser`), or where a force check's estimate from them
+    is above ``tol`` [N] (the sharper order of the finest triple may bring it within: the mesh is not refined on
+    the coarser estimate alone)."""
+    out = {}
+    for i, checks in near.items():
+        for check in checks:
+            found = from_coarser(g, n, i, check)
+            if found is None or (units[check] == "N" and found[0] > tol):
+                out[i] = checks
+                break
     return out
 
 
@@ -249,8 +308,8 @@ def control(problem, xs, p=None, say=None, coarsest: int | None = None) -> MeshE
     while True:
         _measure(problem, xs, p, g, n, every, say)
         near = within_reach(g, n, limits)
-        for m in (2 * n, 4 * n):        # the finer meshes only in the cases within reach (all estimate reads)
-            _measure(problem, xs, p, g, m, near, say)
+        _measure(problem, xs, p, g, 2 * n, near, say)   # the finer meshes only in the cases within reach
+        _measure(problem, xs, p, g, 4 * n, needs_finer(g, n, near, tol, units), say)
         found = estimate(g, n, near, tags)
         force = max((e.error for (_, c), e in found.items() if units[c] == "N"), default=0.0)
         levels.append({"segments": n, "largest_force_error": force})

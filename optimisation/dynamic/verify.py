@@ -20,11 +20,24 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from optimisation.dynamic.manoeuvres import declared, manoeuvre_scene, sides
+from optimisation.dynamic.problem import BACKOFF
+from optimisation.dynamic.start import DT_DENSE
 from optimisation.problem import declaration
 from ropemodel.dynamics import simulate
 
 SIM_RTOL = 1e-10
 SIM_DT = 1e-3
+#: what judged a case (:attr:`Verdict.by`)
+SIMULATED, INTEGRATED = "simulation", "the NLP's integration at the same mesh"
+#: the largest difference (scaled: 0.05 % of the load's weight for a force, 5 mm of take-up) between the
+#: simulator's and the NLP's integration's least margins in the simulated cases that lets :func:`verified` leave
+#: the others to the integration: 50 times the integration's back-off :data:`~optimisation.dynamic.problem.BACKOFF`,
+#: more than a hundred times what they differ by on the Fig. 9 manoeuvres (0.2 N of ~25 kN, at rtol 1e-10 both,
+#: and up to 4 N from reading the integration every 0.01 s)
+AGREE = 50 * BACKOFF
+#: a case is left to the NLP's integration (:func:`verified`) only where every check keeps at least this scaled
+#: margin there (0.5 % of the load's weight for a force, 5 cm of take-up): ten times :data:`AGREE`
+EXEMPT = 10 * AGREE
 
 
 @dataclass
@@ -48,10 +61,14 @@ class Verdict:
     sides: dict = field(default_factory=dict)
     #: peak → ``max`` or ``min``, which of two values is the worse (the machine's ``PEAKS``)
     worst: dict = field(default_factory=dict, repr=False)
+    #: (effect, its modes) of each part of the simulated transient (empty: not simulated)
+    parts: tuple = field(default=(), repr=False)
+    #: what judged the case: :data:`SIMULATED` or :data:`INTEGRATED`
+    by: str = SIMULATED
 
     def to_dict(self) -> dict:
         return {"manoeuvre": self.manoeuvre, "x_m": self.x_m, "where": self.where, "in_nlp": self.in_nlp,
-                "ok": self.ok, "failures": self.failures,
+                "ok": self.ok, "failures": self.failures, "judged_by": self.by,
                 "least_margins": {k: {"margin": v, "t": t, **self.sides.get(k, {})}
                                   for k, (v, t) in self.least.items()},
                 "peaks": self.peaks}
@@ -66,15 +83,16 @@ def simulation_scene(scene, manoeuvre, design: dict, values: dict | None = None)
     return dataclasses.replace(sc, numerics={**sc.numerics, "sim_rtol": SIM_RTOL, "sim_dt": SIM_DT})
 
 
-def verify(problem, xs, values: dict | None = None) -> list[Verdict]:
-    """Simulate every case of ``problem`` (each manoeuvre, the load at each candidate position) at scaled
-    design ``xs`` (``values``: SI parameters that replace the scene's) and judge every check
-    (:data:`~ropemodel.machines.winch.manoeuvres.CHECKS`)."""
+def verify(problem, xs, values: dict | None = None, which=None) -> list[Verdict]:
+    """Simulate every case of ``problem`` (each manoeuvre, the load at each candidate position; ``which``: these
+    indices only) at scaled design ``xs`` (``values``: SI parameters that replace the scene's) and judge every
+    check (:data:`~ropemodel.machines.winch.manoeuvres.CHECKS`)."""
     design = problem.to_si(xs)
     p = problem.p_of(values or {})
     a = {k: float(v) for k, v in problem.values(np.asarray(xs, float) * problem.x_scale, p).items()}
-    return [verdict(simulate(simulation_scene(problem.scene, m, design, values)), m, a, problem.F_ref,
-                    i in problem.selected) for i, m in enumerate(problem.cases)]
+    which = range(len(problem.cases)) if which is None else which
+    return [verdict(simulate(simulation_scene(problem.scene, problem.cases[i], design, values)), problem.cases[i], a,
+                    problem.F_ref, i in problem.selected) for i in which]
 
 
 def verdict(sim, manoeuvre, a: dict, F_ref: float, in_nlp: bool = True) -> Verdict:
@@ -102,13 +120,64 @@ def verdict(sim, manoeuvre, a: dict, F_ref: float, in_nlp: bool = True) -> Verdi
         if series[i] < 0:
             out.failures.append(f"{name} {series[i]:.6g} at t = {t[i]:.4f} s")
     out.peaks, out.worst = machine.peaks(sim), dict(machine.PEAKS)
+    out.parts = tuple((part.effect, tuple(part.modes())) for part in sim.system.parts)
     out.ok = not out.failures
     return out
 
 
+def to_simulate(integ: list[Verdict]) -> list[int]:
+    """The cases (indices) the hybrid simulator judges in :func:`verified`, from ``integ`` (every case as the
+    NLP integrates it, :func:`integrated`): in each manoeuvre, each check's least place, and every case where
+    some check's least scaled margin is below :data:`EXEMPT`."""
+    out = {i for i, v in enumerate(integ) if min(v.scaled.values(), default=-np.inf) < EXEMPT}
+    for label in dict.fromkeys(v.manoeuvre for v in integ):
+        mine = [i for i, v in enumerate(integ) if v.manoeuvre == label]
+        for check in dict.fromkeys(c for i in mine for c in integ[i].scaled):
+            out.add(min((i for i in mine if check in integ[i].scaled), key=lambda i: integ[i].scaled[check]))
+    return sorted(out)
+
+
+def disagreement(simulated: list[Verdict], integ: list[Verdict]) -> float:
+    """The largest difference (scaled) between the least margin of a check in a case as the hybrid simulator
+    judges it and as the NLP integrates it (``integ``: the same cases, in the same order)."""
+    return max((abs(s.scaled[c] - v.scaled[c]) for s, v in zip(simulated, integ) for c in s.scaled if c in v.scaled),
+               default=np.inf)
+
+
+def verified(problem, xs) -> list[Verdict]:
+    """Every case of ``problem`` at scaled design ``xs`` judged, the cases within reach of a limit by the hybrid
+    simulator (:func:`verify`), the others by the NLP's own integration at the same mesh and tolerance
+    (:func:`integrated` every :data:`~optimisation.dynamic.start.DT_DENSE`: a check's least value between
+    samples missed by at most |g''| dt²/8, 4 N for the Fig. 9 rope force, far inside :data:`EXEMPT`), each
+    verdict saying which (``by``).
+
+    Every case is integrated by the NLP's integrator first (a fraction of one simulation each: no events, no
+    history).  The simulator then judges, in each manoeuvre, each check's least place and every case where some
+    check's least scaled margin is within :data:`EXEMPT` of its limit (:func:`to_simulate`).  A case is left to
+    the integration only when (1) every check keeps at least :data:`EXEMPT` there, (2) the two agree in every
+    simulated case to within :data:`AGREE` on every check's least margin (one tenth of what the cases left out
+    keep), and (3) every part of the transient that can leave its smooth mode is one a check keeps in it (the
+    machine's ``CHECKED_MODES``: with the margins kept, the simulation stays in the smooth mode the NLP
+    integrates).  Else every case is simulated.  The peaks (the machine's ``PEAKS``) of a case left to the
+    integration are read from it (every DT_DENSE: a peak between samples missed by a few N); each check's least
+    place is simulated, so the worst peak of a manoeuvre that a check bounds is the simulator's."""
+    integ = integrated(problem, xs, DT_DENSE)
+    first = to_simulate(integ)
+    simulated = dict(zip(first, verify(problem, xs, which=first)))
+    parts = next(iter(simulated.values())).parts if simulated else ()
+    kept = set(getattr(declared(problem.scene), "CHECKED_MODES", ()))
+    trusted = (disagreement(list(simulated.values()), [integ[i] for i in first]) <= AGREE
+               and all(len(modes) == 1 or effect in kept for effect, modes in parts))
+    rest = [i for i in range(len(problem.cases)) if i not in simulated]
+    if not trusted:
+        simulated.update(zip(rest, verify(problem, xs, which=rest)))
+    return [simulated.get(i, integ[i]) for i in range(len(problem.cases))]
+
+
 def integrated(problem, xs, dt: float) -> list[Verdict]:
     """Every case of ``problem`` at scaled design ``xs`` as the sizing NLP integrates it (its own integrator at
-    its own mesh, read every ``dt`` [s] and at each phase's ends; no simulator, no events, no peaks): the record
+    its own mesh, read every ``dt`` [s] and at each phase's ends; no simulator, no events; the peaks the machine
+    reads of an integration, ``integration_peaks``): the record
     of a design the answer reports but does not return, the continuous optimum, whose checks the NLP already
     holds between its grid points (:mod:`optimisation.dynamic.refine`) — the hybrid simulator verifies the
     catalogue design the answer returns, the same NLP's work one catalogue size up."""
@@ -121,7 +190,7 @@ def integrated(problem, xs, dt: float) -> list[Verdict]:
         t, o, _ = path.samples(pp, path.uniform_grid(pp, dt))
         # a tension's least over the elements (an inextensible rope has none: no tension to check through a manoeuvre)
         o = {k: np.min(np.atleast_2d(v), axis=0) for k, v in o.items() if np.size(v)}
-        v = Verdict(m.label, m.x_m, m.where, i in problem.selected, True)
+        v = Verdict(m.label, m.x_m, m.where, i in problem.selected, True, by=INTEGRATED)
         for c in path.checks:
             series = np.asarray(c.margin(o, a), float).ravel()
             j = int(np.argmin(series))
@@ -130,6 +199,8 @@ def integrated(problem, xs, dt: float) -> list[Verdict]:
             v.scaled[c.name] = float(np.min(np.asarray(c.nlp(o, a), float))) / (problem.F_ref if c.unit == "N" else 1.0)
             if series[j] < 0:
                 v.failures.append(f"{c.name} {series[j]:.6g} at t = {t[j]:.4f} s")
+        if (peaks_of := getattr(machine, "integration_peaks", None)) is not None:
+            v.peaks, v.worst = peaks_of(problem, m, xs, p, t, o), dict(machine.PEAKS)
         v.ok = not v.failures
         out.append(v)
     return out
@@ -154,9 +225,9 @@ def by_manoeuvre(verdicts) -> list[dict]:
             v = min((v for v in mine if name in v.least), key=lambda v: v.least[name][0])
             least[name] = {"margin": v.least[name][0], "t": v.least[name][1], "x_m": v.x_m, "where": v.where,
                            **v.sides.get(name, {})}
-        peaks = {}
-        for key, pick in mine[0].worst.items():
-            v = pick(mine, key=lambda v: v.peaks[key])
+        peaks, seen = {}, [v for v in mine if v.peaks]       # those with peaks
+        for key, pick in (seen[0].worst if seen else {}).items():
+            v = pick(seen, key=lambda v: v.peaks[key])
             peaks[key], peaks[f"x_m_{key}"] = v.peaks[key], v.x_m
         out.append({"manoeuvre": label, "ok": all(v.ok for v in mine), "x_m": worst.x_m, "where": worst.where,
                     "least_margins": least, "peaks": peaks,

@@ -35,6 +35,11 @@ from ropemodel.machines.base import ManoeuvreCheck as Check
 ORDER = (("start", "up"), ("stop", "up"), ("start", "down"), ("stop", "down"))
 #: the simulator's events that leave the smooth mode
 EVENTS = ("slip_fwd", "slip_back", "stroke_end", "stroke_start", "slack", "torque_limit")
+#: the parts of the transient whose leaving the smooth mode a check through the manoeuvre keeps from happening
+#: while it holds: the drum contact's slip (the slip checks, rho F_slack >= n_slip_dynamic F_tight, n_slip_dynamic
+#: >= 1) and the tensioner's stops (the stroke check); a torque-limited drive's limit has no check
+#: (:func:`optimisation.dynamic.verify.verified` simulates every case of a transient with another such part)
+CHECKED_MODES = ("drum_contact", "tensioner")
 #: what ``size --dynamic`` does, in words
 OBJECTIVE = "rope, pretension and stroke through four manoeuvres"
 #: the manoeuvres in words: ``all`` of them (the progress and the verdict), what they are (``kinds``: ``size
@@ -161,6 +166,19 @@ def peaks(sim) -> dict:
     t = h["t [s]"].to_numpy()
     return {"F_C_max": s["F_C_max"], "F_S_min": s["F_S_min"], "take_up_max": float(h["take_up [m]"].max()),
             "dynamic_factor": s["dynamic_factor"], "t_F_C_max": float(t[int(np.argmax(h["F_C [N]"]))])}
+
+
+def integration_peaks(problem, case, xs, p, t, o) -> dict:
+    """:func:`peaks` of ``case`` (a manoeuvre at a place) read from the sizing NLP's integration of it at scaled
+    design ``xs`` and parameters ``p`` (``t`` [s] and ``o``, its samples: one row each, a tension's least over the
+    elements), for a case the hybrid simulator does not judge (:func:`optimisation.dynamic.verify.verified`); the
+    dynamic factor against the steady force at the load's place (the NLP's static model, as the simulator's)."""
+    i = int(np.argmax(o["F_C"]))
+    F_C_static = problem.static_at(xs, p, case.x_m)[f"F_C_{case.travel}"]
+    return {"F_C_max": float(o["F_C"][i]), "F_S_min": float(np.min(o["F_S"])),
+            # an inextensible rope: the carriage does not move
+            "take_up_max": float(np.max(o["take_up"])) if "take_up" in o else 0.0,
+            "dynamic_factor": float(o["F_C"][i]) / F_C_static, "t_F_C_max": float(t[i])}
 
 
 def peak_text(pk: dict) -> str:
