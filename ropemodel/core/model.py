@@ -7,7 +7,7 @@ from functools import cached_property
 import casadi as ca
 
 from ropemodel.citations import cite
-from ropemodel.effects import Equation, Symbols, all_quantities, effects_of, misplaced, resolve_effects
+from ropemodel.effects import Equation, Symbols, all_quantities, effects_of, misplaced, resolve_effects, route_arrays
 from ropemodel.errors import InputError, suggest
 from ropemodel.quantity import Quantity
 
@@ -137,6 +137,10 @@ class Model:
         """Why ``name`` is not a quantity of this model (a suggestion, or the variant that uses it), or None."""
         if name in self.symbols:
             return None
+        segments = self.options.get("route")
+        past_the_end = route_arrays.beyond(name, len(segments)) if segments else None
+        if past_the_end:       # a segment beyond the route: the valid names, not a lookalike
+            return f"{what} {past_the_end}"
         if name in self.universe:
             owners = self.owners(name)
             hint = f"; it belongs to {' or '.join(owners)}" if owners else ""

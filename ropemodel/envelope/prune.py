@@ -10,9 +10,10 @@ place enters the winch's equations in two ways only (docs/physics.md §4, "Where
 * the least tension of the winding rope along the route (:func:`ropemodel.papers.route.least_rope_tension`)
   with the load at the end x_p of its segment is F_nwl/2 + min(J_p + q_l A_p, q_l B_p), with G_k = Σ_{i>k}
   L_i g_i the rise of the unloaded side from the return sheave to joint k (g_i :func:`rope_gradient`),
-  A_p = min_{1<=k<=p} G_k and B_p = min_{p<=k<n} G_k.  B_p is least at the drive (p = 0) whatever q_l; the
-  least of J_p + q_l A_p over p, for any q_l > 0, is at a vertex of the lower convex hull of the points
-  (A_p, J_p) between the least A and the least J (a supporting line of slope −q_l).
+  A_p = min_{1<=k<=p} G_k and B_p = min_{p<=k<n} G_k (the route's tables,
+  :func:`ropemodel.papers.route_tables.tables`: G_k, and A_p their running minimum P_p).  B_p is least at the
+  drive (p = 0) whatever q_l; the least of J_p + q_l A_p over p, for any q_l > 0, is at a vertex of the lower
+  convex hull of the points (A_p, J_p) between the least A and the least J (a supporting line of slope −q_l).
 
 The places kept (for every direction and manoeuvre of the cases) are these, and the route's two ends.  None
 of them depends on q_l or F_nwl, so the pruned list holds for every rope and pretension a sizing tries; it
@@ -26,9 +27,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ropemodel.effects.winch_route import segment_lengths
+from ropemodel.effects.route_arrays import RouteArrays
 from ropemodel.envelope.cases import LoadCase
 from ropemodel.papers.route import G_N
+from ropemodel.papers.route_tables import WAYS, tables
 
 #: below this many places, every place is kept (nothing to gain)
 MIN_PLACES = 8
@@ -38,19 +40,16 @@ def governing_places(params, accelerations, weights=(0.0, np.inf)) -> set[int]:
     """Joints (0 = the drive, k = the end of segment k) where the load can govern, for each acceleration a
     [m/s²] in ``accelerations`` and both directions (see the module docstring), for every rope weight q_l in
     ``weights`` [N/m] (low, high; default every q_l > 0).  ``params``: SI floats."""
-    L = np.asarray(segment_lengths(params), dtype=float)
-    n = len(L)
-    alpha = np.array([params[f"alpha_{i}"] for i in range(1, n + 1)], dtype=float)
-    mu = np.array([params.get(f"mu_w{i}", params["mu_pl"]) for i in range(1, n + 1)], dtype=float)
+    segments = RouteArrays.from_values(params)
+    n = segments.n
     seg = np.concatenate([[0], np.arange(n)])          # the load's segment at each place (0-based)
     keep = {0, n}
     for a in accelerations:
-        for s in (1.0, -1.0):
-            J = params["G_m"] * (np.sin(alpha) + s * (params["mu_pm"] * np.cos(alpha) + a / G_N))[seg]
+        route = tables(segments.L, segments.alpha, segments.mu_w, params["mu_pl"], a)
+        for way, s in WAYS:
+            J = params["G_m"] * (route["sin"] + s * (params["mu_pm"] * route["cos"] + a / G_N))[seg]
             keep |= {int(np.argmax(J)), int(np.argmin(J))}
-            g = np.sin(alpha) + s * (mu * np.cos(alpha) + a / G_N)
-            G = np.concatenate([np.cumsum((L * g)[::-1])[::-1], [0.0]])     # G_0 … G_n
-            A = np.concatenate([[np.inf], np.minimum.accumulate(G[1:])])     # A_0 = ∞: no loaded term at the drive
+            A = np.concatenate([[np.inf], route[f"P_{way}"]])  # A_0 = ∞: no loaded term at the drive
             keep |= _hull_toward_least(A, J, *weights)
     return keep
 

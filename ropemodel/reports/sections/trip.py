@@ -11,6 +11,7 @@ import math
 
 from ropemodel.reports import figures, page
 from ropemodel.reports.registry import section
+from ropemodel.effects.route_arrays import RouteArrays
 from ropemodel.machines import machine_of
 
 #: summary key → (label, unit shown, factor from SI), then the keys the machine adds (its ``trips.ROWS``); the
@@ -78,14 +79,11 @@ def trip(ctx):
 
 def _profile(ctx):
     """The route's profile (height against distance from the drive) as an SVG URI; None for one incline."""
-    n = len(ctx.scene.route)
-    if not n:
+    if not ctx.scene.route:
         return None
-    p = ctx.point.parameters
-    lengths = [p[f"L_{i + 1}"] for i in range(n)]
-    slopes = [p[f"alpha_{i + 1}"] for i in range(n)]
+    segments = RouteArrays.from_values(ctx.point.parameters)
     xs, hs = [0.0], [0.0]
-    for length, a in zip(lengths, slopes):
+    for length, a in zip(segments.L.tolist(), segments.alpha.tolist()):
         xs.append(xs[-1] + length * math.cos(a))
         hs.append(hs[-1] - length * math.sin(a))   # the route falls away from the drive toward the return sheave
     fig = figures.new_figure(figures.WIDTH, 2.2)
