@@ -340,10 +340,10 @@ def from_dict(data: dict, source: str | None = None, *, bare: str = "refuse", op
             if key not in universe:
                 found.add(f"unknown parameter {key!r}{suggest(key, universe)}")
         found.raise_if_any()
-    route, route_values = tables.read_route(data, effects, given, found, tables.scene_folder(source))
+    route, route_values, route_si = tables.read_route(data, effects, given, found, tables.scene_folder(source))
     model = Model(model_name, effects, tables.options(numerics, route, "L_ul" in given))
     params, checks, unused, origin, kept = tables.read_parameters(model, given, bare, found, notes)
-    tables.route_parameters(model, route_values, bare, params, origin, found)
+    tables.route_parameters(model, route_values, route_si, bare, params, origin, found)
     if values:
         tables.set_values(model, values, values_bare, values_origin, params, origin, unused, found, notes, kept)
     rules = rules_apply.read_rules(data, model, params, origin, given, found)

@@ -20,7 +20,7 @@ from importlib import resources
 from pathlib import Path
 
 from ropemodel.core.model import Model
-from ropemodel.effects import effects_of, misplaced, models, numerics_of
+from ropemodel.effects import effects_of, misplaced, models, numerics_of, route_arrays
 from ropemodel.errors import InputError, Problems, suggest
 from ropemodel.scene_profile import read_profile
 from ropemodel.units import last_digit, split_value, to_si
@@ -30,7 +30,7 @@ TABLES = ("scene", "effects", "parameters", "numerics", "route", "route_profile"
 ROUTE_KEYS = {"length": "L_{i}", "inclination": "alpha_{i}", "mu_winding": "mu_w{i}"}
 SCENE_KEYS = ("name", "model", "description")
 #: a route whose segments could not be read (the problem is said): one segment, not "missing" again
-UNREAD_ROUTE: tuple = ((False,), {"L_1": (None, None), "alpha_1": (None, None)})
+UNREAD_ROUTE: tuple = ((False,), {"L_1": (None, None), "alpha_1": (None, None)}, {})
 
 @dataclass(frozen=True)
 class Check:
@@ -60,7 +60,8 @@ def options(numerics: dict, route: tuple, point_A: bool = False) -> dict:
 
 def read_route(data: dict, effects: dict, given: dict, found: Problems, base: Path | None = None):
     """The ``[[route]]`` segments, or those of the ``[route_profile]`` file (relative to ``base``, the scene
-    file's folder): (structure, {parameter name: value as typed, with the segment's label})."""
+    file's folder): (structure, {parameter name: (the segment's label, value as typed)}, {parameter name: SI
+    value}: a profile's, read with the units of its columns)."""
     segments, profile = data.get("route"), data.get("route_profile")
     wanted = effects.get("route") == "segments"
     if segments is None and profile is None:
@@ -68,11 +69,11 @@ def read_route(data: dict, effects: dict, given: dict, found: Problems, base: Pa
             found.add('route = "segments" needs the segments: one [[route]] table each, listed from the drive, '
                       'with length and inclination (e.g. length = "400 m", inclination = "22 deg"), or a '
                       '[route_profile] file = "profile.csv"')
-        return (), {}
+        return (), {}, {}
     if not wanted:
         given_as = "[[route]] segments are" if profile is None else "[route_profile] is"
         found.add(f'{given_as} given but the route effect is "straight": set [effects] route = "segments"')
-        return (), {}
+        return (), {}, {}
     if profile is not None:
         if segments is not None:
             found.add("[[route]] segments and a [route_profile] are both given: keep one of them")
@@ -81,7 +82,7 @@ def read_route(data: dict, effects: dict, given: dict, found: Problems, base: Pa
     if not isinstance(segments, list) or not segments or not all(isinstance(s, dict) for s in segments):
         found.add("[[route]] must be a list of tables, one per segment (write [[route]] before each segment); "
                   "an empty route has no segment")
-        return (), {}
+        return (), {}, {}
     _no_L_u(given, found)
     values: dict[str, tuple[str | None, object]] = {}     # name -> (label, value)
     for i, seg in enumerate(segments, start=1):
@@ -96,7 +97,7 @@ def read_route(data: dict, effects: dict, given: dict, found: Problems, base: Pa
                 found.add(f"[[route]] segment {i} has no {key} (e.g. {key} = "
                           f"{chr(34)}{'400 m' if key == 'length' else '10 deg'}{chr(34)})")
                 values[ROUTE_KEYS[key].format(i=i)] = (None, None)   # said: not "missing" again
-    return tuple("mu_winding" in seg for seg in segments), values
+    return tuple("mu_winding" in seg for seg in segments), values, {}
 
 
 def scene_folder(source: str | None) -> Path | None:
@@ -124,17 +125,18 @@ def _profile_route(table, given: dict, found: Problems, base: Path | None):
     _no_L_u(given, found)
     path = Path(table["file"]).expanduser()
     lengths, angles = read_profile(path if path.is_absolute() or base is None else base / path, found)
-    if not lengths:
+    if not lengths.size:
         return UNREAD_ROUTE
-    values: dict[str, tuple[str | None, object]] = {}
-    for i, (length, angle) in enumerate(zip(lengths, angles), start=1):
-        label = f"[route_profile] segment {i}"
-        values[f"L_{i}"] = (f"{label}: length", f"{length!r} m")
-        values[f"alpha_{i}"] = (f"{label}: inclination", f"{angle!r} rad")
-    return (False,) * len(lengths), values
+    pairs = zip(lengths.tolist(), angles.tolist())       # SI floats, segment by segment as [[route]] gives them
+    si = {route_arrays.name(f, i): v for i, pair in enumerate(pairs) for f, v in zip(("L", "alpha"), pair)}
+    return (False,) * lengths.size, {}, si
 
 
-def route_parameters(model: Model, values: dict, bare: str, params: dict, origin: dict, found: Problems) -> None:
+def route_parameters(model: Model, values: dict, si: dict, bare: str, params: dict, origin: dict,
+                     found: Problems) -> None:
+    """The route's values: ``values`` as typed, converted one by one; ``si`` (a profile's), as they are."""
+    params.update(si)
+    origin.update(dict.fromkeys(si, "route"))
     for name, (label, value) in values.items():
         if label is None:
             origin[name] = "route (missing)"

@@ -81,6 +81,8 @@ BAD = [
     ("distance [m],height [m]\n0,0\n10\n", r"line 3: 1 columns, expected 2"),
     ("length [m],inclination [deg]\n0,2\n", r"line 2, column 1 \(length\): 0 m; a segment's length must be > 0"),
     ("length [m],inclination [deg]\n10,95\n", r"line 2, column 2 \(inclination\): 95 deg; must be between"),
+    # finite as typed, not once in SI: named, not left out (the route would lose a segment)
+    ("length [km],inclination [deg]\n1,2\n1e306,2\n", r"line 3, column 1 \(length\): 1e\+306 is beyond the largest"),
 ]
 
 
