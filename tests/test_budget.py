@@ -106,3 +106,39 @@ def test_readme_states_every_budget():
     shown = re.findall(r"\| (10\^\d+|2\^\d+|\d+) \|", block)
     values = [eval(v.replace("^", "**")) for v in shown]   # noqa: S307 - the README's own numbers
     assert sorted(values) == sorted(b.limit for b in budget.BUDGETS.values())
+
+
+def _long_route(n: int) -> str:
+    """route_segments (Fig. 9 load) on ``n`` segments of 2 m at 5-11 deg."""
+    from _fuzz import builtin
+
+    text = builtin("route_segments")
+    head, params = text[:text.index("[[route]]")], text[text.index("[parameters]"):]
+    segments = "".join(f'[[route]]\nlength = "2 m"\ninclination = "{5 + i % 7} deg"\n' for i in range(n))
+    return head + segments + params
+
+
+def test_an_inverse_solve_on_a_long_route_is_refused_with_its_count(tmp_path, capsys):
+    """``solve --find`` on a route answers at every load case through the whole route: load cases x segments
+    counted, refused above the budget with the count and the fix (pin the place); pinned by ``--at x_m=``, it
+    is one root-find and runs."""
+    from ropemodel import load_scene
+    from ropemodel.envelope.cases import with_ramps
+
+    n = 400
+    scene = tmp_path / "route.toml"
+    scene.write_text(_long_route(n))
+    cases = len(load_cases(with_ramps(load_scene(scene)), pinned=["G_m"]))
+    assert cases * n > budget.BUDGETS["route solve"].limit
+    argv = ["solve", str(scene), "--find", "G_m", "--given", "F_C_up=100kN"]
+    assert main(argv) == 2
+    err = _error(capsys)
+    assert f"{cases * n:,} segment evaluations" in err and "--at x_m=" in err and "--no-limit" in err
+    assert main([*argv, "--at", "x_m=400m", "--json"]) == 0
+    capsys.readouterr()
+
+
+def test_an_inverse_solve_on_a_short_route_is_not_counted_against_it(capsys):
+    """The shipped three-segment route: far under the budget, answered."""
+    assert main(["solve", "route_segments", "--find", "G_m", "--given", "F_C_up=100kN", "--json"]) == 0
+    capsys.readouterr()

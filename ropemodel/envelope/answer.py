@@ -13,6 +13,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from ropemodel import budget
 from ropemodel.envelope.cases import CASE_INPUTS, LoadCase, load_cases, with_ramps
 from ropemodel.envelope.prune import prune
 from ropemodel.envelope.result import EnvelopeResult
@@ -118,6 +119,12 @@ def solve(scene: SceneLike, given: Mapping, find: Sequence[str] | str, bare: str
     cases = load_cases(sc, pinned=find)
     if len(cases) == 1:
         return problem.solve(cases[0].values(sc.parameters))
+    if sc.route:
+        n = len(sc.route)
+        budget.check("route solve", len(cases) * n,
+                     f"solving for {', '.join(find)} on a route of {n} segments at {len(cases)} load cases, each "
+                     f"through the {n} segments,", "pin the load's place (--at x_m=...), or join neighbouring "
+                     "segments of nearly the same inclination")
     forward = Problem(sc)
     _needs_a_worst(forward, problem, cases)
     params = {**sc.parameters, **problem.inputs()}
