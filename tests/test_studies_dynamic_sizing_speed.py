@@ -8,9 +8,9 @@ What it shows, and what is asserted:
   three rounds on a loaded 2-core machine (10.0x on the previous code in the same session; docs/machines/winch.md,
   "Speed").  The returned (catalogue) design is verified by the simulator in every case within reach of a limit
   and at each manoeuvre's least place (on the shipped scene 5 of 12 cases), the others by the NLP's integration;
-  and on the three-segment route, one round (``--route``): 8.1x and 8.8x in two runs (18.0x on the previous
-  code).  The "no design" goal (30x) is met and asserted by ``tests/test_dynamic_no_design_speed.py`` (median
-  of three rounds);
+  and on the three-segment route, one round (``--route``): 8.1x, 8.8x and 8.3x in three runs (18.0x on the
+  previous code).  The "no design" goal (30x) is met and asserted by ``tests/test_dynamic_no_design_speed.py``
+  (median of three rounds);
 * the re-solves of the dynamic NLP by Newton on the previous optimum's active set
   (:mod:`optimisation.dynamic.warm`) make dynamic sizing cheaper than the same sizing with every re-solve by
   IPOPT (its peer, measured in the same run), and both return the same catalogue design.  Reason: from the
