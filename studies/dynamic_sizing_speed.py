@@ -20,11 +20,16 @@ rounds of that round's two contenders, measured back to back (the seconds shown:
   (its own integrator, events located, modes switched), and it is the faster of the two (a numpy right-hand
   side costs a Python call per evaluation: ``tests/test_dynamics_reference.py``'s LSODA reference of one
   start-up at rtol 1e-10 takes several times the simulator's time), so the ratios are not flattered by a slow
-  peer.  For the "no design" scene, the four manoeuvres at its static optimum (the design a user would check);
+  peer.  One caveat, measured: the simulator's integrators solve cvodes' Newton systems with CasADi's default QR,
+  the sizing's NLP with sparse LU ("csparse"); with "csparse" the simulator too took 2.3 instead of 5.4 CPU-s
+  for the route's upward start at 32 elements, and the route's ratio against that faster peer (the sizing's own
+  simulations as fast) was 14.6 (159.8 CPU-s against 10.9, one run): the goal would not be met there.  For
+  the "no design" scene, the four manoeuvres at its static optimum (the design a user would check);
 * **dynamic** — ``size_dynamic(scene)`` (``ropemodel size --dynamic``): static optimum, dynamic NLP on its refined
   grid and controlled mesh, catalogue design, that design judged in every case (each manoeuvre at each place of
-  the load), by simulation where a check comes near its limit (on the shipped scene all 12 cases, three peers'
-  worth; on the route 23 of 36), elsewhere by the NLP's integration (``simulated`` in the table);
+  the load), by simulation where a check comes near its limit and at each manoeuvre's least place (on the
+  shipped scene 5 of 12 cases; on the route 6 of 36), elsewhere by the NLP's integration (``simulated`` in the
+  table);
 * **no design** — the same on the 2 s ramp: the scan of the design box (which finds no design, so the NLP is not
   started), the least violation, the seven remedies;
 * **static** — ``optimisation.design.size(scene)`` (``ropemodel size``), for the ratio the issue asks too;
@@ -37,7 +42,7 @@ IPOPT re-solves, and whether both ways returned the same catalogue design.
 
     python studies/dynamic_sizing_speed.py [--fast | --route]
 
-``--route``: the three-segment route alone, one round, without the IPOPT re-solves' sizing (about 8 CPU minutes).
+``--route``: the three-segment route alone, one round, without the IPOPT re-solves' sizing (about 3.5 CPU minutes).
 """
 
 from __future__ import annotations
@@ -168,8 +173,14 @@ def design_case(name: str, scene, rounds: int, ipopt: bool = True) -> dict:
     return {"case": name, "answer": "design" if design.feasible else "no design", "rounds": rounds,
             **{key: float(np.median(values)) for key, values in seen.items()}, "segments": design.mesh.get("segments"),
             "simulated": f"{simulated} of {sum(len(m['positions']) for m in design.manoeuvres)}",
+            "design": _shown(design.design) if design.feasible else None,
             "same design": (design.feasible and cold.feasible and design.design == cold.design) if ipopt else None,
             "goal": GOAL_DESIGN if design.feasible else GOAL_NO_DESIGN, "message": design.message.splitlines()[0]}
+
+
+def _shown(design: dict) -> str:
+    """The catalogue design in the units a designer reads: ``"50 mm, 100.9 kN, 6.293 m"``."""
+    return f"{design['d'] * 1e3:g} mm, {design['F_nwl'] / 1e3:g} kN, {design['stroke']:g} m"
 
 
 def no_design_case(name: str, scene, rounds: int = 1) -> dict:

@@ -2,9 +2,10 @@
 (:func:`optimisation.dynamic.verify.verified`), on verdicts made up here (the simulations and integrations
 themselves: the slow sizing tests).
 
-Truth: the rule written out — each check's least place in each manoeuvre and every case within EXEMPT of a limit
-are simulated; the others are left to the NLP's integration only when the simulated cases agree with it to AGREE
-and every part that can leave its smooth mode is one a check keeps in it; else every case is simulated.
+Truth: the rule written out — every case within EXEMPT of a limit and each manoeuvre's least place (of any check)
+are simulated; a check's least place that keeps EXEMPT is not; the others are left to the NLP's integration only
+when the simulated cases agree with it to AGREE and every part that can leave its smooth mode is one a check keeps
+in it; else every case is simulated.
 """
 
 from __future__ import annotations
@@ -26,16 +27,18 @@ def _case(label: str, x: float, scaled: dict) -> Verdict:
 
 
 def _integrated():
-    """Two manoeuvres, three places each: check a least at 0 in "start", b at 100; every other margin far."""
+    """Two manoeuvres, three places each.  start: a least at 0 (within EXEMPT), within EXEMPT at 50 too, b least
+    at 100 (keeping EXEMPT); stop: nothing within EXEMPT, the least of all a at 50, b least at 0 (far)."""
     far = 10 * EXEMPT
-    return [_case("start", 0.0, {"a": 0.01, "b": far}), _case("start", 50.0, {"a": far, "b": far}),
+    return [_case("start", 0.0, {"a": 0.01, "b": far}), _case("start", 50.0, {"a": 0.5 * EXEMPT, "b": far}),
             _case("start", 100.0, {"a": far, "b": 0.2}), _case("stop", 0.0, {"a": far, "b": far}),
-            _case("stop", 50.0, {"a": 0.5 * EXEMPT, "b": far + 1}), _case("stop", 100.0, {"a": far + 1, "b": far})]
+            _case("stop", 50.0, {"a": 2 * EXEMPT, "b": far + 1}), _case("stop", 100.0, {"a": far + 1, "b": far})]
 
 
-def test_the_simulator_judges_each_checks_least_place_and_every_case_within_reach():
-    # stop: a's least at 50 (within EXEMPT too), b's least at 0
-    assert verify.to_simulate(_integrated()) == [0, 2, 3, 4]
+def test_the_simulator_judges_every_case_within_reach_and_each_manoeuvres_least_place():
+    # within EXEMPT: 0 and 1 (start); the least place of start: 0, of stop: 4 (a at 2 EXEMPT); b's least places,
+    # 2 in start and 3 in stop, keep EXEMPT: left to the integration
+    assert verify.to_simulate(_integrated()) == [0, 1, 4]
 
 
 def _run(monkeypatch, shift: float, parts=PARTS):
@@ -63,7 +66,7 @@ def _problem(verdicts):
 
 def test_the_cases_far_from_every_limit_are_left_to_the_integration_when_both_agree(monkeypatch):
     by = _run(monkeypatch, 0.5 * AGREE)
-    assert by == [SIMULATED, INTEGRATED, SIMULATED, SIMULATED, SIMULATED, INTEGRATED]
+    assert by == [SIMULATED, SIMULATED, INTEGRATED, INTEGRATED, SIMULATED, INTEGRATED]
 
 
 def test_every_case_is_simulated_when_the_simulator_and_the_integration_disagree(monkeypatch):

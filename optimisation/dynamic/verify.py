@@ -127,13 +127,15 @@ def verdict(sim, manoeuvre, a: dict, F_ref: float, in_nlp: bool = True) -> Verdi
 
 def to_simulate(integ: list[Verdict]) -> list[int]:
     """The cases (indices) the hybrid simulator judges in :func:`verified`, from ``integ`` (every case as the
-    NLP integrates it, :func:`integrated`): in each manoeuvre, each check's least place, and every case where
-    some check's least scaled margin is below :data:`EXEMPT`."""
-    out = {i for i, v in enumerate(integ) if min(v.scaled.values(), default=-np.inf) < EXEMPT}
+    NLP integrates it, :func:`integrated`): every case where some check's least scaled margin is below
+    :data:`EXEMPT`, and in each manoeuvre its least place (the case of the least scaled margin of any check), so
+    that every manoeuvre's transient is simulated at least once and the agreement is measured in each."""
+    def least(i: int) -> float:
+        return min(integ[i].scaled.values(), default=-np.inf)
+
+    out = {i for i in range(len(integ)) if least(i) < EXEMPT}
     for label in dict.fromkeys(v.manoeuvre for v in integ):
-        mine = [i for i, v in enumerate(integ) if v.manoeuvre == label]
-        for check in dict.fromkeys(c for i in mine for c in integ[i].scaled):
-            out.add(min((i for i in mine if check in integ[i].scaled), key=lambda i: integ[i].scaled[check]))
+        out.add(min((i for i, v in enumerate(integ) if v.manoeuvre == label), key=least))
     return sorted(out)
 
 
@@ -152,15 +154,18 @@ def verified(problem, xs) -> list[Verdict]:
     verdict saying which (``by``).
 
     Every case is integrated by the NLP's integrator first (a fraction of one simulation each: no events, no
-    history).  The simulator then judges, in each manoeuvre, each check's least place and every case where some
-    check's least scaled margin is within :data:`EXEMPT` of its limit (:func:`to_simulate`).  A case is left to
+    history).  The simulator then judges every case where some check's least scaled margin is within
+    :data:`EXEMPT` of its limit, and each manoeuvre's least place (:func:`to_simulate`).  A case is left to
     the integration only when (1) every check keeps at least :data:`EXEMPT` there, (2) the two agree in every
     simulated case to within :data:`AGREE` on every check's least margin (one tenth of what the cases left out
     keep), and (3) every part of the transient that can leave its smooth mode is one a check keeps in it (the
     machine's ``CHECKED_MODES``: with the margins kept, the simulation stays in the smooth mode the NLP
     integrates).  Else every case is simulated.  The peaks (the machine's ``PEAKS``) of a case left to the
-    integration are read from it (every DT_DENSE: a peak between samples missed by a few N); each check's least
-    place is simulated, so the worst peak of a manoeuvre that a check bounds is the simulator's."""
+    integration are read from it (every DT_DENSE: a peak between samples missed by a few N).  A check's least place
+    in a manoeuvre is not simulated for its own sake: where it keeps :data:`EXEMPT`, ten times the disagreement
+    :data:`AGREE` the simulated cases must show, the integration decides it (measured on the three-segment route's
+    catalogue design: 6 of its 36 cases simulated in 34 CPU-s, against 23 in 102 CPU-s when each check's least
+    place was; 3 of the 6 are within EXEMPT)."""
     integ = integrated(problem, xs, DT_DENSE)
     first = to_simulate(integ)
     simulated = dict(zip(first, verify(problem, xs, which=first)))
