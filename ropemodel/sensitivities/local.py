@@ -47,11 +47,16 @@ def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, o
     :class:`~ropemodel.envelope.LoadCase`) sets the load's place and acceleration from the parameters."""
     fun = problem.function
     x = problem.inputs(values)
-    parameters = list(problem.knowns) if parameters is None else list(parameters)
+    parameters = list(problem.user_knowns) if parameters is None else list(parameters)
     outputs = list(problem.unknowns) if outputs is None else list(outputs)
     for p in parameters:
-        if p not in problem.knowns:
-            raise InputError(f"parameter {p!r} is not an input of this problem; inputs: {', '.join(problem.knowns)}")
+        if p in problem.model.edge_set:
+            raise InputError(f"parameter {p!r}: a route of {len(problem.scene.route)} segments is held as route "
+                             f"numbers per load case, and no derivative in a segment's own value is given (a route "
+                             f"of at most 100 segments gives them: join segments; or sweep {p} instead)")
+        if p not in problem.user_knowns:
+            raise InputError(f"parameter {p!r} is not an input of this problem; inputs: "
+                             f"{', '.join(problem.user_knowns)}")
     for o in outputs:
         if o not in problem.unknowns:
             raise InputError(f"output {o!r} is not a result of this problem; results: {', '.join(problem.unknowns)}")
@@ -64,6 +69,9 @@ def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, o
     if case is not None:
         given: ChainMap[str, Any] = ChainMap(args, problem.scene.parameters)
         args.update({k: ca.MX(v) if isinstance(v, float) else v for k, v in case.values(given).items()})
+        if problem.model.derived:       # a long route's numbers at the case (linear in what is varied)
+            at = problem.derived({**x, **case.values(ChainMap(x, problem.scene.parameters))})
+            args.update({k: ca.MX(float(v)) for k, v in at.items() if k in args})
     res = fun.call(args)
     Y = ca.vertcat(*[res[o] for o in outputs])
     f = ca.Function("elasticity_jacobian", [P], [Y, ca.jacobian(Y, P)])
@@ -135,7 +143,7 @@ def elasticities(scene: SceneLike, values: Mapping | None = None, outputs: Seque
     open_ = [k for k in free(scene) if k not in find]
     if parameters is None:
         x = problem.inputs(values)
-        parameters = [k for k in problem.knowns if math.isfinite(x[k]) and k not in open_]
+        parameters = [k for k in problem.user_knowns if math.isfinite(x[k]) and k not in open_]
     rows = []
     for case, outs, where in _governing(scene, problem, outputs, find):
         y, J, p, names = jacobian(problem, values, parameters, outs, case)

@@ -235,11 +235,12 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
     scene = with_ramps(scene)
     problem = Problem(scene, list(given), find)
     model = problem.model
-    inputs = {k: model.quantities[k] for k in problem.knowns}
+    inputs = {k: model.quantities[k] for k in problem.user_knowns}
     if isinstance(vary, pd.DataFrame):
         points, vary = vary, None
     if (vary is None) == (points is None):
         raise InputError("give either vary={name: axis} (a grid) or a table of points")
+    worst_case.route_refusal(scene, problem, list(vary) if vary is not None else list(points.columns))
     pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=model.outputs)
     if pts.n == 0:
         raise InputError("no points to sweep")
