@@ -73,7 +73,11 @@ class Problem:
                 found.add(problem)
         for n in find:
             problem = model.name_problem(n, "unknown to find")
-            if problem is None and n not in model.parameters:
+            if problem is None and n in model.edge_set:
+                problem = (f"--find {n}: a route of {len(scene.route)} segments is held as route numbers per load "
+                           f"case, so a segment's own value cannot be solved for; sweep it (or --set it) and read the "
+                           f"output, or join segments to at most 100")
+            elif problem is None and n not in model.parameters:
                 problem = f"--find {n}: {n} is computed by this scene anyway; --find takes a parameter"
             if problem:
                 found.add(problem)

@@ -105,17 +105,27 @@ def test_segment_values_are_set_by_name_and_refused_where_not_given(both):
         rm.elasticities(both[0], outputs=["F_C_up"], parameters=["alpha_2"])
 
 
-def test_a_sweep_equals_the_segment_form_or_names_what_it_cannot_vary(both):
-    """A sweep at the worst case over parameters the route numbers do not read: the segment form's columns; one
-    that varies what they are computed from is refused, naming the fix."""
-    outs = ["F_C_up", "route_margin_up", "F_S_least_down"]
-    vec, seg = (rm.sweep(s, vary={"G_m": ["400 kN", "467 kN"], "q_l": ["0.07 kN/m", "0.09 kN/m"]}, outputs=outs,
-                         si=True) for s in both)
+def _same_sweep(vec, seg) -> None:
     assert list(vec.columns) == list(seg.columns)
     numbers = seg.select_dtypes("number").columns
     np.testing.assert_allclose(vec[numbers].to_numpy(), seg[numbers].to_numpy(), rtol=1e-12)
+
+
+def test_a_sweep_equals_the_segment_form_or_names_what_it_cannot_vary(both):
+    """A sweep at the worst case over parameters the route numbers do not read (each case's numbers), and one at
+    a pinned case over what they are computed from (the numbers point by point: a segment's length and
+    inclination, μ_pl, the load's place, the acceleration, L_ul): the segment form's columns to 1e-12.  Varying
+    what they are computed from at the worst over open cases is refused, naming the fix."""
+    outs = ["F_C_up", "route_margin_up", "F_S_least_down", "T_l1"]
+    _same_sweep(*(rm.sweep(s, vary={"G_m": ["400 kN", "467 kN"], "q_l": ["0.07 kN/m", "0.09 kN/m"]}, outputs=outs,
+                           si=True) for s in both))
+    pinned = [s.with_values({"x_m": "300 m", "a_h": "0.3 m/s^2"}) for s in both]
+    for name, values in (("mu_pl", [0.02, 0.12]), ("x_m", ["0 m", "10 m", "555 m", "882 m"]),
+                         ("a_h", ["-0.5 m/s^2", "0.5 m/s^2"]), ("L_ul", ["100 m", "500 m"]),
+                         ("alpha_2", ["-5 deg", "10 deg"]), ("L_5", ["5 m", "50 m"])):
+        _same_sweep(*(rm.sweep(s, vary={name: values}, outputs=[*outs, "G_ml"], si=True) for s in pinned))
     for name in ("mu_pl", "L_3", "t_ramp"):
-        with pytest.raises(InputError, match=f"sweeping {name}: a route of 40 segments"):
+        with pytest.raises(InputError, match=f"sweeping {name}: a route of 40 segments.*pin the load's place"):
             rm.sweep(both[0], vary={name: [0.05] if name == "mu_pl" else ["5 m" if name == "L_3" else "4 s"]})
 
 
@@ -216,3 +226,20 @@ def test_sizing_equals_the_segment_form(tmp_path, monkeypatch):
     for p, column in vec.sensitivities.items():
         for k, v in column.items():
             assert v == pytest.approx(seg.sensitivities[p][k], rel=1e-8, abs=1e-12), (p, k)
+
+
+def test_a_sizing_sweep_names_what_it_cannot_vary(tmp_path, monkeypatch):
+    """A sizing sweep holds the route numbers at the scene's values: varying what they are computed from is
+    refused naming the fix (a parameter they do not read is swept as on any route)."""
+    from optimisation.sweep import sizing_sweep
+    from optimisation.problem import load_sizing
+
+    head, params = SIZING.split("[parameters]\n")
+    route = "".join("[[route]]\n" + "".join(f"{k} = {v!r}\n".replace("'", '"') for k, v in seg.items())
+                    for seg in _route(30, seed=11, low=-4.0))
+    (tmp_path / "s.toml").write_text(head + route + "[parameters]\n" + params)
+    monkeypatch.setattr(winch_route_vector, "VECTOR_ABOVE", 0)
+    scene = load_sizing(str(tmp_path / "s.toml"), emit=False)
+    for name, values in (("mu_pl", [0.04, 0.06]), ("t_ramp", ["4 s", "6 s"])):
+        with pytest.raises(InputError, match=f"cannot vary {name} in a sizing sweep on a route of 30 segments"):
+            sizing_sweep(scene, vary={name: values}, progress=False)

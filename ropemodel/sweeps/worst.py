@@ -19,6 +19,7 @@ from ropemodel.envelope.cases import depends_on, distinct, joint_ends
 from ropemodel.envelope.cases import reads as case_reads
 from ropemodel.envelope.worst import pick, symbolic_worst
 from ropemodel.errors import InputError
+from ropemodel.sweeps.chunk import RouteStep
 
 #: the unit of each case input's column (SI and display alike)
 UNITS = {"x_m": "m", "a_h": "m/s^2"}
@@ -68,20 +69,35 @@ def plan(scene, problem, varied, find, outputs) -> tuple[Worst | None, list[str]
 ROUTE_READS = ("mu_pl", "x_m", "a_h", "L_ul")
 
 
-def route_refusal(scene, problem, varied) -> None:
-    """:class:`InputError` for a sweep that varies what a long route's numbers are computed from (its segments,
-    μ_pl, the load's place and the acceleration, and what the manoeuvres' accelerations come from): each point
-    would need its own route step, which the sweep does not make yet."""
+def route_step(problem, varied, base: dict, worst: Worst | None) -> RouteStep | None:
+    """A long route's numbers computed at each point, where the sweep varies what they are computed from at one
+    load case (the route's segments, mu_pl, the load's place or acceleration, L_ul); None otherwise (they are
+    then the base's constants, or each case's: :func:`columns`)."""
     model = problem.model
-    if not model.derived:
-        return
-    reads = {*model.edges, *ROUTE_READS, *(case_reads(scene) if len(load_cases(scene)) > 1 else ())}
+    if not model.derived or worst is not None or not set(varied) & {*model.edge_set, *ROUTE_READS}:
+        return None
+    values = {**problem.scene.parameters, **{k: v for k, v in base.items() if k not in model.derived}}
+    return RouteStep(model, values, [k for k in problem.knowns if k in model.derived])
+
+
+def route_refusal(scene, problem, varied) -> dict:
+    """The quantities of the segments of a long route among ``varied`` (swept by name); :class:`InputError` for a
+    sweep at the worst case over open load cases that varies what a long route's
+    numbers are computed from (its segments, μ_pl, L_ul, and what the manoeuvres' accelerations come from): each
+    point and case would need its own route step, which the sweep makes only at one case (pinned)."""
+    model = problem.model
+    edges = {k: model.quantities[k] for k in varied if k in model.edge_set}
+    if not model.derived or len(load_cases(scene, pinned=varied)) == 1:     # one case: numbers point by point
+        return edges
+    reads = {*model.edges, *ROUTE_READS, *case_reads(scene)}
     bad = [k for k in varied if k in reads]
     if bad:
         raise InputError(f"sweeping {', '.join(bad)}: a route of {len(scene.route)} segments is "
-                         f"held as route numbers per load case, computed from {bad[0]} at the scene's value, and a "
-                         f"sweep does not compute them point by point yet; run each value (--set {bad[0]}=...), "
+                         f"held as route numbers per load case, computed from {bad[0]}, and a sweep at the worst "
+                         f"over every place and manoeuvre does not compute them point by point: pin the load's "
+                         f"place and manoeuvre (--set x_m=... a_h=...), run each value (--set {bad[0]}=...), "
                          f"or join segments to at most 100")
+    return edges
 
 
 def columns(worst: Worst, fun, args: dict, base: dict, outputs, quantities) -> tuple[list[str], list, list]:
