@@ -16,7 +16,6 @@ from optimisation.infeasibility import Diagnosis, diagnose
 from optimisation.ipopt import Solution, solve_continuous
 from optimisation.problem import SizingProblem, load_sizing
 from optimisation.sensitivity import sensitivities
-from ropemodel.effects.winch_route_vector import VECTOR_ABOVE
 from ropemodel.errors import InputError
 from ropemodel.machines.base import declared_machine, design_words
 from ropemodel.machines.sizing import Declaration, declared
@@ -232,7 +231,7 @@ def _diagnosed(problem: SizingProblem, **how) -> tuple[SizingProblem, Diagnosis]
 #: a route of more segments than this is sized without sensitivities in its segments' own values (L_i, alpha_i,
 #: mu_wi): a surveyed profile's points, which the design does not vary; a derivative in each would pass through
 #: every segment (20 000 of them at 10 000 points), and those values are folded in instead
-ROUTE_SENSITIVITIES = VECTOR_ABOVE      # where the route is held as route numbers per load case
+ROUTE_SENSITIVITIES = 100      # a route held as route numbers per load case (above its VECTOR_ABOVE) too
 SEGMENTS_LEFT_OUT = ("L_i, alpha_i and mu_wi of the route's {n} segments (more than {most}): size again with a "
                      "segment's value set (--set) to see its effect")
 _SEGMENT = re.compile(r"(L_|alpha_|mu_w)\d+$")

@@ -93,16 +93,26 @@ def test_trip_and_elasticities_equal_the_segment_form(both):
     np.testing.assert_allclose(vec["dy_dp"].to_numpy(float), seg["dy_dp"].to_numpy(float), rtol=1e-10, atol=1e-12)
 
 
-def test_segment_values_are_set_by_name_and_refused_where_not_given(both):
+def test_segment_values_are_set_by_name_and_differentiated_through_the_route_step(both):
     """``--set L_2=...`` (with_values) reaches the route numbers: the same results as the segment form set alike;
-    a route number is not a parameter, and a derivative in a segment's value is not given (named)."""
+    a route number is not a parameter.  Elasticities in segments' values (the route numbers as expressions of them
+    at the case's indices), at the worst case and at a pinned one: the segment form's derivatives to 1e-10; a
+    plain segment's mu_wi (mu_pl there) is refused by name."""
     moved = [rm.run(s.with_values({"L_2": "55 m", "alpha_7": "-3 deg"})) for s in both]
     _equal(moved[0].values, {k: v for k, v in moved[1].values.items() if k in moved[0].values})
     assert moved[0]["F_C_up"] != rm.run(both[0])["F_C_up"]
     with pytest.raises(InputError, match="computed from the route's segments"):
         both[0].with_values({"route_sin": 1.0})
-    with pytest.raises(InputError, match="no derivative in a segment's own value"):
-        rm.elasticities(both[0], outputs=["F_C_up"], parameters=["alpha_2"])
+    outputs = ["F_C_up", "route_margin_up", "route_margin_down", "T_l1", "G_l2", "F_S_least_up"]
+    params = ["alpha_2", "L_3", "mu_w1", "L_9", "alpha_9", "L_40"]
+    for scenes, outs in ((both, outputs),
+                         ([s.with_values({"x_m": "300 m", "a_h": "0.2 m/s^2"}) for s in both], [*outputs, "G_ml"])):
+        vec, seg = (rm.elasticities(s, outputs=outs, parameters=params) for s in scenes)
+        assert list(vec["parameter"]) == list(seg["parameter"])
+        np.testing.assert_allclose(vec["dy_dp"].to_numpy(float), seg["dy_dp"].to_numpy(float), rtol=1e-10,
+                                   atol=1e-9)
+    with pytest.raises(InputError, match="mu_w2 is mu_pl on its segment"):
+        rm.elasticities(both[0], outputs=["F_C_up"], parameters=["mu_w2"])
 
 
 def _same_sweep(vec, seg) -> None:

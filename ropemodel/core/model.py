@@ -82,6 +82,15 @@ class Model:
                 out.update(sm.derive(values))
         return out
 
+    def derive_through(self, values, edges) -> dict:
+        """The :attr:`derived` parameters at one point (SI numbers ``values``) as CasADi expressions of the
+        :attr:`edges` named in ``edges`` (name -> expression): what a derivative in a segment's value goes through."""
+        out: dict = {}
+        for sm in self.submodels:
+            if getattr(sm, "derived", None):
+                out.update(sm.derive_through(values, edges))  # type: ignore[attr-defined]
+        return out
+
     @property
     def citations(self) -> list[str]:
         """Full references of every submodel in use."""

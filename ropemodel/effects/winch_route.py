@@ -250,6 +250,12 @@ class SegmentedRoute(Submodel):
         inertia: Any = self.sibling("inertia")
         return vec.derive(values, inertia.acceleration, self.point_A)
 
+    def derive_through(self, values, edges) -> dict:
+        """The route numbers at one point as expressions of the segments' values ``edges`` (name -> expression):
+        :func:`.winch_route_vector.derive_through` (a sensitivity in a segment's value)."""
+        inertia: Any = self.sibling("inertia")
+        return vec.derive_through(values, inertia.acceleration, self.point_A, edges)
+
     def transient_route(self, values: dict, numbers: dict):
         """The route as the transient's rope model asks it (:class:`ropemodel.effects.transient.route.Segments`):
         lengths as numbers (geometry), inclinations and coefficients as the values (may be symbols)."""

@@ -19,6 +19,7 @@ import numpy as np
 from ropemodel._math import fmin, if_else
 from ropemodel.effects.base import REGISTRY, Equation
 from ropemodel.effects.route_arrays import RouteArrays
+from ropemodel.errors import InputError
 from ropemodel.effects.winch import MODEL, Q
 from ropemodel.papers import route_numbers as rn
 from ropemodel.papers.route import G_N
@@ -162,7 +163,39 @@ def derive(values: Mapping, acceleration, point_A: bool) -> dict:
         for A in np.unique(L_ul):
             split = rn.split_at(sums, float(A))
             for k, value in split.items():
-                out[f"route_{k}"][L_ul == A] = value
+                if f"route_{k}" in out:
+                    out[f"route_{k}"][L_ul == A] = value
     if shape == ():
         return {k: float(np.asarray(v).ravel()[0]) for k, v in out.items()}
     return {k: np.broadcast_to(v, (x.size,)).reshape(shape) for k, v in out.items()}
+
+
+def derive_through(values: Mapping, acceleration, point_A: bool, edges: Mapping) -> dict:
+    """The route numbers at one point (SI numbers ``values``) as CasADi expressions of the segments' values named
+    in ``edges`` (name -> its expression, e.g. a symbol): :func:`ropemodel.papers.route_numbers.through` at the
+    indices :func:`derive` selects there.  A plain segment's mu_wi (μ_pl there) is not one of them."""
+    import casadi as ca
+
+    from ropemodel.effects.route_arrays import parse
+
+    segments = RouteArrays.from_values(values, mu_pl=0.0)
+    sums = rn.route_sums(segments.L, segments.alpha, segments.mu_w, segments.own_mu)
+    got = rn.places(sums, np.array([float(values.get("x_m", np.inf))]), float(acceleration(values)),
+                    float(values["mu_pl"]))
+    columns = {f: ca.MX(ca.DM(getattr(segments, f))) for f in ("L", "alpha", "mu_w")}
+    for name, expr in edges.items():
+        field, k = parse(name)  # type: ignore[misc]
+        if field == "mu_w" and not segments.own_mu[k]:
+            raise InputError(f"{name} is mu_pl on its segment (it gives no mu_winding of its own): vary mu_pl")
+        unit = ca.DM.zeros(segments.n)
+        unit[k] = 1.0
+        columns[field] = columns[field] + unit * (expr - float(getattr(segments, field)[k]))
+    L, alpha, mu = columns["L"], columns["alpha"], columns["mu_w"]
+    split = rn.split_at(sums, float(values["L_ul"]))["jA"] if point_A else None
+    out = {f"route_{k}": v for k, v in rn.through(L, alpha, mu, segments.own_mu, {k: np.ravel(v)[0] for k, v in
+                                                                                  got.items()}, split).items()}
+    c = ca.cos(alpha)
+    own = ca.DM(segments.own_mu.astype(float))
+    out.update({"route_L_u": ca.sum1(L), "route_sin": ca.sum1(L * ca.sin(alpha)), "route_mo": ca.sum1(L * own * mu * c),
+                "route_cp": ca.sum1(L * (1.0 - own) * c), "route_cos": ca.sum1(L * c)})
+    return {k: v for k, v in out.items() if k in NUMBERS and (point_A or k not in POINT_A)}

@@ -65,7 +65,8 @@ def places(sums: dict, x_m, a_h: float, mu_pl: float) -> dict:
     * per way: ``P_<c>_<way>``, ``Q_<c>_<way>`` (c in :data:`WINDING`) the coefficients of the least winding rise
       of the inner joints before the load (G_1 … G_j) and at or beyond it (G_{j+1} … G_{n−1}); ``S_<c>_<way>`` (c
       in :data:`UNWINDING`) those of the unwinding side's least between its ends (H_1 … H_{n−1}; one segment:
-      H_0, H_1).  A set without joints reads a neighbour's entry: the flags say which hold."""
+      H_0, H_1), and ``kP_<way>``, ``kQ_<way>``, ``kS_<way>`` the joints they are at.  A set without joints reads
+      a neighbour's entry: the flags say which hold."""
     ends = sums["ends"]
     n = ends.size
     x = np.minimum(np.asarray(x_m, dtype=float), ends[-1])
@@ -88,6 +89,7 @@ def places(sums: dict, x_m, a_h: float, mu_pl: float) -> dict:
             at_Q = at_P
         span = k[1:n] if n > 1 else k
         at_S = span[int(np.argmin(H[span]))]
+        out[f"kP_{way}"], out[f"kQ_{way}"], out[f"kS_{way}"] = at_P, at_Q, np.full(x.shape, at_S)
         for c in WINDING:
             out[f"P_{c}_{way}"], out[f"Q_{c}_{way}"] = sums[c][at_P], sums[c][at_Q]
         for c in UNWINDING:
@@ -104,9 +106,49 @@ def split_at(sums: dict, at: float) -> dict:
     n = ends.size
     j = int(np.searchsorted(ends[: n - 1], min(float(at), float(ends[-1])), side="left"))
     start = float(ends[j - 1]) if j else 0.0
-    out = {}
+    out = {"jA": j}
     for key, per in (("sin", "sin"), ("mo", "mo_i"), ("cp", "cp_i")):
         whole = "A" if key == "sin" else key
         before = sums[whole][0] - sums[whole][j]        # the segments wholly before A's
         out[f"A_{key}0"], out[f"A_{key}1"] = before - sums[per][j] * start, sums[per][j]
+    return out
+
+
+def through(L, alpha, mu, own, at: dict, split: int | None = None) -> dict:
+    """The numbers of :func:`places` (and of :func:`split_at`, at A's segment ``split``) at one place as CasADi
+    expressions of the segments' values ``L``, ``alpha``, ``mu`` (columns), at the indices ``at`` (that place's
+    entry of :func:`places`: its segment ``j`` and least joints ``k*``) chosen at their values: equal to the
+    numbers there, and their derivatives in the segments' values are those of the loops while the indices hold
+    (a sensitivity in a segment's value)."""
+    import casadi as ca
+
+    own = ca.DM(np.asarray(own, dtype=float))
+    s, c = ca.sin(alpha), ca.cos(alpha)
+    per = {"A": L * s, "mo": L * (own * mu * c), "cp": L * ((1.0 - own) * c), "C": L * c, "X": L}
+    n = L.shape[0]
+
+    def total(v):
+        return ca.sum1(v) if v.numel() else ca.MX(0.0)
+
+    def suffix(key: str, k: int):
+        return total(per[key][k:]) if k < n else ca.MX(0.0)
+
+    j = int(at["j"])
+    end_j = ca.sum1(L[: j + 1])
+    mo_j, cp_j = own[j] * mu[j] * c[j], (1.0 - own[j]) * c[j]
+    out = {"sin_j": s[j], "cos_j": c[j], "mo_j": mo_j, "cp_j": cp_j, "B_A": suffix("A", j + 1) + s[j] * end_j,
+           "B_mo": suffix("mo", j + 1) + mo_j * end_j, "B_cp": suffix("cp", j + 1) + cp_j * end_j,
+           "before": ca.MX(float(at["before"])), "beyond": ca.MX(float(at["beyond"]))}
+    for way, _ in WAYS:
+        for c_ in WINDING:
+            out[f"P_{c_}_{way}"] = suffix(c_, int(at[f"kP_{way}"]))
+            out[f"Q_{c_}_{way}"] = suffix(c_, int(at[f"kQ_{way}"]))
+        for c_ in UNWINDING:
+            out[f"S_{c_}_{way}"] = suffix(c_, int(at[f"kS_{way}"]))
+    if split is not None:
+        start = total(L[:split])
+        for key, field in (("sin", s), ("mo", own * mu * c), ("cp", (1.0 - own) * c)):
+            whole = "A" if key == "sin" else key
+            out[f"A_{key}0"] = total(per[whole][:split]) - field[split] * start
+            out[f"A_{key}1"] = field[split]
     return out
