@@ -101,13 +101,10 @@ def check_work(scene, where: list, spanned: int) -> None:
     from ropemodel import budget
 
     segments = len(scene.route)
-    if segments:
+    if segments:       # counted so on a route held as route numbers too: size --dynamic's transient goes through each
         kept = "" if len(where) == spanned else f" (the cases that can govern of {spanned})"
-        # a route held as route numbers: each case is a few numbers whatever its segments
-        through = 1 if scene.built.derived else segments
-        each = ("its route numbers" if through == 1 else f"each through the {segments} segments: an NLP of "
-                f"{len(where)} x {segments}")
-        budget.check("route sizing", len(where) * through,
+        budget.check("route sizing", len(where) * segments,
                      f"sizing on a route of {segments} segments checks every check at {len(where)} load cases{kept}, "
-                     f"{each}", "join neighbouring segments of nearly the same inclination")
+                     f"each through the {segments} segments: an NLP of {len(where)} x {segments}",
+                     "join neighbouring segments of nearly the same inclination")
 

@@ -40,8 +40,7 @@ BUDGETS = {
                            "route, so it grows as those places times the segments and its solve faster still: "
                            "2500 is a route of 625 segments at 4 places, or of 49 where every place is checked "
                            "(size builds its NLP of a few places and checks every design at all of them: not "
-                           "counted); a route of more than 100 segments, held as route numbers per case, counts "
-                           "each case once"),
+                           "counted)"),
     "route solve": Budget(300_000, "segment evaluations",
                           "an inverse question (solve --find) on a route is answered with the load at every place "
                           "of the route, each a root-find through the whole route, and the worst answer is then "

@@ -246,10 +246,27 @@ def test_a_sizing_sweep_names_what_it_cannot_vary(tmp_path, monkeypatch):
 
     head, params = SIZING.split("[parameters]\n")
     route = "".join("[[route]]\n" + "".join(f"{k} = {v!r}\n".replace("'", '"') for k, v in seg.items())
-                    for seg in _route(30, seed=11, low=-4.0))
-    (tmp_path / "s.toml").write_text(head + route + "[parameters]\n" + params)
+                    for seg in _route(20, seed=11, low=-4.0))
+    (tmp_path / "s.toml").write_text(head + route + "[parameters]\n" + params.replace("444 m", "222 m"))
     monkeypatch.setattr(winch_route_vector, "VECTOR_ABOVE", 0)
     scene = load_sizing(str(tmp_path / "s.toml"), emit=False)
     for name, values in (("mu_pl", [0.04, 0.06]), ("t_ramp", ["4 s", "6 s"])):
-        with pytest.raises(InputError, match=f"cannot vary {name} in a sizing sweep on a route of 30 segments"):
+        with pytest.raises(InputError, match=f"cannot vary {name} in a sizing sweep on a route of 20 segments"):
             sizing_sweep(scene, vary={name: values}, progress=False)
+
+
+def test_a_transient_on_a_long_route_equals_the_segment_form(monkeypatch):
+    """``simulate`` (a start, the rope model's segments from the route's, each segment's coefficient: mu_pl where
+    it gives none, which the route numbers' form does not list per segment): the segment form's summary."""
+    raw = {"effects": {**RAW["effects"], "dynamics": "start", "rope_elasticity": "segments"},
+           "parameters": {**RAW["parameters"], "t_end": "6 s"}, "route": _route(40, seed=5)}
+    done = []
+    for above in (0, 10**6):
+        monkeypatch.setattr(winch_route_vector, "VECTOR_ABOVE", above)
+        done.append(rm.simulate(rm.from_dict(raw, emit=False), progress=False).summary)
+    assert done[0].keys() == done[1].keys()
+    numbers = {k: v for k, v in done[1].items() if isinstance(v, float)}
+    assert len(numbers) > 5
+    _equal(done[0], numbers, rel=1e-9, abs_=1e-9)
+    assert {k: v for k, v in done[0].items() if k not in numbers} == {k: v for k, v in done[1].items()
+                                                                      if k not in numbers}

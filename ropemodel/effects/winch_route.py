@@ -258,12 +258,14 @@ class SegmentedRoute(Submodel):
 
     def transient_route(self, values: dict, numbers: dict):
         """The route as the transient's rope model asks it (:class:`ropemodel.effects.transient.route.Segments`):
-        lengths as numbers (geometry), inclinations and coefficients as the values (may be symbols)."""
+        lengths as numbers (geometry), inclinations and coefficients as the values (may be symbols; a segment
+        without mu_winding: mu_pl, which a route held as route numbers does not list per segment)."""
         from ropemodel.effects.transient.route import Segments
 
         n = range(1, len(self.segments) + 1)
         return Segments(values, [float(numbers[f"L_{i}"]) for i in n], [values[f"alpha_{i}"] for i in n],
-                        [values[f"mu_w{i}"] for i in n])
+                        [values["mu_pl"] if self.vector and f"mu_w{i}" not in values else values[f"mu_w{i}"]
+                         for i in n])
 
     def rules(self, values):
         lengths = [values.get(f"L_{i}") for i in range(1, len(self.segments) + 1)]

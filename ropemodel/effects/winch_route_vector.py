@@ -182,7 +182,8 @@ def derive_through(values: Mapping, acceleration, point_A: bool, edges: Mapping)
     sums = rn.route_sums(segments.L, segments.alpha, segments.mu_w, segments.own_mu)
     got = rn.places(sums, np.array([float(values.get("x_m", np.inf))]), float(acceleration(values)),
                     float(values["mu_pl"]))
-    columns = {f: ca.MX(ca.DM(getattr(segments, f))) for f in ("L", "alpha", "mu_w")}
+    kind = type(next(iter(edges.values()))) if edges else ca.MX          # SX or MX, as the values given
+    columns = {f: kind(ca.DM(getattr(segments, f))) for f in ("L", "alpha", "mu_w")}
     for name, expr in edges.items():
         field, k = parse(name)  # type: ignore[misc]
         if field == "mu_w" and not segments.own_mu[k]:

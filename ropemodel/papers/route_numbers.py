@@ -122,23 +122,23 @@ def through(L, alpha, mu, own, at: dict, split: int | None = None) -> dict:
     (a sensitivity in a segment's value)."""
     import casadi as ca
 
-    own = ca.DM(np.asarray(own, dtype=float))
+    own, zero = ca.DM(np.asarray(own, dtype=float)), type(L)(0.0)     # SX or MX, as the segments' values
     s, c = ca.sin(alpha), ca.cos(alpha)
     per = {"A": L * s, "mo": L * (own * mu * c), "cp": L * ((1.0 - own) * c), "C": L * c, "X": L}
     n = L.shape[0]
 
     def total(v):
-        return ca.sum1(v) if v.numel() else ca.MX(0.0)
+        return ca.sum1(v) if v.numel() else zero
 
     def suffix(key: str, k: int):
-        return total(per[key][k:]) if k < n else ca.MX(0.0)
+        return total(per[key][k:]) if k < n else zero
 
     j = int(at["j"])
     end_j = ca.sum1(L[: j + 1])
     mo_j, cp_j = own[j] * mu[j] * c[j], (1.0 - own[j]) * c[j]
     out = {"sin_j": s[j], "cos_j": c[j], "mo_j": mo_j, "cp_j": cp_j, "B_A": suffix("A", j + 1) + s[j] * end_j,
            "B_mo": suffix("mo", j + 1) + mo_j * end_j, "B_cp": suffix("cp", j + 1) + cp_j * end_j,
-           "before": ca.MX(float(at["before"])), "beyond": ca.MX(float(at["beyond"]))}
+           "before": zero + float(at["before"]), "beyond": zero + float(at["beyond"])}
     for way, _ in WAYS:
         for c_ in WINDING:
             out[f"P_{c_}_{way}"] = suffix(c_, int(at[f"kP_{way}"]))
