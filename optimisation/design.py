@@ -231,16 +231,16 @@ def _diagnosed(problem: SizingProblem, **how) -> tuple[SizingProblem, Diagnosis]
 #: a route of more segments than this is sized without sensitivities in its segments' own values (L_i, alpha_i,
 #: mu_wi): a surveyed profile's points, which the design does not vary; a derivative in each would pass through
 #: every segment (20 000 of them at 10 000 points), and those values are folded in instead
-ROUTE_SENSITIVITIES = 100
-SEGMENTS_LEFT_OUT = ("L_i, alpha_i and mu_wi of the route's {n} segments (more than {most}): sweep a segment's value "
-                     "to see its effect")
+ROUTE_SENSITIVITIES = 100      # a route held as route numbers per load case (above its VECTOR_ABOVE) too
+SEGMENTS_LEFT_OUT = ("L_i, alpha_i and mu_wi of the route's {n} segments (more than {most}): size again with a "
+                     "segment's value set (--set) to see its effect")
 _SEGMENT = re.compile(r"(L_|alpha_|mu_w)\d+$")
 
 
 def _sensitive(problem: SizingProblem) -> list[str] | None:
     """The parameters the sensitivities are taken in: every one (None), or on a route of more than
     :data:`ROUTE_SENSITIVITIES` segments all but the segments' own values."""
-    if len(problem.scene.route) <= ROUTE_SENSITIVITIES:
+    if len(problem.scene.route) <= ROUTE_SENSITIVITIES and not problem.scene.built.derived:
         return None
     return [k for k in problem.params if not _SEGMENT.match(k)]
 

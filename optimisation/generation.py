@@ -41,16 +41,16 @@ def _screen(problem: SizingProblem) -> tuple[ca.Function, np.ndarray]:
     kept = problem.__dict__.get("_screen")
     if kept is None:
         model = problem.folded_model()
-        x, c = ca.SX.sym("x", len(problem.variables)), ca.SX.sym("c", len(problem.free))
+        x, c = ca.SX.sym("x", len(problem.variables)), ca.SX.sym("c", len(problem.case_inputs))
         x_si = x * ca.DM(problem.x_scale)
         out = model.call({"x": x_si, "c": c})
         args = problem.known_values([float(v) for v in problem.p0], x_si)
         g = [problem.sizing.nlp_form(k, out, args) / problem.check_scale[k] for k in problem.checks]
         params = problem.scene.parameters
         ends = joint_ends(params) if problem.scene.route else None
-        rows = [case.values(params, ends) for case in problem.candidates]
-        columns = np.array([[float(r.get(k, 0.0)) for r in rows] for k in problem.free],
-                           dtype=float).reshape(len(problem.free), len(rows))
+        rows = [problem.case_values(case, params, ends) for case in problem.candidates]
+        columns = np.array([[float(r.get(k, 0.0)) for r in rows] for k in problem.case_inputs],
+                           dtype=float).reshape(len(problem.case_inputs), len(rows))
         kept = problem.__dict__["_screen"] = (ca.Function("screen", [x, c], [ca.vertcat(*g)]), columns)
     return kept
 

@@ -80,13 +80,18 @@ class Ends:
         return ca.sum1(self.p[self.lengths[:k]]) if k else 0.0
 
 
-def depends(model: ca.Function, checks, free) -> dict[str, tuple[str, ...]]:
+def depends(model: ca.Function, checks, free, inputs=None, follows=None) -> dict[str, tuple[str, ...]]:
     """Check → the case inputs of ``free`` it depends on (as :func:`ropemodel.envelope.cases.depends_on`), from the
-    structure of :func:`vector_model`: one sparsity sweep per check through its case input vector ``c``."""
+    structure of :func:`vector_model`: one sparsity sweep per check through its case input vector ``c`` (of
+    ``inputs``, default ``free``; one of them in ``follows``, a long route's number, counts as the case inputs it
+    follows)."""
+    inputs = list(free if inputs is None else inputs)
+    follows = follows or {}
     out = {}
     for check in checks:
-        pattern = model.sparsity_jac("c", check) if free else None
-        out[check] = tuple(k for j, k in enumerate(free) if pattern is not None and pattern.has_nz(0, j))
+        pattern = model.sparsity_jac("c", check) if inputs else None
+        used = {k for j, k in enumerate(inputs) if pattern is not None and pattern.has_nz(0, j)}
+        out[check] = tuple(k for k in free if k in used or any(k in follows.get(n, ()) for n in used))
     return out
 
 
@@ -96,9 +101,10 @@ def check_work(scene, where: list, spanned: int) -> None:
     from ropemodel import budget
 
     segments = len(scene.route)
-    if segments:
+    if segments:       # counted so on a route held as route numbers too: size --dynamic's transient goes through each
         kept = "" if len(where) == spanned else f" (the cases that can govern of {spanned})"
         budget.check("route sizing", len(where) * segments,
                      f"sizing on a route of {segments} segments checks every check at {len(where)} load cases{kept}, "
                      f"each through the {segments} segments: an NLP of {len(where)} x {segments}",
                      "join neighbouring segments of nearly the same inclination")
+

@@ -151,8 +151,10 @@ class SizingProblem:
             check_work(scene, self.candidates, len(self.all_cases))    # before the model is compiled
         self.problem = Problem(scene, held, freed) if freed else Problem(scene)
         fun = self.problem.function
-        self.params = [k for k in self.problem.knowns
-                       if k not in self.variables and k not in self.problem.given and k not in self.free]
+        derived, held_out = scene.built.derived, {*self.variables, *self.problem.given, *self.free}
+        self.params = [k for k in self.problem.knowns if k not in held_out and k not in derived]
+        self.case_inputs = [*self.free, *(k for k in self.problem.knowns if k in derived)]   # + a long route's numbers
+        self._route_numbers = self.problem.case_numbers(self.candidates, derived and joint_ends(scene.parameters))
         self.p0 = np.array([scene.parameters[k] for k in self.params], dtype=float)
         self.F_ref = sizing.force_scale(scene)
         self.x_scale = sizing.x_scale(self.F_ref)
@@ -160,14 +162,14 @@ class SizingProblem:
         self._args = self.known_values(self.p, self.xs * ca.DM(self.x_scale))
         self.checks = self.machine.checks(self.problem.unknowns)
         #: the model the NLP's cases call, (x, p, c) -> its checks and outputs (:func:`~.nlp_parts.vector_model`)
-        self.nlp_model = vector_model(fun, self.variables, self.params, self.free, self.problem.given,
+        self.nlp_model = vector_model(fun, self.variables, self.params, self.case_inputs, self.problem.given,
                                       nlp_outputs(fun.name_out(), self.checks, sizing, self._args))
         unit_scale = {"1": 1.0, "N": self.F_ref, "m": 1.0}
         q = scene.built.quantities
         #: each check's scale in the NLP (g = its NLP form over this)
         self.check_scale = {c: unit_scale[sizing.unit(c, q[c].unit)] for c in self.checks}
         #: the case inputs each check depends on (a check the same in every case is made once)
-        self.depends = depends(self.nlp_model, self.checks, self.free)
+        self.depends = depends(self.nlp_model, self.checks, self.free, self.case_inputs, derived)
         self.cases = self.candidates
         if generate:
             from optimisation.generation import first_cases
@@ -224,8 +226,8 @@ class SizingProblem:
     @cached_property
     def outputs(self) -> ca.Function:
         """Every scene output as a Function (x scaled, p), with the load in the first case."""
-        args = self._args
-        every = self.problem.function.call({**args, **self._first_case.values(ChainMap(args, self.scene.parameters))})
+        args, params = self._args, self.scene.parameters
+        every = self.problem.function.call({**args, **self.case_values(self._first_case, ChainMap(args, params))})
         return ca.Function("outputs", [self.xs, self.p], [every[n] for n in self.output_names],
                            ["x", "p"], self.output_names)
 
@@ -242,8 +244,8 @@ class SizingProblem:
         x_si = ca.vertcat(*[args[k] for k in self.variables])
 
         def at_case(i: int) -> dict:
-            case = self.cases[i].values(values, ends)     # an input a case leaves alone: 0, as CasADi's default
-            c = ca.vertcat(*[case.get(k, 0.0) for k in self.free])
+            case = self.case_values(self.cases[i], values, ends)   # an input a case leaves alone: 0 (CasADi's)
+            c = ca.vertcat(*[case.get(k, 0.0) for k in self.case_inputs])
             if not isinstance(model, ca.Function):
                 folded = model(c)
                 return folded.call({k: {"x": x_si, "t": t}[k] for k in folded.name_in()})
@@ -263,6 +265,10 @@ class SizingProblem:
             exprs.append(at[i][c])
         first = at[min(at)] if at else at_case(0)     # the objective: the same in every case
         return labels, g, exprs, first, made
+
+    def case_values(self, case: LoadCase, values, ends=None) -> dict:
+        """The inputs ``case`` sets and a long route's numbers there (:mod:`ropemodel.papers.route_numbers`)."""
+        return {**case.values(values, ends), **self._route_numbers.get(case, {})}
 
     def nlp_of(self, taken, kept=None, p_kept=None) -> tuple:
         """(f, g_S) of the NLP (parametric) with the constraints S = ``taken`` (indices into :attr:`constraints`)

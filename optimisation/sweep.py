@@ -41,6 +41,7 @@ from optimisation.ipopt import solve_continuous
 from optimisation.problem import SizingProblem, declaration
 from ropemodel.errors import InputError
 from ropemodel.sweeps.points import grid, table
+from ropemodel.sweeps.worst import ROUTE_READS
 from ropemodel.sweeps.validate import check_ranges, check_rules
 from ropemodel.units import factor, label
 
@@ -90,9 +91,13 @@ def sizing_points(scene, problem, vary, points):
         points, vary = vary, None
     if (vary is None) == (points is None):
         raise InputError("give either vary={name: axis} (a grid) or a table of points")
-    for k in (vary or {}):
+    for k in (vary or {}) if vary is not None else points.columns:
         if k in problem.variables:
             raise InputError(f"cannot vary {k}: it is a design variable the sizing chooses")
+        if scene.built.derived and k in {*scene.built.edges, *ROUTE_READS, "v_pj", "t_ramp", "a_e"}:
+            raise InputError(f"cannot vary {k} in a sizing sweep on a route of {len(scene.route)} segments: the "
+                             f"route is held as route numbers per load case, computed from {k} at the scene's "
+                             f"value; size each value (--set {k}=...), or join segments to at most 100")
     pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=scene.built.outputs)
     check_ranges(pts, inputs)
     check_rules(scene.built, pts, dict(scene.parameters))

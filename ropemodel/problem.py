@@ -73,7 +73,11 @@ class Problem:
                 found.add(problem)
         for n in find:
             problem = model.name_problem(n, "unknown to find")
-            if problem is None and n not in model.parameters:
+            if problem is None and n in model.edge_set:
+                problem = (f"--find {n}: a route of {len(scene.route)} segments is held as route numbers per load "
+                           f"case, so a segment's own value cannot be solved for; sweep it (or --set it) and read the "
+                           f"output, or join segments to at most 100")
+            elif problem is None and n not in model.parameters:
                 problem = f"--find {n}: {n} is computed by this scene anyway; --find takes a parameter"
             if problem:
                 found.add(problem)
@@ -95,7 +99,7 @@ class Problem:
         found.raise_if_any()
         self.given, self.find = given, find
         self.unknowns = [o for o in model.outputs if o not in given] + find
-        self.knowns = [p for p in model.parameters if p not in find] + given
+        self.knowns = [p for p in model.arguments if p not in find] + given
         self.structure = structure_of(model, self.unknowns, self.knowns)
         guesses = {n: scene.parameters[n] for n in find if n in scene.parameters}
         self.function = solver_of(model, self.structure, guesses)
@@ -105,16 +109,54 @@ class Problem:
         # floats; an array given in ``values`` passes through as it is
         out: dict[str, Any] = {k: self.scene.parameters[k] for k in self.knowns if k in self.scene.parameters}
         out.update(self.given_values)
-        knowns = set(self.knowns)
+        knowns, model, edges = set(self.knowns), self.model, {}
         for k, v in (values or {}).items():
+            if k in model.edge_set:         # a segment of a route held as route numbers
+                edges[k] = v if isinstance(v, np.ndarray) else model.quantities[k].to_si(v, "si")
+                continue
+            if k in model.derived:          # computed again from the segments below
+                continue
             if k not in knowns:
-                raise InputError(f"{k} is not an input of this problem; inputs: {', '.join(self.knowns)}")
-            out[k] = v if isinstance(v, np.ndarray) else self.model.quantities[k].to_si(v, "si")
+                raise InputError(f"{k} is not an input of this problem; inputs: {', '.join(self.user_knowns)}")
+            out[k] = v if isinstance(v, np.ndarray) else model.quantities[k].to_si(v, "si")
+        if model.derived:
+            out.update({k: v for k, v in self.derived({**out, **edges}).items() if k in knowns})
         missing = [k for k in self.knowns if k not in out]
         if missing:
             raise InputError(f"no value given for {', '.join(missing)}")
         out.update(self.scene.rule_values(out, values or {}))   # a rule's length changed: its factor follows
         return out
+
+    @property
+    def user_knowns(self) -> list[str]:
+        """The knowns a user gives (not a long route's numbers, which follow from its segments)."""
+        return [k for k in self.knowns if k not in self.model.derived]
+
+    def derived(self, values: Mapping) -> dict:
+        """A long route's numbers (:meth:`ropemodel.core.model.Model.derive`) at the scene's values with ``values``
+        on top (SI; segments by name among them; numpy arrays over points allowed, a segment's too)."""
+        merged = {**self.scene.parameters, **values}
+        segments = [k for k in values if k in self.model.edge_set and np.ndim(values[k])]
+        if not segments:
+            return self.model.derive(merged)
+        n = max(np.size(values[k]) for k in values if np.ndim(values[k]))
+        rows = [self.model.derive({k: np.broadcast_to(v, (n,))[i] if np.ndim(v) else v for k, v in merged.items()})
+                for i in range(n)]                     # a segment that varies: the route's numbers point by point
+        return {k: np.array([r[k] for r in rows]) for k in rows[0]}
+
+    def case_numbers(self, cases, ends=None) -> dict:
+        """A long route's numbers (:meth:`derived`) at each of ``cases`` (:class:`~ropemodel.envelope.LoadCase`,
+        at the scene's values, the case's place and acceleration; ``ends`` the places' x_m,
+        :func:`ropemodel.envelope.cases.joint_ends`), all at once: case -> {name: float}; {} for a model without."""
+        if not self.model.derived or not cases:
+            return {}
+        params = self.scene.parameters
+        rows = [c.values(params, ends) for c in cases]
+        columns = {k: np.array([float(r.get(k, params.get(k, 0.0))) for r in rows]) for k in ("x_m", "a_h")
+                   if k in params}
+        numbers = self.derived(columns)
+        return {c: {k: float(np.broadcast_to(v, (len(cases),))[i]) for k, v in numbers.items()}
+                for i, c in enumerate(cases)}
 
     def solve(self, values: Mapping | None = None) -> Result:
         """Solve for one point; ``values`` override scene parameters or given outputs (SI or with units).
@@ -146,7 +188,11 @@ class Problem:
         for sm in self.model.submodels:
             for why in sm.invalid(values_all):
                 raise SolveError(why)
-        return Result(self.scene, self.model, values_all, self.given, self.find)
+        edges = {k: self.scene.parameters[k] for k in self.model.edges if k in self.scene.parameters}
+        edges.update({k: self.model.quantities[k].to_si(v, "si") for k, v in (values or {}).items()
+                      if k in self.model.edge_set})
+        shown = {**edges, **{k: v for k, v in values_all.items() if k not in self.model.derived}}
+        return Result(self.scene, self.model, shown, self.given, self.find)
 
     def evaluate(self, columns: dict[str, np.ndarray], parallel: int = 1, outputs=None) -> dict[str, np.ndarray]:
         """Vectorised solve: arrays of SI inputs (missing ones from the scene) → arrays of unknowns (every one,
@@ -161,6 +207,13 @@ class Problem:
         base = self.inputs({k: v for k, v in columns.items() if not isinstance(v, np.ndarray)})
         arrays = {k: np.broadcast_to(np.asarray(columns[k], dtype=float), (n,)) for k in self.knowns
                   if isinstance(columns.get(k), np.ndarray)}
+        varied = {k: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for k, v in columns.items()
+                  if isinstance(v, np.ndarray)}       # a case input need not be the Function's (x_m without checks)
+        if self.model.derived and varied:       # a long route: its numbers at every point
+            numbers = self.derived({**base, **varied, **arrays})
+            arrays.update({k: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for k, v in numbers.items()
+                           if np.ndim(v) and k in set(self.knowns)})
+            base.update({k: v for k, v in numbers.items() if not np.ndim(v)})
         arrays.update({k: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for k, v in
                        self.scene.rule_values({**base, **arrays}, arrays).items()})
         constants = {k: base[k] for k in self.knowns if k not in arrays}
@@ -184,7 +237,7 @@ class Problem:
             if not q.in_range(values_all[n]):
                 raise SolveError(self._explain(x, f"the solution {n} = {q.show(values_all[n])} is outside its valid "
                                                   f"range {q.range_text()}"))
-        out = forward_of(self.model)(**{k: values_all[k] for k in self.model.parameters})
+        out = forward_of(self.model)(**{k: values_all[k] for k in self.model.arguments})
         for n in self.given:
             got, want = float(out[n]), values_all[n]
             if not abs(got - want) <= 1e-6 * max(1.0, abs(want)):
@@ -201,7 +254,7 @@ class Problem:
         if len(self.find) != 1 or len(self.given) != 1:
             return f"no {', '.join(self.find)} gives {head} ({what})"
         f, g = self.find[0], self.given[0]
-        lo, hi, swept = reach(self.model, {k: v for k, v in x.items() if k in self.model.parameters}, f, g)
+        lo, hi, swept = reach(self.model, {k: v for k, v in x.items() if k in self.model.arguments}, f, g)
         if lo is None:
             return f"no {f} gives {head}: {g} has no finite value over the valid range of {f} ({what})"
         over = (f"for {f} in {q[f].range_text()}" if swept is None else

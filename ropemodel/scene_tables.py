@@ -42,9 +42,12 @@ class Check:
 
 
 def settable(model: Model, name: str, origin: str) -> str | None:
-    if name in model.parameters:
-        return None
     option = "--set" if origin == "--set" else "with_values"
+    if name in model.derived:
+        return (f"{name} is computed from the route's segments for each load case "
+                f"({model.quantities[name].description}): set the segments' values (L_i, alpha_i, mu_wi) instead")
+    if name in model.parameters or name in model.edge_set:
+        return None
     if name in effects_of(model.name):
         return f"{name} is an effect: it cannot be set with {option}; choose its variant in the scene's [effects]"
     if name in model.outputs:
@@ -212,7 +215,9 @@ def read_parameters(model: Model, given: dict, bare: str, found: Problems, notes
             continue
         if key in model.outputs:
             checks[key] = Check(si, half_digit(q, value, si, bare), str(value))
-        elif key in model.parameters:
+        elif key in model.derived:
+            found.add(str(settable(model, key, "[parameters]")))
+        elif key in model.parameters or key in model.edge_set:
             params[key], origin[key] = si, "scene"
             note = q.unusual(si)
             if note:
@@ -245,7 +250,7 @@ def set_values(model: Model, values: Mapping, bare: str, origin_label: str, para
     one is named in ``unused`` and its SI value kept in ``kept``)."""
     for key, value in values.items():
         problem = settable(model, key, origin_label)
-        if problem and not (key in model.universe and key not in model.symbols):
+        if problem and (key in model.derived or not (key in model.universe and key not in model.symbols)):
             found.add(problem)
             continue
         q = model.universe[key]
@@ -255,7 +260,7 @@ def set_values(model: Model, values: Mapping, bare: str, origin_label: str, para
             found.add(str(exc))
             origin[key] = f"{origin_label} (refused)"
             continue
-        if key not in model.parameters:
+        if key not in model.parameters and key not in model.edge_set:
             keep_unused(model, key, si, origin_label, origin, unused, kept, notes, found)
             continue
         params[key], origin[key] = si, origin_label

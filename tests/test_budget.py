@@ -118,12 +118,16 @@ def _long_route(n: int) -> str:
     return head + segments + params
 
 
-def test_an_inverse_solve_on_a_long_route_is_refused_with_its_count(tmp_path, capsys):
-    """``solve --find`` on a route answers at every load case through the whole route: load cases x segments
+def test_an_inverse_solve_on_a_long_route_is_refused_with_its_count(tmp_path, capsys, monkeypatch):
+    """``solve --find`` on a route of segments (the segment form: held as route numbers from more than
+    VECTOR_ABOVE segments, raised here) answers at every load case through the whole route: load cases x segments
     counted, refused above the budget with the count and the fix (pin the place); pinned by ``--at x_m=``, it
     is one root-find and runs."""
     from ropemodel import load_scene
+    from ropemodel.effects import winch_route_vector
     from ropemodel.envelope.cases import with_ramps
+
+    monkeypatch.setattr(winch_route_vector, "VECTOR_ABOVE", 10**6)
 
     n = 400
     scene = tmp_path / "route.toml"

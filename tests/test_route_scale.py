@@ -78,28 +78,30 @@ def test_a_thousand_segment_trip_equals_its_tables_and_the_exact_trip(thousand, 
     assert got["E_regen"] == pytest.approx(ref["E_brake"], rel=1e-9, abs=1e-6)
 
 
-def test_the_load_is_placed_on_its_segment_once(thousand):
-    """The trip's forces at a place of the load on a 1000-segment route, the route's values folded in: the load's
-    segment is found once for eq. (1), (5), (7) (one comparison, one difference, one product and one sum per
-    segment, the joints and inclinations as constants: 6 operations a segment, not the 10 of three lookups), and
-    nothing else in F_C or the stroke's dF passes through the segments."""
+def test_a_long_routes_model_does_not_grow_with_its_segments(thousand, tmp_path):
+    """A route of more than VECTOR_ABOVE segments is held as route numbers per load case: the model of 1000
+    segments has no input per segment and the very same size as that of 200 (the route step reduces each case
+    to a few numbers outside it, :mod:`ropemodel.papers.route_numbers`)."""
+    from ropemodel.effects.winch_route_vector import VECTOR_ABOVE
+
     segments, profile, _ = thousand
-    problem = Problem(profile)
-    fun = problem.function
-    constants = {k: profile.parameters[k] for k in fun.name_in() if k not in ("x_m", "a_h")}
-    moving, _ = ev.folded(fun, ["x_m", "a_h"], constants, ["F_C_up", "dF_up"])
-    assert moving is not None and moving.n_instructions() < 6 * len(segments) + 50
+    shorter = rm.load_scene(str(_scene_files(tmp_path, _segments(200, seed=7))[0]))
+    assert len(segments) > 200 > VECTOR_ABOVE
+    long, short = Problem(profile).function, Problem(shorter).function
+    assert long.name_in() == short.name_in() and not any(k.startswith(("L_", "alpha_")) for k in long.name_in())
+    assert long.n_instructions() == short.n_instructions() < 2000
 
 
 def test_folded_constants_give_what_the_map_gives(monkeypatch):
-    """The model of a 200-segment route at 500 places of the load, with its constants folded into the Function
-    (FOLD_MIN lowered to 0) and passed to CasADi's map at every point (FOLD_MIN above the work): the same
-    numbers to the last bit; an output that does not vary with the place is one number repeated."""
+    """The model of a 100-segment route (the segment form, every segment's values the model's inputs) at 500
+    places of the load, with its constants folded into the Function (FOLD_MIN lowered to 0) and passed to
+    CasADi's map at every point (FOLD_MIN above the work): the same numbers to the last bit; an output that does
+    not vary with the place is one number repeated."""
     raw = dict(rm.load_scene("route_segments").raw)
-    raw["route"] = [{"length": f"{L!r} m", "inclination": f"{a!r} deg"} for L, a, _ in _segments(200, seed=5)]
+    raw["route"] = [{"length": f"{L!r} m", "inclination": f"{a!r} deg"} for L, a, _ in _segments(100, seed=5)]
     raw["parameters"] = {**raw["parameters"], "F_nwl": "400 kN"}
     problem = Problem(rm.from_dict(raw, emit=False))
-    x = np.linspace(0.0, sum(L for L, _, _ in _segments(200, seed=5)), 500)
+    x = np.linspace(0.0, sum(L for L, _, _ in _segments(100, seed=5)), 500)
     columns = {"x_m": x, "a_h": np.where(x < 150.0, 0.5, -0.5)}
     monkeypatch.setattr(ev, "FOLD_MIN", math.inf)
     mapped = problem.evaluate(columns)
@@ -247,7 +249,8 @@ def test_run_on_ten_thousand_points_equals_the_route_as_three_segments(tmp_path)
     (tmp_path / "three").mkdir()
     _, tables = _scene_files(tmp_path / "three", three)
     a, b = rm.run(str(profile)), rm.run(str(tables))
-    segments = {k for k in a.values if k.split("_")[0] in ("L", "alpha", "mu") and k.split("_")[-1][-1].isdigit()}
+    segments = {k for k in {*a.values, *b.values} if k.split("_")[0] in ("L", "alpha", "mu")
+                and k.split("_")[-1][-1].isdigit()}
     assert set(a.values) - segments == set(b.values) - segments
     for k in set(b.values) - segments:
         assert a.values[k] == pytest.approx(b.values[k], rel=1e-10, abs=1e-9), k

@@ -213,4 +213,4 @@ def solver_of(model, structure: Structure, guesses: dict[str, float] | None = No
 
 def forward_of(model) -> ca.Function:
     """The forward Function of ``model``: every output from the parameters (compiled once)."""
-    return solver_of(model, structure_of(model, model.outputs, model.parameters))
+    return solver_of(model, structure_of(model, model.outputs, model.arguments))

@@ -21,7 +21,8 @@ class Model:
     submodels: one instance per effect.
     equations: every residual equation, in submodel order.
     outputs: names defined by the equations (unknowns of the forward problem).
-    parameters: every other symbol the equations use (knowns of the forward problem).
+    parameters: every other symbol the equations use (knowns of the forward problem), but the derived ones.
+    arguments: the parameters and the derived (a long route's numbers): the compiled Functions' inputs.
     quantities: metadata of every output and parameter.
     symbols: name → CasADi SX symbol.
     """
@@ -52,7 +53,13 @@ class Model:
                 self.names_of[eq.defines] = names
                 self.equations.append(eq)
         self.outputs = [eq.defines for eq in self.equations]
-        self.parameters = [n for n in self.symbols if n not in defined]
+        #: parameters of the equations computed from the others per load case (a long route's numbers): name ->
+        #: the case inputs (``x_m``, ``a_h``) each follows
+        self.derived: dict[str, tuple[str, ...]] = {k: f for sm in self.submodels
+                                                    for k, f in getattr(sm, "derived", {}).items()}
+        #: every input of the equations (the compiled Functions'): the parameters and the :attr:`derived`
+        self.arguments = [n for n in self.symbols if n not in defined]
+        self.parameters = [n for n in self.arguments if n not in self.derived]
         known = {**all_quantities(model), **{q.name: q for sm in self.submodels for q in sm.quantities}}
         #: every quantity this model could know: every variant's, and this instance's own (a route's segments)
         self.universe = known
@@ -61,6 +68,28 @@ class Model:
             raise RuntimeError(f"no Quantity declared for {missing} in model {model}")
         self.quantities: dict[str, Quantity] = {n: known[n] for n in self.symbols}
         self.defined_by = defined
+        #: a long route's segments (``L_i``, ``alpha_i``, ``mu_wi``): the scene's parameters, read and set by name,
+        #: that the equations take only through the route numbers :meth:`derive` computes from them
+        self.edges: tuple[str, ...] = tuple(n for sm in self.submodels for n in getattr(sm, "edges", ()))
+        self.edge_set = frozenset(self.edges)
+        self.quantities.update({n: known[n] for n in self.edges})
+
+    def derive(self, values) -> dict:
+        """The :attr:`derived` parameters at ``values`` (SI numbers, or numpy arrays over points): {} without."""
+        out: dict = {}
+        for sm in self.submodels:
+            if getattr(sm, "derived", None):
+                out.update(sm.derive(values))
+        return out
+
+    def derive_through(self, values, edges) -> dict:
+        """The :attr:`derived` parameters at one point (SI numbers ``values``) as CasADi expressions of the
+        :attr:`edges` named in ``edges`` (name -> expression): what a derivative in a segment's value goes through."""
+        out: dict = {}
+        for sm in self.submodels:
+            if getattr(sm, "derived", None):
+                out.update(sm.derive_through(values, edges))  # type: ignore[attr-defined]
+        return out
 
     @property
     def citations(self) -> list[str]:
@@ -101,6 +130,9 @@ class Model:
             seen.add(name)
             if name in self.defined_by:
                 todo += self.names_of[name]
+            elif name in self.derived:       # a route number: the segments, and what it takes per case
+                out |= self.edge_set
+                todo += [n for n in (*self.derived[name], "mu_pl", "L_ul") if n in self.symbols]
             elif name in self.symbols:
                 out.add(name)
         return out
@@ -108,7 +140,7 @@ class Model:
     @property
     def key(self) -> tuple:
         """What the equations depend on (model, effects, numerics): one compile serves every value."""
-        return (self.name, tuple(sorted(self.effects.items())), repr(sorted(self.options.items())))
+        return (self.name, tuple(sorted(self.effects.items())), repr(sorted(self.options.items())), bool(self.derived))
 
     def problems(self, values: dict[str, float]) -> list[str]:
         """Every value outside its valid range, then every broken cross-parameter rule (SI ``values``)."""
@@ -135,7 +167,7 @@ class Model:
 
     def name_problem(self, name: str, what: str = "parameter") -> str | None:
         """Why ``name`` is not a quantity of this model (a suggestion, or the variant that uses it), or None."""
-        if name in self.symbols:
+        if name in self.symbols or name in self.edge_set:
             return None
         segments = self.options.get("route")
         past_the_end = route_arrays.beyond(name, len(segments)) if segments else None

@@ -143,6 +143,10 @@ def _symbolic_values(scene, params, p) -> dict:
                          f"mode needs an explicit static model")
     values = dict(scene.parameters)
     values.update({n: p[i] for i, n in enumerate(params)})
+    model = scene.built
+    if model.derived:       # a long route's numbers, through the segments' values among params
+        edges = {n: values[n] for n in params if n in model.edge_set}
+        values.update(model.derive_through(scene.parameters, edges) if edges else model.derive(scene.parameters))
     statics = forward(**{k: values[k] for k in forward.name_in()})
     return {**values, **statics}
 

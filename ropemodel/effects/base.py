@@ -132,6 +132,11 @@ class Submodel:
         """Residual equations of this submodel (none for an "off" variant)."""
         return []
 
+    def derive(self, values) -> dict:
+        """Parameters of this submodel's equations computed from the others for each load case (``derived``: a
+        long route's numbers), at ``values`` (SI numbers or numpy arrays over points); {} for most."""
+        return {}
+
     def validate(self, values: dict[str, float]) -> None:
         """Raise :class:`InputError` on inconsistent SI parameter values (or override :meth:`rules`)."""
 

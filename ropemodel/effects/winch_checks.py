@@ -34,6 +34,7 @@ from typing import Any
 
 from ropemodel._math import fmin
 from ropemodel.effects import domains as dom
+from ropemodel.effects import winch_route_vector as vec
 from ropemodel.effects.base import Equation, Submodel, define_effect, register
 from ropemodel.effects.transient.travel import X_M
 from ropemodel.effects.winch import D_DRUM, DIRECTIONS, MODEL, STROKE, Q, per_direction, slack_masks, slack_reasons
@@ -159,9 +160,11 @@ class DesignChecks(Submodel):
     def _least_tensions(self, v) -> list[Equation]:
         """F_S_least, F_C_least of each direction: the tension profile of each side along the route's pieces
         (the route effect's :meth:`profile`), with the inertia the forces include (docs/physics.md §4)."""
-        route = _hook(self.sibling("route")).profile(v)
         a = _hook(self.sibling("inertia")).acceleration(v)
         F_end, q_l = 0.5 * v["F_nwl"], v["q_l"]
+        if getattr(self.sibling("route"), "vector", False):       # a long route: its numbers per load case
+            return _least_from_numbers(v, a, F_end, q_l)
+        route = _hook(self.sibling("route")).profile(v)
         eqs = []
         slopes, mus = rt.as_column(route.inclinations), rt.as_column(route.mus)   # vector operations on a route
         for way, s in DIRECTIONS.items():
@@ -180,7 +183,8 @@ class DesignChecks(Submodel):
     def _route_margin(self, v, way: str):
         """min(F_S_least, F_C_least) − F_S_min, of the sides that have something between their ends."""
         least = v[f"F_C_least_{way}"]
-        if len(_hook(self.sibling("route")).profile(v).lengths) > 1:
+        route = self.sibling("route")
+        if getattr(route, "vector", False) or len(_hook(route).profile(v).lengths) > 1:
             least = fmin(v[f"F_S_least_{way}"], least)
         return least - v["F_S_min"]
 
@@ -199,6 +203,18 @@ class DesignChecks(Submodel):
 
     def frames(self, values, scene, where=None):
         return {"design checks": checks_frame(values, scene.built.quantities, scene.check_basis, where)}
+
+
+def _least_from_numbers(v, a, F_end, q_l) -> list[Equation]:
+    """F_S_least, F_C_least of each direction on a route held as route numbers (:mod:`.winch_route_vector`)."""
+    eqs = []
+    for way, s in DIRECTIONS.items():
+        pull = rt.load_pull(v["G_ml"], v["T_m"], v["G_m"], s, a)
+        eqs += [Equation(f"F_S_least_{way}", v[f"F_S_least_{way}"] - vec.least_unwinding(v, way, s, a, F_end, q_l),
+                         LEAST, method=LEAST_METHOD),
+                Equation(f"F_C_least_{way}", v[f"F_C_least_{way}"]
+                         - vec.least_winding(v, way, s, a, F_end, q_l, pull), LEAST, method=LEAST_METHOD)]
+    return eqs
 
 
 def _hook(submodel) -> Any:

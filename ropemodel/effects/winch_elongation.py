@@ -69,6 +69,8 @@ class ElongationAsBuilt(Submodel):
     #: the winding side's tension integral holds the load's pull times x_m (side_tension_integral): a worst
     #: elongation may be at a place the pruned list leaves out
     place_through_pull = False
+    #: integrates each side segment by segment: a long route keeps its segments in the model for it
+    reads_route_profile = True
     citations: ClassVar[tuple[str, ...]] = ("krauze2025", "rope_extension")
     assumptions = (
         "Hooke's law along each rope side with its tension profile (load position x_m; not given: the load at "

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import casadi as ca
 
@@ -27,6 +27,7 @@ from ropemodel.effects.transient.travel import X_M, beyond_route
 from ropemodel.effects.winch import JUDGEMENT, MODEL, POSITIVE, ROPE_MU, SRC, Q, usual
 from ropemodel.papers import krauze2025 as kr
 from ropemodel.papers import route as rt
+from ropemodel.effects import winch_route_vector as vec
 
 INPUTS = (
         Q("G_m", "N", "weight of the transported load", "kN", guess=4e5,
@@ -180,13 +181,26 @@ class SegmentedRoute(Submodel):
         self.segments = tuple(self.options.get("route") or (False,))
         #: point A given (L_ul in the scene): the winding rope is also split there (eq. (3), (4), (8), (9))
         self.point_A = bool(self.options.get("point_A"))
-        self.quantities = self.quantities + tuple(q for i, has in enumerate(self.segments, start=1)
-                                                  for q in segment_quantities(i, has))
+        edges = tuple(q for i, has in enumerate(self.segments, start=1) for q in segment_quantities(i, has))
+        self.quantities = self.quantities + edges
+        #: a long route is held as route numbers per load case (:mod:`ropemodel.effects.winch_route_vector`): its
+        #: segments' values are then the scene's parameters at the edges (``edges``), not the model's symbols, and
+        #: the numbers (``derived``: name -> the case inputs it follows) are computed by :meth:`derive`
+        self.vector = vec.is_vector(len(self.segments), self.effects)
+        self.edges: tuple[str, ...] = ()
+        self.derived: dict[str, tuple[str, ...]] = {}
+        if self.vector:
+            numbers = vec.quantities(self.point_A)
+            self.quantities = self.quantities + numbers
+            self.edges = tuple(q.name for q in edges)
+            self.derived = {q.name: vec.FOLLOWS[q.name] for q in numbers}
         #: the transient takes the segments' lengths as numbers (:meth:`transient_route`: where the rope's
         #: elements and the load are), so they fix its structure
         self.transient_structural = tuple(f"L_{i}" for i in range(1, len(self.segments) + 1))
 
     def equations(self, v):
+        if self.vector:
+            return vec.equations(v, self.point_A)
         n = len(self.segments)
         L, alpha, mu = self.profile(v)
         x, G_m = v["x_m"], v["G_m"]
@@ -220,6 +234,8 @@ class SegmentedRoute(Submodel):
     def profile(self, v) -> Profile:
         """The segments: L_i, α_i, μ_wi; of the model's symbols (:class:`Symbols`), the same lists each time (their
         columns are made once: :func:`ropemodel.papers.route_vector.column`)."""
+        if self.vector:
+            raise RuntimeError("a route held as route numbers has no profile of symbols (winch_route_vector)")
         kept = self.__dict__.get("_profile")
         if kept is not None and kept[0] is v:
             return kept[1]
@@ -229,14 +245,27 @@ class SegmentedRoute(Submodel):
             self.__dict__["_profile"] = (v, out)
         return out
 
+    def derive(self, values) -> dict:
+        """The route numbers at ``values`` (SI; arrays over points allowed): :func:`.winch_route_vector.derive`."""
+        inertia: Any = self.sibling("inertia")
+        return vec.derive(values, inertia.acceleration, self.point_A)
+
+    def derive_through(self, values, edges) -> dict:
+        """The route numbers at one point as expressions of the segments' values ``edges`` (name -> expression):
+        :func:`.winch_route_vector.derive_through` (a sensitivity in a segment's value)."""
+        inertia: Any = self.sibling("inertia")
+        return vec.derive_through(values, inertia.acceleration, self.point_A, edges)
+
     def transient_route(self, values: dict, numbers: dict):
         """The route as the transient's rope model asks it (:class:`ropemodel.effects.transient.route.Segments`):
-        lengths as numbers (geometry), inclinations and coefficients as the values (may be symbols)."""
+        lengths as numbers (geometry), inclinations and coefficients as the values (may be symbols; a segment
+        without mu_winding: mu_pl, which a route held as route numbers does not list per segment)."""
         from ropemodel.effects.transient.route import Segments
 
         n = range(1, len(self.segments) + 1)
         return Segments(values, [float(numbers[f"L_{i}"]) for i in n], [values[f"alpha_{i}"] for i in n],
-                        [values[f"mu_w{i}"] for i in n])
+                        [values["mu_pl"] if self.vector and f"mu_w{i}" not in values else values[f"mu_w{i}"]
+                         for i in n])
 
     def rules(self, values):
         lengths = [values.get(f"L_{i}") for i in range(1, len(self.segments) + 1)]

@@ -14,7 +14,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from ropemodel import budget
-from ropemodel.envelope.cases import CASE_INPUTS, LoadCase, load_cases, with_ramps
+from ropemodel.envelope.cases import CASE_INPUTS, LoadCase, depends_on, load_cases, with_ramps
 from ropemodel.envelope.prune import prune
 from ropemodel.envelope.result import EnvelopeResult
 from ropemodel.envelope.worst import case_columns, envelope
@@ -119,7 +119,7 @@ def solve(scene: SceneLike, given: Mapping, find: Sequence[str] | str, bare: str
     cases = load_cases(sc, pinned=find)
     if len(cases) == 1:
         return problem.solve(cases[0].values(sc.parameters))
-    if sc.route:
+    if sc.route and not sc.built.derived:       # a long route's numbers: each case is a few numbers, not n
         n = len(sc.route)
         budget.check("route solve", len(cases) * n,
                      f"solving for {', '.join(find)} on a route of {n} segments at {len(cases)} load cases, each "
@@ -148,8 +148,9 @@ def _needs_a_worst(forward: Problem, problem: Problem, cases: list[LoadCase]) ->
     """An :class:`InputError` for a given output that changes with the open case inputs and has no worst."""
     fun, q = forward.function, forward.model.quantities
     varied = [k for k in CASE_INPUTS if k in case_columns(cases, forward.scene.parameters)]
+    depends = depends_on(fun, problem.given, varied, forward.model.derived)
     for g in problem.given:
-        moves = [k for k in varied if fun.sparsity_jac(fun.index_in(k), fun.index_out(g)).nnz() > 0]
+        moves = list(depends[g])
         if moves and not q[g].worst:
             pins = " and ".join(f"--at {k}=..." for k in moves)
             raise InputError(f"--given {g}: {g} changes with {' and '.join(moves)} (left open: every place and "

@@ -193,11 +193,18 @@ def reads(scene: Scene) -> set[str]:
     return ramps | set(open_)
 
 
-def depends_on(function, outputs, inputs=CASE_INPUTS) -> dict[str, tuple[str, ...]]:
+def depends_on(function, outputs, inputs=CASE_INPUTS, follows=None) -> dict[str, tuple[str, ...]]:
     """Output → the case inputs among ``inputs`` it depends on, from ``function``'s structure (a CasADi
-    Function with named inputs and outputs)."""
-    ins = [k for k in inputs if k in function.name_in()]
-    return {o: tuple(k for k in ins if function.sparsity_jac(function.index_in(k), function.index_out(o)).nnz())
+    Function with named inputs and outputs); ``follows``: inputs computed per case (a long route's numbers,
+    :attr:`ropemodel.core.model.Model.derived`) → the case inputs each follows, counted as theirs."""
+    names = set(function.name_in())
+    through = {k: [n for n, f in (follows or {}).items() if k in f and n in names] for k in inputs}
+    ins = [k for k in inputs if k in names or through[k]]
+
+    def uses(name: str, o: str) -> bool:
+        return bool(function.sparsity_jac(function.index_in(name), function.index_out(o)).nnz())
+
+    return {o: tuple(k for k in ins if (k in names and uses(k, o)) or any(uses(n, o) for n in through[k]))
             for o in outputs}
 
 

@@ -30,7 +30,7 @@ class EnvelopeResult(Result):
         self.free = free(scene)
         self.where = env.where()
         checks_where = {**{n: "the same in every case" for n in env.constant}, **self.where}
-        params = {k: env.params[k] for k in model.parameters if k in env.params and k not in self.free}
+        params = {k: env.params[k] for k in (*model.parameters, *model.edges) if k in env.params and k not in self.free}
         self.scene, self.model = scene, model
         self.values = {**params, **env.values()}
         self.given, self.find = list(given), list(find)

@@ -47,27 +47,34 @@ def jacobian(problem: Problem, values: Mapping | None = None, parameters=None, o
     :class:`~ropemodel.envelope.LoadCase`) sets the load's place and acceleration from the parameters."""
     fun = problem.function
     x = problem.inputs(values)
-    parameters = list(problem.knowns) if parameters is None else list(parameters)
+    parameters = list(problem.user_knowns) if parameters is None else list(parameters)
     outputs = list(problem.unknowns) if outputs is None else list(outputs)
     for p in parameters:
-        if p not in problem.knowns:
-            raise InputError(f"parameter {p!r} is not an input of this problem; inputs: {', '.join(problem.knowns)}")
+        if p not in problem.user_knowns and p not in problem.model.edge_set:
+            raise InputError(f"parameter {p!r} is not an input of this problem; inputs: "
+                             f"{', '.join(problem.user_knowns)}")
     for o in outputs:
         if o not in problem.unknowns:
             raise InputError(f"output {o!r} is not a result of this problem; results: {', '.join(problem.unknowns)}")
     P = ca.MX.sym("p", len(parameters))
     args = {k: ca.MX(x[k]) for k in problem.knowns}
-    args.update({k: P[i] for i, k in enumerate(parameters)})
+    args.update({k: P[i] for i, k in enumerate(parameters) if k not in problem.model.edge_set})
+    edges = {k: P[i] for i, k in enumerate(parameters) if k in problem.model.edge_set}     # a long route's segments
     ruled = problem.scene.ruled()      # a factor a rule gives follows its length, plus its own change
     for k, v in problem.scene.rule_values(args, [p for p in parameters if p not in ruled]).items():
         args[k] = v + (args[k] - x[k])
+    numbers = dict(x)
     if case is not None:
-        given: ChainMap[str, Any] = ChainMap(args, problem.scene.parameters)
+        given: ChainMap[str, Any] = ChainMap(edges, args, problem.scene.parameters)
         args.update({k: ca.MX(v) if isinstance(v, float) else v for k, v in case.values(given).items()})
+        numbers.update(case.values(ChainMap(x, problem.scene.parameters)))
+    if problem.model.derived:       # a long route's numbers at the point, through the segments' values varied
+        at = problem.model.derive_through({**problem.scene.parameters, **numbers}, edges)
+        args.update({k: v for k, v in at.items() if k in args})
     res = fun.call(args)
     Y = ca.vertcat(*[res[o] for o in outputs])
     f = ca.Function("elasticity_jacobian", [P], [Y, ca.jacobian(Y, P)])
-    p0 = np.array([x[k] for k in parameters], dtype=float)
+    p0 = np.array([x[k] if k in x else problem.scene.parameters[k] for k in parameters], dtype=float)
     y, J = (np.asarray(a, dtype=float) for a in f(p0))
     y = y.ravel()
     J = J.reshape(len(outputs), len(parameters))
@@ -135,7 +142,7 @@ def elasticities(scene: SceneLike, values: Mapping | None = None, outputs: Seque
     open_ = [k for k in free(scene) if k not in find]
     if parameters is None:
         x = problem.inputs(values)
-        parameters = [k for k in problem.knowns if math.isfinite(x[k]) and k not in open_]
+        parameters = [k for k in problem.user_knowns if math.isfinite(x[k]) and k not in open_]
     rows = []
     for case, outs, where in _governing(scene, problem, outputs, find):
         y, J, p, names = jacobian(problem, values, parameters, outs, case)

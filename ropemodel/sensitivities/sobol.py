@@ -170,8 +170,9 @@ def sobol(scene: SceneLike, ranges: Mapping, outputs: Sequence[str] | None = Non
     problem = Problem(scene, given, find)
     q = problem.model.quantities
     for k in ranges:
-        if k not in problem.knowns:
-            raise InputError(f"cannot vary {k!r}: not an input of this problem; inputs: {', '.join(problem.knowns)}")
+        if k not in problem.user_knowns:
+            raise InputError(f"cannot vary {k!r}: not an input of this problem; inputs: "
+                             f"{', '.join(problem.user_knowns)}")
     si_ranges = {k: parse_range(k, v, q[k].unit) for k, v in ranges.items()}
     for k, (lo, hi) in si_ranges.items():
         q[k].check(lo, f"{k} (low end of its range)")

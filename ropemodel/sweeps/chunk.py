@@ -41,11 +41,37 @@ class ChunkJob:
     roundtrip: dict[str, str] = field(default_factory=dict)
     physics: list = field(default_factory=list)
     watch: list[tuple[str, dict[str, str]]] = field(default_factory=list)
+    #: inputs computed from the varied ones at each point (a long route's numbers, :class:`RouteStep`), or None
+    derive: object = None
+
+
+@dataclass
+class RouteStep:
+    """A long route's numbers at each point of a chunk (:meth:`ropemodel.core.model.Model.derive`): ``model`` the
+    scene's, ``values`` the SI values the points leave alone (the scene's parameters and the sweep's base),
+    ``names`` the numbers the swept Function takes."""
+
+    model: object
+    values: dict
+    names: list[str]
+
+    def __call__(self, inputs: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        n = len(next(iter(inputs.values())))
+        merged = {**self.values, **inputs}
+        varied = [k for k in inputs if k in self.model.edge_set]        # type: ignore[attr-defined]
+        if varied:          # a segment that varies: the route's arrays point by point
+            rows = [self.model.derive({**merged, **{k: float(inputs[k][i]) for k in inputs}})  # type: ignore[attr-defined]
+                    for i in range(n)]
+            return {k: np.array([r[k] for r in rows]) for k in self.names}
+        got = self.model.derive(merged)                                   # type: ignore[attr-defined]
+        return {k: np.broadcast_to(np.asarray(got[k], dtype=float), (n,)) for k in self.names}
 
 
 def run_chunk(job: ChunkJob, start: int, inputs: dict[str, np.ndarray]) -> pa.Table:
     """Evaluate the points ``inputs`` (SI arrays of the varied inputs; first point has index ``start``)."""
     n = len(next(iter(inputs.values())))
+    if job.derive is not None:
+        inputs = {**inputs, **job.derive(inputs)}       # type: ignore[operator]
     outs = job.job(inputs)
     ok = np.ones(n, dtype=bool)
     for y in outs.values():
@@ -73,7 +99,7 @@ def run_chunk(job: ChunkJob, start: int, inputs: dict[str, np.ndarray]) -> pa.Ta
     if failures and job.errors == "raise":
         why, mask = next(iter(failures.items()))
         i = int(np.flatnonzero(mask)[0])
-        at = ", ".join(f"{k} = {inputs[k][i]:.6g}" for k in job.job.varied)
+        at = ", ".join(f"{k} = {inputs[k][i]:.6g}" for k in job.job.varied if k not in getattr(job.derive, "names", ()))
         raise SolveError(f"point {start + i} ({at}, SI): {why}; {int((~ok).sum())} of the {n} points "
                          f"from {start} fail (errors='mark' keeps them with solved = False)")
     data = {}

@@ -235,11 +235,12 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
     scene = with_ramps(scene)
     problem = Problem(scene, list(given), find)
     model = problem.model
-    inputs = {k: model.quantities[k] for k in problem.knowns}
+    inputs = {k: model.quantities[k] for k in problem.user_knowns}
     if isinstance(vary, pd.DataFrame):
         points, vary = vary, None
     if (vary is None) == (points is None):
         raise InputError("give either vary={name: axis} (a grid) or a table of points")
+    inputs.update(worst_case.route_refusal(scene, problem, list(vary if vary is not None else points.columns)))
     pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=model.outputs)
     if pts.n == 0:
         raise InputError("no points to sweep")
@@ -343,9 +344,10 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
     if backend == "auto" and plan.n < COMPILE_MIN:
         backend = "casadi"  # a C compile costs more than it saves on small sweeps
     fun = problem.function
-    order = list(varied) + [k for k in problem.knowns if k not in varied]
-    syms = {k: ca.MX.sym(k) for k in problem.knowns}
-    args = {**syms, **problem.scene.rule_values(syms, varied)}   # a swept length carries its rule's factor
+    computed = step.names if (step := worst_case.route_step(problem, plan.pts.names, plan.base, plan.worst)) else []
+    order = [*varied, *computed] + [k for k in problem.knowns if k not in varied and k not in computed]
+    syms = {k: ca.MX.sym(k) for k in [*problem.knowns, *varied]}     # a segment varied: the route step reads it
+    args = {**{k: syms[k] for k in problem.knowns}, **problem.scene.rule_values(syms, varied)}   # + a rule's factor
     if plan.worst is None:
         res = fun.call(args)
         names, outs, per_case = list(outputs), [res[o] for o in outputs], [("", res)]
@@ -374,9 +376,9 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
         columns += [(label(c, worst_case.UNITS[k]), c, 1.0) for c, k in plan.worst.where_columns(outputs)]
     checks = {n: (q[n].low, q[n].high, q[n].low_open, q[n].high_open,
                   f"{q[n].range_text()}, {q[n].description}") for n in problem.find if n in outputs}
-    constants = {k: float(base[k]) for k in order[len(varied):]}
-    return ChunkJob(Job(sel, list(varied), constants, backend, threads), outputs, columns, checks, errors, roundtrip,
-                    physics, watch)
+    constants = {k: float(base[k]) for k in order[len(varied) + len(computed):]}
+    return ChunkJob(Job(sel, [*varied, *computed], constants, backend, threads), outputs, columns, checks, errors,
+                    roundtrip, physics, watch, step)
 
 
 def _signature(scene, problem, pts, base, outputs, chunk_size, si, errors) -> dict:

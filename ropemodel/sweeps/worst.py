@@ -12,12 +12,14 @@ and ``<output>@a_h [m/s^2]`` give the place and the acceleration of the case tha
 from __future__ import annotations
 
 from collections import ChainMap
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from ropemodel.envelope import CASE_INPUTS, LoadCase, free, load_cases
-from ropemodel.envelope.cases import depends_on, distinct
+from ropemodel.envelope.cases import depends_on, distinct, joint_ends
+from ropemodel.envelope.cases import reads as case_reads
 from ropemodel.envelope.worst import pick, symbolic_worst
 from ropemodel.errors import InputError
+from ropemodel.sweeps.chunk import RouteStep
 
 #: the unit of each case input's column (SI and display alike)
 UNITS = {"x_m": "m", "a_h": "m/s^2"}
@@ -29,6 +31,9 @@ class Worst:
 
     cases: list[LoadCase]
     depends: dict[str, tuple[str, ...]]
+    #: a long route's numbers at each case (:meth:`ropemodel.problem.Problem.case_numbers`), and the places' x_m
+    numbers: dict = field(default_factory=dict)
+    ends: list | None = None
 
     def where_columns(self, outputs) -> list[tuple[str, str]]:
         """(column name, case input): ``F_C_up@x_m`` for each output that depends on an open input."""
@@ -46,16 +51,53 @@ def plan(scene, problem, varied, find, outputs) -> tuple[Worst | None, list[str]
     if problem.given:
         raise InputError(f"an inverse sweep is solved at one place and manoeuvre: give {' and '.join(open_)} "
                          f"(--set, or vary it)")
-    depends = depends_on(problem.function, problem.unknowns, open_)
+    depends = depends_on(problem.function, problem.unknowns, open_, problem.model.derived)
     q = problem.model.quantities
     no_worst = [o for o in problem.unknowns if depends[o] and not q[o].worst]
+    ends = joint_ends(scene.parameters) if problem.model.derived else None
+    worst = Worst(cases, depends, problem.case_numbers(cases, ends), ends)
     if outputs is None:
-        return Worst(cases, depends), [o for o in problem.unknowns if o not in no_worst]
+        return worst, [o for o in problem.unknowns if o not in no_worst]
     bad = [o for o in ([outputs] if isinstance(outputs, str) else outputs) if o in no_worst]
     if bad:
         raise InputError(f"{', '.join(bad)} change with {' and '.join(open_)} and have no worst case: give one "
                          f"point (--set {open_[0]}=..., or vary it)")
-    return Worst(cases, depends), outputs
+    return worst, outputs
+
+
+#: what a long route's numbers are computed from besides its segments: held at the scene's values in a sweep
+ROUTE_READS = ("mu_pl", "x_m", "a_h", "L_ul")
+
+
+def route_step(problem, varied, base: dict, worst: Worst | None) -> RouteStep | None:
+    """A long route's numbers computed at each point, where the sweep varies what they are computed from at one
+    load case (the route's segments, mu_pl, the load's place or acceleration, L_ul); None otherwise (they are
+    then the base's constants, or each case's: :func:`columns`)."""
+    model = problem.model
+    if not model.derived or worst is not None or not set(varied) & {*model.edge_set, *ROUTE_READS}:
+        return None
+    values = {**problem.scene.parameters, **{k: v for k, v in base.items() if k not in model.derived}}
+    return RouteStep(model, values, [k for k in problem.knowns if k in model.derived])
+
+
+def route_refusal(scene, problem, varied) -> dict:
+    """The quantities of the segments of a long route among ``varied`` (swept by name); :class:`InputError` for a
+    sweep at the worst case over open load cases that varies what a long route's
+    numbers are computed from (its segments, μ_pl, L_ul, and what the manoeuvres' accelerations come from): each
+    point and case would need its own route step, which the sweep makes only at one case (pinned)."""
+    model = problem.model
+    edges = {k: model.quantities[k] for k in varied if k in model.edge_set}
+    if not model.derived or len(load_cases(scene, pinned=varied)) == 1:     # one case: numbers point by point
+        return edges
+    reads = {*model.edges, *ROUTE_READS, *case_reads(scene)}
+    bad = [k for k in varied if k in reads]
+    if bad:
+        raise InputError(f"sweeping {', '.join(bad)}: a route of {len(scene.route)} segments is "
+                         f"held as route numbers per load case, computed from {bad[0]}, and a sweep at the worst "
+                         f"over every place and manoeuvre does not compute them point by point: pin the load's "
+                         f"place and manoeuvre (--set x_m=... a_h=...), run each value (--set {bad[0]}=...), "
+                         f"or join segments to at most 100")
+    return edges
 
 
 def columns(worst: Worst, fun, args: dict, base: dict, outputs, quantities) -> tuple[list[str], list, list]:
@@ -67,7 +109,8 @@ def columns(worst: Worst, fun, args: dict, base: dict, outputs, quantities) -> t
 
     def result(i: int) -> dict:
         if i not in at:
-            at[i] = fun.call({**args, **worst.cases[i].values(values)})
+            case = {**worst.cases[i].values(values, worst.ends), **worst.numbers.get(worst.cases[i], {})}
+            at[i] = fun.call({**args, **{k: v for k, v in case.items() if k in args}})
         return at[i]
 
     names, exprs = [], []
@@ -83,7 +126,7 @@ def columns(worst: Worst, fun, args: dict, base: dict, outputs, quantities) -> t
         exprs.append(value)
         for inp in deps:
             names.append(f"{o}@{inp}")
-            exprs.append(pick(k, [worst.cases[i].values(values)[inp] for i in idx]))
+            exprs.append(pick(k, [worst.cases[i].values(values, worst.ends)[inp] for i in idx]))
     return names, exprs, [(worst.cases[i].name(), result(i)) for i in range(len(worst.cases))]
 
 
