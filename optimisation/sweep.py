@@ -31,6 +31,8 @@ stroke.
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 import pandas as pd
 from tqdm.auto import tqdm
@@ -41,6 +43,7 @@ from optimisation.ipopt import solve_continuous
 from optimisation.problem import SizingProblem, declaration
 from ropemodel.errors import InputError
 from ropemodel.sweeps.points import grid, table
+from ropemodel.envelope.cases import CASE_READS, joint_ends
 from ropemodel.sweeps.worst import ROUTE_READS
 from ropemodel.sweeps.validate import check_ranges, check_rules
 from ropemodel.units import factor, label
@@ -69,7 +72,8 @@ def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, method: st
     names = list(pts.names) + sorted({p for n in pts.names for p in scene.ruled_by(n)} - set(pts.names))
     parts = []
     bar = tqdm(total=pts.n, unit="opt", desc="sizing", disable=(not progress) if progress is not None else None)
-    fast = ActiveSetMap(problem, names) if warm and method == "active-set" else None
+    follows = bool(scene.built.derived) and bool(set(names) & {*scene.built.edges, *ROUTE_READS, *CASE_READS})
+    fast = ActiveSetMap(problem, names) if warm and method == "active-set" and not follows else None
     prev = None
     for start in range(0, pts.n, CHUNK):
         chunk = pts.chunk(start, min(pts.n, start + CHUNK))
@@ -78,7 +82,7 @@ def sizing_sweep(scene, vary=None, *, points=None, warm: bool = True, method: st
             res = fast.run(np.column_stack([chunk[k] for k in names]), done=bar.update)
             x, feasible, iterations, seconds = res.x, res.feasible, res.iterations, res.seconds
         else:
-            x, feasible, iterations, seconds, prev = _ipopt_points(problem, names, chunk, warm, prev, bar)
+            x, feasible, iterations, seconds, prev = _ipopt_points(problem, names, chunk, warm, prev, bar, follows)
         parts.append(sizing_frame(problem, q, chunk, x, feasible, iterations, seconds))
     bar.close()
     return pd.concat(parts, ignore_index=True)
@@ -94,27 +98,28 @@ def sizing_points(scene, problem, vary, points):
     for k in (vary or {}) if vary is not None else points.columns:
         if k in problem.variables:
             raise InputError(f"cannot vary {k}: it is a design variable the sizing chooses")
-        if scene.built.derived and k in {*scene.built.edges, *ROUTE_READS, "v_pj", "t_ramp", "a_e"}:
-            raise InputError(f"cannot vary {k} in a sizing sweep on a route of {len(scene.route)} segments: the "
-                             f"route is held as route numbers per load case, computed from {k} at the scene's "
-                             f"value; size each value (--set {k}=...), or join segments to at most 100")
+    inputs.update({k: scene.built.quantities[k] for k in (vary if vary is not None else points.columns)
+                   if k in scene.built.edge_set})       # a long route's segment, swept by name
     pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=scene.built.outputs)
     check_ranges(pts, inputs)
     check_rules(scene.built, pts, dict(scene.parameters))
     return pts
 
 
-def _ipopt_points(problem, names, chunk, warm, prev, bar):
-    """IPOPT at every point of ``chunk`` (warm: from the previous optimum and its multipliers)."""
+def _ipopt_points(problem, names, chunk, warm, prev, bar, follows=False):
+    """IPOPT at every point of ``chunk`` (warm: from the previous optimum and its multipliers); ``follows``: each
+    point's NLP has a long route's numbers at its own values (:func:`at_values`)."""
     n = len(chunk[names[0]])
     x, feasible = np.full((n, len(problem.variables)), np.nan), np.zeros(n, bool)
     iterations, seconds = np.zeros(n, int), np.zeros(n)
     for i in range(n):
-        p = problem.p_of({k: float(chunk[k][i]) for k in names})
-        sol = solve_continuous(problem, p, polish=False, start=prev if warm else None)
+        values = {k: float(chunk[k][i]) for k in names}
+        at = at_values(problem, values) if follows else problem
+        p = problem.p_of({k: v for k, v in values.items() if k in problem.params})
+        sol = solve_continuous(at, p, polish=False, start=prev if warm else None)
         iterations[i], seconds[i] = sol.iterations, sol.seconds
         if not sol.feasible:  # the package's multi-start (from the scene's design first)
-            sol = solve_best(problem, p)
+            sol = solve_best(at, p)
             iterations[i] += sol.iterations
             seconds[i] += sol.seconds
         if sol.feasible:
@@ -122,6 +127,19 @@ def _ipopt_points(problem, names, chunk, warm, prev, bar):
             x[i], feasible[i] = sol.xs, True
         bar.update(1)
     return x, feasible, iterations, seconds, prev
+
+
+def at_values(problem, values: dict):
+    """``problem`` (:class:`~optimisation.problem.SizingProblem`) with a long route's numbers in each case at SI
+    ``values`` (a sweep's point: what the numbers are computed from, segments by name among them, which then move
+    the places too); the model is not compiled again.  Its parameters are ``p_of`` the same values."""
+    out = copy.copy(problem)
+    edges = {k: v for k, v in values.items() if k in problem.scene.built.edge_set}
+    out.scene = problem.scene.with_values(edges) if edges else problem.scene
+    ends = joint_ends({**problem.scene.parameters, **values}) if problem.scene.route else None
+    out._route_numbers = problem.problem.case_numbers(problem.candidates, ends, values)
+    out._build_nlp()
+    return out
 
 
 def sizing_frame(problem, q, chunk, x, feasible, iterations, seconds) -> pd.DataFrame:

@@ -144,17 +144,19 @@ class Problem:
                 for i in range(n)]                     # a segment that varies: the route's numbers point by point
         return {k: np.array([r[k] for r in rows]) for k in rows[0]}
 
-    def case_numbers(self, cases, ends=None) -> dict:
+    def case_numbers(self, cases, ends=None, values: Mapping | None = None) -> dict:
         """A long route's numbers (:meth:`derived`) at each of ``cases`` (:class:`~ropemodel.envelope.LoadCase`,
-        at the scene's values, the case's place and acceleration; ``ends`` the places' x_m,
-        :func:`ropemodel.envelope.cases.joint_ends`), all at once: case -> {name: float}; {} for a model without."""
+        at the scene's values with SI ``values`` on top (segments by name among them), the case's place and
+        acceleration; ``ends`` the places' x_m there, :func:`ropemodel.envelope.cases.joint_ends`), all at once:
+        case -> {name: float}; {} for a model without."""
         if not self.model.derived or not cases:
             return {}
-        params = self.scene.parameters
+        values = dict(values or {})
+        params = {**self.scene.parameters, **values}
         rows = [c.values(params, ends) for c in cases]
         columns = {k: np.array([float(r.get(k, params.get(k, 0.0))) for r in rows]) for k in ("x_m", "a_h")
                    if k in params}
-        numbers = self.derived(columns)
+        numbers = self.derived({**values, **columns})
         return {c: {k: float(np.broadcast_to(v, (len(cases),))[i]) for k, v in numbers.items()}
                 for i, c in enumerate(cases)}
 

@@ -119,24 +119,59 @@ def _same_sweep(vec, seg) -> None:
     assert list(vec.columns) == list(seg.columns)
     numbers = seg.select_dtypes("number").columns
     np.testing.assert_allclose(vec[numbers].to_numpy(), seg[numbers].to_numpy(), rtol=1e-12)
+    others = [c for c in seg.columns if c not in numbers]
+    assert vec[others].equals(seg[others])
 
 
-def test_a_sweep_equals_the_segment_form_or_names_what_it_cannot_vary(both):
-    """A sweep at the worst case over parameters the route numbers do not read (each case's numbers), and one at
-    a pinned case over what they are computed from (the numbers point by point: a segment's length and
-    inclination, μ_pl, the load's place, the acceleration, L_ul): the segment form's columns to 1e-12.  Varying
-    what they are computed from at the worst over open cases is refused, naming the fix."""
+#: sweeps of what the route numbers are computed from: μ_pl, the ramps (a_h), a segment's length, point A
+ROUTE_SWEEPS = (("mu_pl", [0.02, 0.05, 0.12]), ("t_ramp", ["4 s", "5 s", "7 s"]), ("L_5", ["5 m", "20 m", "50 m"]),
+                ("L_ul", ["100 m", "300 m", "500 m"]))
+
+
+def test_a_sweep_equals_the_segment_form(both):
+    """A sweep at the worst case over parameters the route numbers do not read (each case's numbers), one at the
+    worst over open cases over what they are computed from (each point and case its own numbers: μ_pl, a segment's
+    length), and one at a pinned case over those and the case inputs (the numbers point by point): the segment
+    form's columns (worsts and where they govern) to 1e-12."""
     outs = ["F_C_up", "route_margin_up", "F_S_least_down", "T_l1"]
     _same_sweep(*(rm.sweep(s, vary={"G_m": ["400 kN", "467 kN"], "q_l": ["0.07 kN/m", "0.09 kN/m"]}, outputs=outs,
                            si=True) for s in both))
+    for name, values in (("mu_pl", [0.02, 0.12]), ("L_5", ["5 m", "50 m"])):
+        _same_sweep(*(rm.sweep(s, vary={name: values}, outputs=outs, si=True, progress=False) for s in both))
     pinned = [s.with_values({"x_m": "300 m", "a_h": "0.3 m/s^2"}) for s in both]
     for name, values in (("mu_pl", [0.02, 0.12]), ("x_m", ["0 m", "10 m", "555 m", "882 m"]),
                          ("a_h", ["-0.5 m/s^2", "0.5 m/s^2"]), ("L_ul", ["100 m", "500 m"]),
                          ("alpha_2", ["-5 deg", "10 deg"]), ("L_5", ["5 m", "50 m"])):
         _same_sweep(*(rm.sweep(s, vary={name: values}, outputs=[*outs, "G_ml"], si=True) for s in pinned))
-    for name in ("mu_pl", "L_3", "t_ramp"):
-        with pytest.raises(InputError, match=f"sweeping {name}: a route of 40 segments.*pin the load's place"):
-            rm.sweep(both[0], vary={name: [0.05] if name == "mu_pl" else ["5 m" if name == "L_3" else "4 s"]})
+
+
+@pytest.mark.slow
+def test_a_sweep_at_the_worst_of_what_the_numbers_read_equals_the_segment_form(both):
+    """At the worst over open cases, sweeps of the ramps (t_ramp, v_pj: the manoeuvres' a_h), L_ul and a segment's
+    inclination, and one marking a slack rope at some case (the physics checks of each case): the segment form's
+    columns to 1e-12."""
+    outs = ["F_C_up", "route_margin_up", "F_S_least_down", "T_l1"]
+    for name, values in (("t_ramp", ["4 s", "7 s"]), ("v_pj", ["1 m/s", "3 m/s"]), ("L_ul", ["100 m", "500 m"]),
+                         ("alpha_2", ["-5 deg", "10 deg"])):
+        _same_sweep(*(rm.sweep(s, vary={name: values}, outputs=outs, si=True, progress=False) for s in both))
+    marked = [rm.sweep(s, vary={"mu_pl": [0.01, 0.3], "F_nwl": ["1 kN", "250 kN"]}, outputs=outs, errors="mark",
+                       progress=False) for s in both]
+    assert not marked[1]["solved"].all() and marked[1]["solved"].any()
+    _same_sweep(*marked)
+
+
+@pytest.mark.slow
+def test_a_sweep_of_a_120_segment_route_equals_the_segment_form(monkeypatch):
+    """The route held as route numbers at its own size (120 segments, above VECTOR_ABOVE), swept at the worst over
+    every place and manoeuvre over what its numbers are computed from: the segment form's columns to 1e-12."""
+    raw = {**RAW, "route": _route(120, seed=5)}
+    vec = rm.from_dict(raw, emit=False)
+    monkeypatch.setattr(winch_route_vector, "VECTOR_ABOVE", 10**6)
+    seg = rm.from_dict(raw, emit=False)
+    assert vec.built.derived and not seg.built.derived
+    for name, values in ROUTE_SWEEPS:
+        _same_sweep(*(rm.sweep(s, vary={name: values}, outputs=["F_C_up", "route_margin_up", "T_l1"],
+                               si=True, progress=False) for s in (vec, seg)))
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
@@ -238,9 +273,10 @@ def test_sizing_equals_the_segment_form(tmp_path, monkeypatch):
             assert v == pytest.approx(seg.sensitivities[p][k], rel=1e-8, abs=1e-12), (p, k)
 
 
-def test_a_sizing_sweep_names_what_it_cannot_vary(tmp_path, monkeypatch):
-    """A sizing sweep holds the route numbers at the scene's values: varying what they are computed from is
-    refused naming the fix (a parameter they do not read is swept as on any route)."""
+@pytest.mark.slow
+def test_a_sizing_sweep_equals_the_segment_form(tmp_path, monkeypatch):
+    """A sizing sweep of what the route numbers are computed from (μ_pl, the ramps, a segment's length, L_ul):
+    each point's NLP has the numbers of its own values in each case; the segment form's designs to 1e-10."""
     from optimisation.sweep import sizing_sweep
     from optimisation.problem import load_sizing
 
@@ -248,11 +284,17 @@ def test_a_sizing_sweep_names_what_it_cannot_vary(tmp_path, monkeypatch):
     route = "".join("[[route]]\n" + "".join(f"{k} = {v!r}\n".replace("'", '"') for k, v in seg.items())
                     for seg in _route(20, seed=11, low=-4.0))
     (tmp_path / "s.toml").write_text(head + route + "[parameters]\n" + params.replace("444 m", "222 m"))
-    monkeypatch.setattr(winch_route_vector, "VECTOR_ABOVE", 0)
-    scene = load_sizing(str(tmp_path / "s.toml"), emit=False)
-    for name, values in (("mu_pl", [0.04, 0.06]), ("t_ramp", ["4 s", "6 s"])):
-        with pytest.raises(InputError, match=f"cannot vary {name} in a sizing sweep on a route of 20 segments"):
-            sizing_sweep(scene, vary={name: values}, progress=False)
+    scenes = []
+    for above in (0, 10**6):
+        monkeypatch.setattr(winch_route_vector, "VECTOR_ABOVE", above)
+        scenes.append(load_sizing(str(tmp_path / "s.toml"), emit=False))
+    assert scenes[0].built.derived and not scenes[1].built.derived
+    for name, values in (("mu_pl", [0.04, 0.06, 0.09]), ("t_ramp", ["4 s", "6 s", "8 s"]),
+                         ("L_5", ["10 m", "30 m", "60 m"]), ("L_ul", ["100 m", "222 m", "300 m"])):
+        vec, seg = (sizing_sweep(s, vary={name: values}, method="ipopt", progress=False) for s in scenes)
+        assert vec["feasible"].all() and list(vec.columns) == list(seg.columns)
+        for c in ("d [mm]", "F_nwl [kN]", "stroke [mm]"):
+            np.testing.assert_allclose(vec[c].to_numpy(), seg[c].to_numpy(), rtol=1e-10, err_msg=f"{name}: {c}")
 
 
 def test_a_transient_on_a_long_route_equals_the_segment_form(monkeypatch):

@@ -18,7 +18,6 @@ import contextlib
 import hashlib
 import json
 import os
-import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -36,13 +35,14 @@ from ropemodel.envelope import with_ramps
 from ropemodel.errors import InputError
 from ropemodel.progress import bar, enabled, status
 from ropemodel.problem import Problem
-from ropemodel.scene import SceneLike, SceneWarning, as_scene
+from ropemodel.scene import SceneLike, as_scene
 from ropemodel.sweeps.chunk import ChunkJob
+from ropemodel.sweeps.per_case import ROWS, case_job
 from ropemodel.sweeps.schedule import results
 from ropemodel.sweeps.files import OutputLock, check_disk, check_output, check_size
 from ropemodel.sweeps.points import MAX_AXIS, Points, grid, table
 from ropemodel.sweeps.store import ChunkStore, complete_rows, discard_parts, read_output
-from ropemodel.sweeps.validate import check_ranges, check_rules
+from ropemodel.sweeps.validate import check_ranges, check_rules, idle
 from ropemodel.sweeps import worst as worst_case
 from ropemodel.units import label
 from ropemodel.views.records import SweepFileViews
@@ -177,7 +177,7 @@ def sweep(scene: SceneLike, vary: Mapping | pd.DataFrame | None = None, outputs:
             job = _job(plan, backend, threads or (1 if executor is not None else (os.cpu_count() or 1)))
             if executor is None:  # compiled once per process: here, while a status line says so
                 with status("sweep: compiling", show):
-                    evaluator(job.job)
+                    evaluator(getattr(job.job, "rows", job.job))
             tables = _run(job, plan, store, executor, show, collect)
             return _finish(plan, store, out, tables, collect)
         except SweepInterrupted:
@@ -240,34 +240,22 @@ def _plan(scene, vary, outputs, points, given, find, chunk_size, si, errors, out
         points, vary = vary, None
     if (vary is None) == (points is None):
         raise InputError("give either vary={name: axis} (a grid) or a table of points")
-    inputs.update(worst_case.route_refusal(scene, problem, list(vary if vary is not None else points.columns)))
+    inputs.update(worst_case.route_edges(problem, list(vary if vary is not None else points.columns)))
     pts = grid(vary, inputs) if vary is not None else table(points, inputs, ignore=model.outputs)
     if pts.n == 0:
         raise InputError("no points to sweep")
     worst, outputs = worst_case.plan(scene, problem, pts.names, find, outputs)
     outputs = _outputs(problem, outputs, pts.names)
     if not given and not find:
-        _idle(model, pts.names, outputs, case_reads(scene) if worst else set())
+        idle(model, pts.names, outputs, case_reads(scene) if worst else set())
     check_size(pts.n, len(pts.names) + len(outputs) + 2 * (errors == "mark"), out=out, collect=collect)
     base = problem.inputs({**given_values, **{n: float(pts.values_of(n)[0]) for n in pts.names}})
     check_ranges(pts, inputs)
     check_rules(model, pts, base)
-    n_chunks = -(-pts.n // chunk_size)
-    bounds = [(k * chunk_size, min(pts.n, (k + 1) * chunk_size)) for k in range(n_chunks)]
+    size = max(1, min(chunk_size, ROWS // len(worst.cases))) if worst is not None and worst.follows else chunk_size
+    bounds = [(k * size, min(pts.n, (k + 1) * size)) for k in range(-(-pts.n // size))]
     signature = _signature(scene, problem, pts, base, outputs, chunk_size, si, errors)
     return _Plan(problem, pts, base, outputs, si, errors, bounds, signature, worst)
-
-
-def _idle(model, names, outputs, cases=frozenset()) -> None:
-    """A :class:`~ropemodel.scene.SceneWarning` naming the varied inputs no output of the sweep depends on,
-    neither through the equations nor through the worst case's places and manoeuvres (``cases``)."""
-    reads = model.inputs_of(outputs) | set(cases)
-    idle = [n for n in names if n not in reads]
-    if idle:
-        which = ", ".join(outputs) if len(outputs) <= 4 else "the outputs asked for"
-        warnings.warn(f"{', '.join(idle)} varied, but no output of this sweep ({which}) depends on "
-                      f"{'it' if len(idle) == 1 else 'them'}: the results do not change along "
-                      f"{'its' if len(idle) == 1 else 'their'} column", SceneWarning, stacklevel=3)
 
 
 def _found(plan: _Plan, out: Path, collect: bool):
@@ -333,16 +321,35 @@ def _outputs(problem, outputs, varied):
 
 
 def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
-    """The problem's Function restricted to ``outputs``, inputs ordered varied first.
-
-    For an inverse problem the forward model is also evaluated at each solution, so that a
-    Newton iteration that stopped without converging (no such parameter value) is caught
-    per point: the given outputs must be reproduced (relative 1e-6, as ``Problem.solve``).
-    """
-    problem, varied, base, outputs, si, errors = (plan.problem, plan.pts.names, plan.base, plan.outputs,
-                                                  plan.si, plan.errors)
+    """The problem's Function restricted to ``outputs``, inputs ordered varied first (at the worst over open cases
+    of a long route whose numbers follow the points: :mod:`ropemodel.sweeps.per_case`), its columns and checks."""
+    problem, outputs, si = plan.problem, plan.outputs, plan.si
     if backend == "auto" and plan.n < COMPILE_MIN:
         backend = "casadi"  # a C compile costs more than it saves on small sweeps
+    physics = [sm for sm in problem.model.submodels if sm.invalid_needs_for(outputs)]
+    if plan.worst is not None and plan.worst.follows:
+        job, watch = case_job(problem, plan.worst, plan.pts.names, plan.base, outputs, physics, backend, threads)
+        roundtrip, step = {}, None
+    else:
+        job, watch, roundtrip, step = _point_job(plan, physics, backend, threads)
+    q = problem.model.quantities
+    columns = []
+    for name in list(plan.pts.names) + outputs:
+        unit = q[name].unit if si else q[name].display_unit
+        columns.append((label(name, unit), name, 1.0 if si else float(q[name].to_display(1.0))))
+    if plan.worst is not None:
+        columns += [(label(c, worst_case.UNITS[k]), c, 1.0) for c, k in plan.worst.where_columns(outputs)]
+    checks = {n: (q[n].low, q[n].high, q[n].low_open, q[n].high_open,
+                  f"{q[n].range_text()}, {q[n].description}") for n in problem.find if n in outputs}
+    return ChunkJob(job, outputs, columns, checks, plan.errors, roundtrip, physics, watch, step)
+
+
+def _point_job(plan: _Plan, physics, backend: str, threads: int):
+    """(Job, watch, roundtrip, route step) of the Function of one point (each output at its worst over the cases
+    inside it).  For an inverse problem the forward model is also evaluated at each solution, so that a
+    Newton iteration that stopped without converging (no such parameter value) is caught
+    per point: the given outputs must be reproduced (relative 1e-6, as ``Problem.solve``)."""
+    problem, varied, base, outputs = plan.problem, plan.pts.names, plan.base, plan.outputs
     fun = problem.function
     computed = step.names if (step := worst_case.route_step(problem, plan.pts.names, plan.base, plan.worst)) else []
     order = [*varied, *computed] + [k for k in problem.knowns if k not in varied and k not in computed]
@@ -362,23 +369,12 @@ def _job(plan: _Plan, backend: str, threads: int) -> ChunkJob:
             roundtrip[f"roundtrip_{g}"] = g
             names.append(f"roundtrip_{g}")
             outs.append(back[g])
-    physics = [sm for sm in problem.model.submodels if sm.invalid_needs_for(outputs)]
     watch = worst_case.watches(per_case, physics, problem, outputs, plan.worst is None, names, outs)
     sel = ca.Function("sweep_point", [syms[k] for k in order], outs, order, names)
     if fun.is_a("SXFunction"):
         sel = sel.expand()
-    q = problem.model.quantities
-    columns = []
-    for name in list(varied) + outputs:
-        unit = q[name].unit if si else q[name].display_unit
-        columns.append((label(name, unit), name, 1.0 if si else float(q[name].to_display(1.0))))
-    if plan.worst is not None:
-        columns += [(label(c, worst_case.UNITS[k]), c, 1.0) for c, k in plan.worst.where_columns(outputs)]
-    checks = {n: (q[n].low, q[n].high, q[n].low_open, q[n].high_open,
-                  f"{q[n].range_text()}, {q[n].description}") for n in problem.find if n in outputs}
     constants = {k: float(base[k]) for k in order[len(varied) + len(computed):]}
-    return ChunkJob(Job(sel, [*varied, *computed], constants, backend, threads), outputs, columns, checks, errors,
-                    roundtrip, physics, watch, step)
+    return Job(sel, [*varied, *computed], constants, backend, threads), watch, roundtrip, step
 
 
 def _signature(scene, problem, pts, base, outputs, chunk_size, si, errors) -> dict:

@@ -125,3 +125,17 @@ def _limit(count, names):
     if count > MAX_COMBINATIONS:
         raise InputError(f"{count} distinct combinations of {', '.join(names)} to check against the "
                          f"model's cross-parameter rules; sweep fewer values of them at once")
+
+
+def idle(model, names, outputs, cases=frozenset()) -> None:
+    """A :class:`~ropemodel.scene.SceneWarning` naming the varied inputs no output of the sweep depends on,
+    neither through the equations nor through the worst case's places and manoeuvres (``cases``)."""
+    from ropemodel.scene import SceneWarning
+
+    reads = model.inputs_of(outputs) | set(cases)
+    idle = [n for n in names if n not in reads]
+    if idle:
+        which = ", ".join(outputs) if len(outputs) <= 4 else "the outputs asked for"
+        warnings.warn(f"{', '.join(idle)} varied, but no output of this sweep ({which}) depends on "
+                      f"{'it' if len(idle) == 1 else 'them'}: the results do not change along "
+                      f"{'its' if len(idle) == 1 else 'their'} column", SceneWarning, stacklevel=3)

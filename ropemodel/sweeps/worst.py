@@ -25,6 +25,10 @@ from ropemodel.sweeps.chunk import RouteStep
 UNITS = {"x_m": "m", "a_h": "m/s^2"}
 
 
+#: what a long route's numbers are computed from besides its segments (and the ramps, :func:`case_reads`)
+ROUTE_READS = ("mu_pl", "x_m", "a_h", "L_ul")
+
+
 @dataclass
 class Worst:
     """The load cases of a sweep and, per output, the open case inputs it depends on."""
@@ -34,6 +38,9 @@ class Worst:
     #: a long route's numbers at each case (:meth:`ropemodel.problem.Problem.case_numbers`), and the places' x_m
     numbers: dict = field(default_factory=dict)
     ends: list | None = None
+    #: the sweep varies what a long route's numbers are computed from: each point and case has its own
+    #: (:mod:`ropemodel.sweeps.per_case`), not ``numbers``
+    follows: bool = False
 
     def where_columns(self, outputs) -> list[tuple[str, str]]:
         """(column name, case input): ``F_C_up@x_m`` for each output that depends on an open input."""
@@ -55,7 +62,9 @@ def plan(scene, problem, varied, find, outputs) -> tuple[Worst | None, list[str]
     q = problem.model.quantities
     no_worst = [o for o in problem.unknowns if depends[o] and not q[o].worst]
     ends = joint_ends(scene.parameters) if problem.model.derived else None
-    worst = Worst(cases, depends, problem.case_numbers(cases, ends), ends)
+    follows = bool(problem.model.derived) and bool(set(varied) & {*problem.model.edges, *ROUTE_READS,
+                                                                   *case_reads(scene)})
+    worst = Worst(cases, depends, {} if follows else problem.case_numbers(cases, ends), ends, follows)
     if outputs is None:
         return worst, [o for o in problem.unknowns if o not in no_worst]
     bad = [o for o in ([outputs] if isinstance(outputs, str) else outputs) if o in no_worst]
@@ -63,10 +72,6 @@ def plan(scene, problem, varied, find, outputs) -> tuple[Worst | None, list[str]
         raise InputError(f"{', '.join(bad)} change with {' and '.join(open_)} and have no worst case: give one "
                          f"point (--set {open_[0]}=..., or vary it)")
     return worst, outputs
-
-
-#: what a long route's numbers are computed from besides its segments: held at the scene's values in a sweep
-ROUTE_READS = ("mu_pl", "x_m", "a_h", "L_ul")
 
 
 def route_step(problem, varied, base: dict, worst: Worst | None) -> RouteStep | None:
@@ -80,24 +85,10 @@ def route_step(problem, varied, base: dict, worst: Worst | None) -> RouteStep | 
     return RouteStep(model, values, [k for k in problem.knowns if k in model.derived])
 
 
-def route_refusal(scene, problem, varied) -> dict:
-    """The quantities of the segments of a long route among ``varied`` (swept by name); :class:`InputError` for a
-    sweep at the worst case over open load cases that varies what a long route's
-    numbers are computed from (its segments, μ_pl, L_ul, and what the manoeuvres' accelerations come from): each
-    point and case would need its own route step, which the sweep makes only at one case (pinned)."""
+def route_edges(problem, varied) -> dict:
+    """The quantities of the segments of a long route among ``varied`` (swept by name)."""
     model = problem.model
-    edges = {k: model.quantities[k] for k in varied if k in model.edge_set}
-    if not model.derived or len(load_cases(scene, pinned=varied)) == 1:     # one case: numbers point by point
-        return edges
-    reads = {*model.edges, *ROUTE_READS, *case_reads(scene)}
-    bad = [k for k in varied if k in reads]
-    if bad:
-        raise InputError(f"sweeping {', '.join(bad)}: a route of {len(scene.route)} segments is "
-                         f"held as route numbers per load case, computed from {bad[0]}, and a sweep at the worst "
-                         f"over every place and manoeuvre does not compute them point by point: pin the load's "
-                         f"place and manoeuvre (--set x_m=... a_h=...), run each value (--set {bad[0]}=...), "
-                         f"or join segments to at most 100")
-    return edges
+    return {k: model.quantities[k] for k in varied if k in model.edge_set}
 
 
 def columns(worst: Worst, fun, args: dict, base: dict, outputs, quantities) -> tuple[list[str], list, list]:
