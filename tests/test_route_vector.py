@@ -128,6 +128,7 @@ ROUTE_SWEEPS = (("mu_pl", [0.02, 0.05, 0.12]), ("t_ramp", ["4 s", "5 s", "7 s"])
                 ("L_ul", ["100 m", "300 m", "500 m"]))
 
 
+@pytest.mark.slow
 def test_a_sweep_equals_the_segment_form(both):
     """A sweep at the worst case over parameters the route numbers do not read (each case's numbers), one at the
     worst over open cases over what they are computed from (each point and case its own numbers: μ_pl, a segment's
