@@ -20,10 +20,8 @@ rounds of that round's two contenders, measured back to back (the seconds shown:
   (its own integrator, events located, modes switched), and it is the faster of the two (a numpy right-hand
   side costs a Python call per evaluation: ``tests/test_dynamics_reference.py``'s LSODA reference of one
   start-up at rtol 1e-10 takes several times the simulator's time), so the ratios are not flattered by a slow
-  peer.  One caveat, measured: the simulator's integrators solve cvodes' Newton systems with CasADi's default QR,
-  the sizing's NLP with sparse LU ("csparse"); with "csparse" the simulator too took 2.3 instead of 5.4 CPU-s
-  for the route's upward start at 32 elements, and the route's ratio against that faster peer (the sizing's own
-  simulations as fast) was 14.6 (159.8 CPU-s against 10.9, one run): the goal would not be met there.  For
+  peer.  The simulator solves its BDF's Newton systems by sparse LU ("csparse"), as the sizing's NLP does (with
+  CasADi's default QR it took 5.4 instead of 2.3 CPU-s for the route's upward start at 32 elements).  For
   the "no design" scene, the four manoeuvres at its static optimum (the design a user would check);
 * **dynamic** — ``size_dynamic(scene)`` (``ropemodel size --dynamic``): static optimum, dynamic NLP on its refined
   grid and controlled mesh, catalogue design, that design judged in every case (each manoeuvre at each place of

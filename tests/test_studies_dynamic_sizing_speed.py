@@ -4,13 +4,15 @@ What it shows, and what is asserted:
 
 * the issue's design goal (issue 23, item 3: a dynamic design within 10x one simulation of the four manoeuvres,
   the peer, measured in the same run) on the shipped scene, as the median of three rounds, each round's ratio
-  its two contenders measured back to back (a shared machine's load moves both).  Measured: 7.5x median of
-  three rounds on a loaded 2-core machine (10.0x on the previous code in the same session; docs/machines/winch.md,
-  "Speed").  The returned (catalogue) design is verified by the simulator in every case within reach of a limit
-  and at each manoeuvre's least place (on the shipped scene 5 of 12 cases), the others by the NLP's integration;
-  and on the three-segment route, one round (``--route``): 8.1x, 8.8x and 8.3x in three runs (18.0x on the
-  previous code).  The "no design" goal (30x) is met and asserted by ``tests/test_dynamic_no_design_speed.py``
-  (median of three rounds);
+  its two contenders measured back to back (a shared machine's load moves both).  Measured against the
+  simulator on sparse LU: 6.95x median of three rounds on a loaded 2-core machine (docs/machines/winch.md,
+  "Speed"; 7.5x against the simulator on QR).  The returned (catalogue) design is verified by the simulator in
+  every case within reach of a limit and at each manoeuvre's least place (on the shipped scene 5 of 12 cases), the
+  others by the NLP's integration;
+  and on the three-segment route, one round (``--route``): 16.9x and 16.3x in two runs against the simulator
+  on sparse LU (8.3x median of three against it on QR, 18.0x before that): the route's test fails until the
+  route's sizing meets the goal.  The "no design" goal (30x) is met and asserted by
+  ``tests/test_dynamic_no_design_speed.py`` (median of three rounds);
 * the re-solves of the dynamic NLP by Newton on the previous optimum's active set
   (:mod:`optimisation.dynamic.warm`) make dynamic sizing cheaper than the same sizing with every re-solve by
   IPOPT (its peer, measured in the same run), and both return the same catalogue design.  Reason: from the

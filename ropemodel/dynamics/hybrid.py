@@ -40,6 +40,13 @@ CHUNK = 25
 #: detection points per output step (the dense output between them is checked by the Hermite test)
 SUB = 2
 MAX_EVENTS = 2000
+#: the linear solver of the BDF's Newton iteration (cvodes and idas; the winch's and the Koepe hoist's transients):
+#: sparse LU, not CasADi's default "qr".  Only the rounding of each Newton step changes
+#: (tests/test_dynamics_linear_solver.py: the peaks to rounding, the history within its own integration error);
+#: the cost of "qr" grows as about n^2.7 with the states.  Measured on winch_start (CPU-s, medians of three):
+#: 0.23 -> 0.21, 0.40 -> 0.31, 1.11 -> 0.54, 8.0 -> 1.7 at 8 (its own), 16, 32, 64 elements; the three-segment
+#: route's upward start at 32 elements a span 5.4 -> 2.3
+LINEAR_SOLVER = "csparse"
 
 
 class _Compiled:
@@ -68,10 +75,12 @@ class HybridIntegrator:
     """Integrates a :class:`~ropemodel.dynamics.system.TransientSystem` through its modes over the drive
     profile's phases."""
 
-    def __init__(self, system: TransientSystem, rtol: float, dt: float, integrator: str, atol: float = 1e-9):
+    def __init__(self, system: TransientSystem, rtol: float, dt: float, integrator: str, atol: float = 1e-9,
+                 linear_solver: str | None = None):
         self.system, self.phases, self.dt, self.integrator = system, system.phases, dt, integrator
         # SUNDIALS's own messages stay off the C-level stderr: a failure is reported in the user's terms
-        self.opts = {"reltol": rtol, "abstol": atol, "max_num_steps": 200000, "disable_internal_warnings": True}
+        self.opts = {"reltol": rtol, "abstol": atol, "max_num_steps": 200000, "disable_internal_warnings": True,
+                     "linear_solver": linear_solver or LINEAR_SOLVER}
         self._compiled: dict = {}
 
     def mode(self, k: int, mode) -> _Compiled:
