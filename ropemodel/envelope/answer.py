@@ -119,12 +119,15 @@ def solve(scene: SceneLike, given: Mapping, find: Sequence[str] | str, bare: str
     cases = load_cases(sc, pinned=find)
     if len(cases) == 1:
         return problem.solve(cases[0].values(sc.parameters))
-    if sc.route and not sc.built.derived:       # a long route's numbers: each case is a few numbers, not n
-        n = len(sc.route)
-        budget.check("route solve", len(cases) * n,
-                     f"solving for {', '.join(find)} on a route of {n} segments at {len(cases)} load cases, each "
-                     f"through the {n} segments,", "pin the load's place (--at x_m=...), or join neighbouring "
-                     "segments of nearly the same inclination")
+    if sc.route:
+        # segment by segment: each case's root-find goes through the n segments; held as route numbers: each case is
+        # a few numbers, but each case's answer may be checked at every case (_choose)
+        n, numbers = len(sc.route), bool(sc.built.derived)
+        budget.check("route solve", len(cases) * (len(cases) if numbers else n),
+                     f"solving for {', '.join(find)} on a route of {n} segments at {len(cases)} load cases, "
+                     + ("each answer checked at every case," if numbers else f"each through the {n} segments,"),
+                     "pin the load's place (--at x_m=...), or join neighbouring segments of nearly the same "
+                     "inclination")
     forward = Problem(sc)
     _needs_a_worst(forward, problem, cases)
     params = {**sc.parameters, **problem.inputs()}
@@ -170,6 +173,10 @@ def _candidates(found: dict, find: list[str]) -> list[dict]:
     return out
 
 
+#: the cases a "no solution" message lists (a long route has thousands)
+SHOWN = 6
+
+
 def _choose(forward: Problem, problem: Problem, cases, params, candidates) -> tuple[int, int]:
     """(candidate, governing case): the candidate at which every given output's worst over the cases is its
     given value, and the case where that worst is."""
@@ -190,8 +197,9 @@ def _choose(forward: Problem, problem: Problem, cases, params, candidates) -> tu
             return k, (gov[0] if gov else k)
     q = forward.model.quantities
     head = "; ".join(f"{g} = {q[g].show(v)}" for g, v in given.items())
-    shown = ", ".join(f"{cases[k].label(params)}: " + ", ".join(f"{f} = {q[f].show(v)}" for f, v in c.items())
-                      for k, c in enumerate(candidates) if c)
+    solved = [f"{cases[k].label(params)}: " + ", ".join(f"{f} = {q[f].show(v)}" for f, v in c.items())
+              for k, c in enumerate(candidates) if c]
+    shown = ", ".join(solved[:SHOWN]) + (f", and {len(solved) - SHOWN} more cases" if len(solved) > SHOWN else "")
     raise SolveError(f"no {', '.join(problem.find)} gives {head} at its worst over every place and manoeuvre"
                      + (f" (solved at each: {shown}; at none of them is it the worst)" if shown else
                         " (no case has a solution)"))
