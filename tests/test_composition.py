@@ -1,8 +1,8 @@
 """The composition matrix (issue 21, item 7): every built-in scene and generated winch scenes (a straight
 route, 1-6 segments and a long route of 120 held as route numbers, rigid and Voigt drum linings, the paper's
-q_lw and a catalogue rope, with and without a start-up transient) through every command that takes a scene, in text and JSON.  Each either succeeds or
-is refused cleanly (exit 1 or 2, a message on stderr, no traceback, no solver log, no NaN or inf in JSON);
-where two commands compute the same quantity, they agree.
+q_lw and a catalogue rope, with and without a start-up transient) through every command that takes a scene,
+in text and JSON.  Each either succeeds or is refused cleanly (exit 1 or 2, a message on stderr, no traceback,
+no solver log, no NaN or inf in JSON); where two commands compute the same quantity, they agree.
 
 The generated scenes are a pairwise cover of the four factors (every pair of levels of any two factors
 appears in some scene), not the whole product: 8 scenes instead of 56, so that the matrix stays in the
