@@ -123,8 +123,8 @@ def _library(L, alpha, mu, x, s):
     a_j = rt.at_position(x, L, alpha)
     load = rt.load_pull(467e3 * math.sin(a_j), 0.05 * 467e3 * math.cos(a_j), 467e3, s, A_H)
     return {"sin": math.sin(a_j), "cos": math.cos(a_j), "B": rt.rope_tension(min(x, sum(L)), 0.0, 1.0, L, wind),
-            "least": rt.least_rope_tension(F_END, Q_L, L, wind, x, load), "load": load,
-            "S": rt.least_rope_tension(0.0, 1.0, L, unwind), "G": rt.tension_at_joints(0.0, 1.0, L, wind)}
+            "least": rt.least_rope_tension(F_END, Q_L, L, wind, x, load, between=True), "load": load,
+            "S": rt.least_rope_tension(0.0, 1.0, L, unwind, between=True), "G": rt.tension_at_joints(0.0, 1.0, L, wind)}
 
 
 @pytest.mark.parametrize("points", [4, pytest.param(10_000, marks=pytest.mark.slow)])   # 10 000: the loops' 7 s
