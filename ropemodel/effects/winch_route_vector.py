@@ -136,7 +136,7 @@ def least_winding(v, way: str, s: float, a, F_end, q_l, load, between: bool = Fa
                    + s * (a / G_N) * (v["route_L_u"] - x))
     beside = F_end + q_l * beside_rise
     sides = fmin(if_else(x > 0.0, beside + load, beside), if_else(x < v["route_L_u"], beside, beside + load))
-    inside = fmin(joints, sides)
+    inside = if_else(v["route_before"] + v["route_beyond"] > 0.0, fmin(joints, sides), sides)   # one segment: none
     if between:
         return inside
     return fmin(inside, F_end + fmin(q_l * _drum_rises(v, s, a)[0] + load, 0.0))
