@@ -145,12 +145,23 @@ def test_no_solution_because_a_rope_goes_slack_says_so(capsys):
     assert main(["solve", "route_segments", "--given", "dF_up=3000 mm", "--find", "G_m"]) == 1
     err = capsys.readouterr().err
     assert "at none of them is it the worst" not in err
-    assert "at each of them the route has no valid result" in err and "slack" in err
+    assert "none of them holds" in err and "slack" in err
     answers = re.findall(r"G_m = ([0-9.]+) kN", err)
     assert len(answers) >= 6
     for g in answers[:6]:
         assert main(["run", "route_segments", "--set", f"G_m={g} kN"]) == 1
         assert "slack" in capsys.readouterr().err
+
+
+def test_no_solution_with_answers_out_of_range_says_so(capsys):
+    """A negative drum force: each case's answer is a negative load, outside G_m's range (the second method: the
+    same question pinned to one case says it is out of reach)."""
+    assert main(["solve", "route_segments", "--given", "F_C_up=-10 kN", "--find", "G_m"]) == 1
+    err = capsys.readouterr().err
+    assert "none of them holds" in err and "is outside its valid range" in err
+    assert main(["solve", "route_segments", "--given", "F_C_up=-10 kN", "--find", "G_m", "--at", "x_m=400 m",
+                 "--at", "a_h=0 m/s^2"]) == 1
+    assert "is out of reach" in capsys.readouterr().err
 
 
 def test_run_prints_each_result_at_its_worst_and_where(files, capsys):

@@ -180,10 +180,15 @@ SHOWN = 6
 def _choose(forward: Problem, problem: Problem, cases, params, candidates) -> tuple[int, int]:
     """(candidate, governing case): the candidate at which every given output's worst over the cases is its
     given value, and the case where that worst is."""
-    given = problem.given_values
-    failed: dict[int, str] = {}         # candidate -> why the route has no valid result there (slack, out of range)
+    given, q = problem.given_values, forward.model.quantities
+    failed: dict[int, str] = {}         # candidate -> why it is no answer (out of range; a slack rope at some case)
     for k, cand in enumerate(candidates):
         if not cand:
+            continue
+        outside = [f"{f} = {q[f].show(v)} is outside its valid range {q[f].range_text()}"
+                   for f, v in cand.items() if not q[f].in_range(v)]
+        if outside:
+            failed[k] = "; ".join(outside)
             continue
         at = {**params, **cand}
         try:
@@ -201,8 +206,8 @@ def _choose(forward: Problem, problem: Problem, cases, params, candidates) -> tu
 
 
 def _no_solution(forward: Problem, problem: Problem, cases, params, candidates, failed: dict[int, str]) -> str:
-    """Why no candidate answers the question: each case's answer (the first few), and, where the route has no
-    valid result at an answer (a rope goes slack at another case, a value leaves its range), the reason."""
+    """Why no candidate answers the question: each case's answer (the first few), and, where an answer does not
+    hold (a found value outside its range, a rope slack at another case), the reason for one of them."""
     q = forward.model.quantities
     head = "; ".join(f"{g} = {q[g].show(v)}" for g, v in problem.given_values.items())
     found = [k for k, c in enumerate(candidates) if c]
@@ -219,8 +224,8 @@ def _no_solution(forward: Problem, problem: Problem, cases, params, candidates, 
     if failed:
         k = next(iter(failed))
         answer = ", ".join(f"{f} = {q[f].show(v)}" for f, v in candidates[k].items())
-        why = (("at each of them" if len(failed) == len(found) else
-                f"at {len(failed)} of them (at the others it is not the worst)")
-               + f" the route has no valid result), e.g. at {answer} ({cases[k].label(params)}'s answer): {failed[k]}")
+        why = (("none of them holds" if len(failed) == len(found) else
+                f"{len(failed)} of them do not hold (at the others it is not the worst)")
+               + f"), e.g. {answer} ({cases[k].label(params)}'s answer): {failed[k]}")
     return f"no {', '.join(problem.find)} gives {head} at its worst over every place and manoeuvre (solved at " \
            f"each: {shown}; {why}"
