@@ -137,6 +137,33 @@ def test_a_given_output_without_a_worst_needs_a_place(files, capsys):
     assert "G_ml changes with x_m" in err and "--at x_m=..." in err
 
 
+def test_no_solution_because_a_rope_goes_slack_says_so(capsys):
+    """Before: a "no solution" whose cause was a slack rope at every case's answer said "at none of them is it
+    the worst", as if the worst lay elsewhere.  The second method: ``run`` at each answer shown fails as slack."""
+    import re
+
+    assert main(["solve", "route_segments", "--given", "dF_up=3000 mm", "--find", "G_m"]) == 1
+    err = capsys.readouterr().err
+    assert "at none of them is it the worst" not in err
+    assert "none of them holds" in err and "slack" in err
+    answers = re.findall(r"G_m = ([0-9.]+) kN", err)
+    assert len(answers) >= 6
+    for g in answers[:6]:
+        assert main(["run", "route_segments", "--set", f"G_m={g} kN"]) == 1
+        assert "slack" in capsys.readouterr().err
+
+
+def test_no_solution_with_answers_out_of_range_says_so(capsys):
+    """A negative drum force: each case's answer is a negative load, outside G_m's range (the second method: the
+    same question pinned to one case says it is out of reach)."""
+    assert main(["solve", "route_segments", "--given", "F_C_up=-10 kN", "--find", "G_m"]) == 1
+    err = capsys.readouterr().err
+    assert "none of them holds" in err and "is outside its valid range" in err
+    assert main(["solve", "route_segments", "--given", "F_C_up=-10 kN", "--find", "G_m", "--at", "x_m=400 m",
+                 "--at", "a_h=0 m/s^2"]) == 1
+    assert "is out of reach" in capsys.readouterr().err
+
+
 def test_run_prints_each_result_at_its_worst_and_where(files, capsys):
     """run: the envelope (value and where of each result's worst) against the brute force; --at pins a point;
     --worst is refused with what replaced it."""

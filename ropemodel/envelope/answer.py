@@ -180,14 +180,21 @@ SHOWN = 6
 def _choose(forward: Problem, problem: Problem, cases, params, candidates) -> tuple[int, int]:
     """(candidate, governing case): the candidate at which every given output's worst over the cases is its
     given value, and the case where that worst is."""
-    given = problem.given_values
+    given, q = problem.given_values, forward.model.quantities
+    failed: dict[int, str] = {}         # candidate -> why it is no answer (out of range; a slack rope at some case)
     for k, cand in enumerate(candidates):
         if not cand:
+            continue
+        outside = [f"{f} = {q[f].show(v)} is outside its valid range {q[f].range_text()}"
+                   for f, v in cand.items() if not q[f].in_range(v)]
+        if outside:
+            failed[k] = "; ".join(outside)
             continue
         at = {**params, **cand}
         try:
             env = envelope(forward, cases, at)
-        except (SolveError, InputError):
+        except (SolveError, InputError) as err:
+            failed[k] = str(err)
             continue
         worst = {g: (env.worst(g) if g in env.extremes else None) for g in given}
         ok = all(abs((w.value if w else env.columns[g][0]) - given[g]) <= AGREE * max(1.0, abs(given[g]))
@@ -195,11 +202,30 @@ def _choose(forward: Problem, problem: Problem, cases, params, candidates) -> tu
         if ok:
             gov = [cases.index(w.case) for w in worst.values() if w is not None]
             return k, (gov[0] if gov else k)
+    raise SolveError(_no_solution(forward, problem, cases, params, candidates, failed))
+
+
+def _no_solution(forward: Problem, problem: Problem, cases, params, candidates, failed: dict[int, str]) -> str:
+    """Why no candidate answers the question: each case's answer (the first few), and, where an answer does not
+    hold (a found value outside its range, a rope slack at another case), the reason for one of them."""
     q = forward.model.quantities
-    head = "; ".join(f"{g} = {q[g].show(v)}" for g, v in given.items())
-    solved = [f"{cases[k].label(params)}: " + ", ".join(f"{f} = {q[f].show(v)}" for f, v in c.items())
-              for k, c in enumerate(candidates) if c]
-    shown = ", ".join(solved[:SHOWN]) + (f", and {len(solved) - SHOWN} more cases" if len(solved) > SHOWN else "")
-    raise SolveError(f"no {', '.join(problem.find)} gives {head} at its worst over every place and manoeuvre"
-                     + (f" (solved at each: {shown}; at none of them is it the worst)" if shown else
-                        " (no case has a solution)"))
+    head = "; ".join(f"{g} = {q[g].show(v)}" for g, v in problem.given_values.items())
+    found = [k for k, c in enumerate(candidates) if c]
+    if not found:
+        return f"no {', '.join(problem.find)} gives {head} at its worst over every place and manoeuvre (no case " \
+               "has a solution)"
+
+    def label(k: int) -> str:
+        return f"{cases[k].label(params)}: " + ", ".join(f"{f} = {q[f].show(v)}" for f, v in candidates[k].items())
+
+    shown = ", ".join(label(k) for k in found[:SHOWN]) + (f", and {len(found) - SHOWN} more cases"
+                                                          if len(found) > SHOWN else "")
+    why = "at none of them is it the worst)"
+    if failed:
+        k = next(iter(failed))
+        answer = ", ".join(f"{f} = {q[f].show(v)}" for f, v in candidates[k].items())
+        why = (("none of them holds" if len(failed) == len(found) else
+                f"{len(failed)} of them do not hold (at the others it is not the worst)")
+               + f"), e.g. {answer} ({cases[k].label(params)}'s answer): {failed[k]}")
+    return f"no {', '.join(problem.find)} gives {head} at its worst over every place and manoeuvre (solved at " \
+           f"each: {shown}; {why}"
