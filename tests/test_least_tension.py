@@ -2,8 +2,8 @@
 at many points along the route, written in numpy (tests/_route_truth.py): on a route with a dip and on a
 gentle slope lowered, in steady motion, in a start and in a stop; then its worst over every place of the load.
 
-The library takes the least at the drum, the joints and beside the load, and leaves the return sheave
-(F_nwl/2, both sides) to its own check: the least anywhere on a side is min(F_*_least, F_nwl/2).
+The library's F_*_least is the least over the whole side, the drum and the return sheave included; the least
+between the ends (``between=True``) with the drum's forces and F_nwl/2 gives the same number.
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ import pytest
 from _route_truth import Route, places
 
 import ropemodel as rm
+from ropemodel.papers import route as rt
 
 V, T_RAMP = 2.5, 5.0
 A = V / T_RAMP           # the linear ramp's acceleration [m/s^2]
@@ -48,13 +49,23 @@ def test_least_tension_along_each_side_is_the_brute_force_least(route, direction
     for x_m in _places(route):
         r = rm.run(scene(route, x_m=f"{x_m!r} m", a_h=f"{a!r} m/s^2"))
         assert not hasattr(r, "envelope")                      # one point: the place and the manoeuvre given
+        truths = []
         for side, name in (("unwinding", "F_S_least"), ("winding", "F_C_least")):
-            got = min(r[f"{name}_{direction}"], 0.5 * route.F_nwl)
             truth = route.least(side, x_m, a, s)
-            assert got == pytest.approx(truth, rel=1e-12, abs=1e-6), (side, x_m)
+            truths.append(truth)
+            assert r[f"{name}_{direction}"] == pytest.approx(truth, rel=1e-12, abs=1e-6), (side, x_m)
         F_C, F_S = route.drum(x_m, a, s)                        # and the drum's forces, eq. (12)-(13)
         assert r[f"F_C_{direction}"] == pytest.approx(F_C, rel=1e-12)
         assert r[f"F_S_{direction}"] == pytest.approx(F_S, rel=1e-12)
+        assert r[f"route_margin_{direction}"] == pytest.approx(min(truths), rel=1e-12, abs=1e-6)   # F_S_min = 0
+        # the least between the ends, with the drum's forces and the return sheave's, covers the whole side
+        mus = [m for m in route.mus]
+        wind = [rt.rope_gradient(al, m, s, a) for al, m in zip(route.alphas, mus)]
+        unwind = [rt.rope_gradient(al, route.mu_pl, -s, a) for al in route.alphas]
+        between = min(rt.least_rope_tension(0.5 * route.F_nwl, route.q_l, list(route.lengths), unwind, between=True),
+                      rt.least_rope_tension(0.5 * route.F_nwl, route.q_l, list(route.lengths), wind, x_m,
+                                            route.pull(x_m, a, s), between=True))
+        assert min(between, F_C, F_S, 0.5 * route.F_nwl) == pytest.approx(min(truths), rel=1e-12, abs=1e-6)
 
 
 def test_the_dip_is_least_inside_the_route():
@@ -92,8 +103,7 @@ def test_the_worst_least_tension_over_every_place_and_manoeuvre(route, direction
     r = rm.run(scene(route))
     for side, name in (("unwinding", "F_S_least"), ("winding", "F_C_least")):
         truth = min(route.least(side, float(x), a, s, n=2001) for a in (0.0, A, -A) for x in places(route, 200))
-        got = min(r[f"{name}_{direction}"], 0.5 * route.F_nwl)
-        assert got == pytest.approx(truth, rel=1e-9, abs=1e-5), side
+        assert r[f"{name}_{direction}"] == pytest.approx(truth, rel=1e-9, abs=1e-5), side
     assert r.where[f"F_C_least_{direction}"]                   # and it says where
 
 

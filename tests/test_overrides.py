@@ -175,6 +175,8 @@ def independent(scene, command: str, name: str) -> str | None:
     if (name == "a_e" and command in ("run", "solve", "sensitivity") and "t_ramp" in v and "v_pj" in v
             and max(1.5 * v.get("a_e", 0.0), 0.05) < v["v_pj"] / v["t_ramp"]):
         return "an emergency stop gentler than the ramps' stop"
+    if name == "x_m" and _least_at_the_sheave_anywhere(scene):
+        return "on one straight incline the rope is least at the return sheave wherever the load is"
     if name == "a_brake_max" and v[name] == math.inf and scene.model == "koepe":
         r = rm.run(scene)
         if max(r["a_slip_hoist_decel"], r["a_slip_lower_decel"]) < 5.0:
@@ -198,6 +200,24 @@ def independent(scene, command: str, name: str) -> str | None:
     if command == "simulate" and name == "t_end" and rm.simulate(scene, progress=False).summary["t_end"] < v["t_end"]:
         return "the transient stopped before t_end"
     return None
+
+
+def _least_at_the_sheave_anywhere(scene) -> bool:
+    """On one straight incline with one resistance coefficient the load's place enters only the least tension of
+    the winding rope (docs/physics.md §4): T(x) = F_nwl/2 + q_l g (L_u − x) + J [x < x_m].  Where the rope rises
+    toward the drum (g >= 0) and the load pulls toward it (J >= 0) in each direction and manoeuvre, T is least at
+    the return sheave, F_nwl/2, wherever the load is."""
+    from ropemodel.envelope.cases import load_cases, with_ramps
+
+    v, e = scene.parameters, scene.effects
+    if scene.model != "winch" or e.get("route") != "straight" or e.get("resistance") != "case1":
+        return False
+    read = with_ramps(scene)
+    accelerations = {c.values(read.parameters).get("a_h", read.parameters.get("a_h", 0.0))
+                     for c in load_cases(read)}
+    sin, cos = math.sin(v["alpha_u"]), math.cos(v["alpha_u"])
+    return all(sin + s * (mu * cos + a / 9.80665) >= 0.0 for s in (1.0, -1.0) for a in accelerations
+               for mu in (v["mu_pl"], v["mu_pm"]))
 
 
 def sized(scene):

@@ -177,18 +177,24 @@ def test_a_sweep_of_a_120_segment_route_equals_the_segment_form(monkeypatch):
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_least_tensions_from_the_numbers_equal_the_loops(seed):
-    """The least tension of each side between its ends from the route numbers (the least rise's coefficients at
-    the case, combined in μ_pl and a_h as the model does) equals the loop over the joints on numbers, at places
-    on joints, inside segments, at both ends and beyond the route, for starts, stops and steady motion."""
+    """The least tension of each side from the route numbers (:func:`ropemodel.effects.winch_route_vector.
+    least_winding`, ``least_unwinding`` on numbers: the least rise's coefficients at the case, combined in μ_pl and
+    a_h as the model does) equals the loop over the joints on numbers, over the whole side and between its ends,
+    at places on joints, inside segments, at both ends and beyond the route, for starts, stops and steady
+    motion."""
+    from ropemodel.effects import winch_route_vector as wv
+
     rng = np.random.default_rng(seed)
-    n = 60
+    n = 30
     L, alpha = rng.uniform(1.0, 30.0, n), np.radians(rng.uniform(-10.0, 20.0, n))
     own = rng.random(n) < 0.4
     mu = np.where(own, rng.uniform(0.02, 0.1, n), np.nan)
     ends = np.cumsum(L)
-    x = np.concatenate([[0.0], ends, rng.uniform(0.0, ends[-1], 20), [ends[-1] + 5.0]])
+    x = np.concatenate([[0.0], ends, rng.uniform(0.0, ends[-1], 8), [ends[-1] + 5.0]])
     F_end, q, J = 20e3, 80.0, 35e3
     sums = rn.route_sums(L, alpha, np.nan_to_num(mu), own)
+    whole = {"route_L_u": ends[-1], "route_sin": sums["A"][0], "route_mo": sums["mo"][0],
+             "route_cp": sums["cp"][0], "route_cos": sums["C"][0]}
     for a_h in (0.0, 0.5, -0.7):
         for mu_pl in (0.03, 0.09):
             got = rn.places(sums, x, a_h, mu_pl)
@@ -196,29 +202,16 @@ def test_least_tensions_from_the_numbers_equal_the_loops(seed):
             for way, s in rn.WAYS:
                 wind = [rt.rope_gradient(al, m, s, a_h) for al, m in zip(alpha, mus)]
                 unwind = [rt.rope_gradient(al, mu_pl, -s, a_h) for al in alpha]
-                S = {c: got[f"S_{c}_{way}"][0] for c in rn.UNWINDING}
-                least_S = F_end + q * (S["A"] - s * mu_pl * S["C"] - s * (a_h / G) * S["X"])
-                assert least_S == pytest.approx(rt.least_rope_tension(F_end, q, list(L), unwind), rel=1e-12)
                 for i, xm in enumerate(x):
-                    truth = rt.least_rope_tension(F_end, q, list(L), wind, float(xm), J)
-                    assert _winding(got, i, way, s, a_h, mu_pl, float(xm), ends[-1], F_end, q, J) == pytest.approx(
-                        truth, rel=1e-12, abs=1e-6), (a_h, mu_pl, way, xm)
-
-
-def _winding(got, i, way, s, a_h, mu_pl, x_m, L_u, F_end, q, J) -> float:
-    """:func:`ropemodel.effects.winch_route_vector.least_winding` on numbers, at place ``i`` of ``got``."""
-    def rise(prefix):
-        c = {k: got[f"{prefix}_{k}_{way}"][i] for k in rn.WINDING}
-        return c["A"] + s * (c["mo"] + mu_pl * c["cp"]) + s * (a_h / G) * c["X"]
-
-    x = min(x_m, L_u)
-    loaded, free = F_end + q * rise("P") + J, F_end + q * rise("Q")
-    joints = min(loaded if got["before"][i] else free, free if got["beyond"][i] else loaded)
-    beside = F_end + q * ((got["B_A"][i] - got["sin_j"][i] * x)
-                          + s * ((got["B_mo"][i] - got["mo_j"][i] * x) + mu_pl * (got["B_cp"][i] - got["cp_j"][i] * x))
-                          + s * (a_h / G) * (L_u - x))
-    sides = min(beside + J if x > 0.0 else beside, beside if x < L_u else beside + J)
-    return min(joints, sides)
+                    v = {**whole, **{f"route_{k}": float(np.ravel(got[k])[i]) for k in got}, "x_m": float(xm),
+                         "mu_pl": mu_pl}
+                    for between in (False, True):
+                        truth = rt.least_rope_tension(F_end, q, list(L), wind, float(xm), J, between=between)
+                        assert wv.least_winding(v, way, s, a_h, F_end, q, J, between) == pytest.approx(
+                            truth, rel=1e-12, abs=1e-6), (a_h, mu_pl, way, xm, between)
+                        truth = rt.least_rope_tension(F_end, q, list(L), unwind, between=between)
+                        assert wv.least_unwinding(v, way, s, a_h, F_end, q, between) == pytest.approx(
+                            truth, rel=1e-12, abs=1e-6), (a_h, mu_pl, way, between)
 
 
 def test_point_A_splits_against_the_loops():

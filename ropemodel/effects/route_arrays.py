@@ -4,8 +4,9 @@ Inside, a route of n segments is three arrays (lengths L [m], inclinations α [r
 resistance μ_w [-]), listed from the drive.  At the edges (``[[route]]`` tables, a profile file, ``--set L_2=…``,
 sweeps, sensitivities, the report, ``--json``) each value keeps its name: ``L_i``, ``alpha_i``, ``mu_wi`` for
 segment i = 1…n (:func:`ropemodel.effects.winch_route.segment_quantities` declares them).  :func:`parse` and
-:func:`name` translate one way and the other, and :class:`RouteArrays` gathers, reads and replaces values by
-name, so a module that reads a route need not spell the names out.
+:func:`name` translate one way and the other, :func:`beyond` says why a name is past a route's end, and
+:class:`RouteArrays` gathers the values of a mapping by name, so a module that reads a route need not spell the
+names out.
 """
 
 from __future__ import annotations
@@ -77,39 +78,3 @@ class RouteArrays:
         mu = [values[name("mu_w", k)] if has else default for k, has in enumerate(own)]
         return cls(_array(L), _array([values[name("alpha", k)] for k in range(len(L))]), _array(mu),
                    np.array(own, dtype=bool))
-
-    def problem(self, text: str) -> str | None:
-        """Why ``text`` names no value of this route (a message naming the valid names), or None if it does."""
-        if parse(text) is None:
-            return f"{text} is not a route segment's value: write L_i, alpha_i or mu_wi, i = 1 … {self.n}"
-        return beyond(text, self.n)
-
-    def value(self, text: str) -> float:
-        """The value named ``text`` (``L_2`` …); KeyError with :meth:`problem`'s message if there is none."""
-        trouble = self.problem(text)
-        if trouble:
-            raise KeyError(trouble)
-        field, k = parse(text)  # type: ignore[misc]
-        return float(getattr(self, field)[k])
-
-    def with_value(self, text: str, value: float) -> RouteArrays:
-        """A copy with the value named ``text`` replaced (``--set``, a sweep's point); a μ_w set is the segment's
-        own from then on."""
-        self.value(text)
-        field, k = parse(text)  # type: ignore[misc]
-        arrays = {f: np.array(getattr(self, f)) for f in (*FIELDS, "own_mu")}
-        arrays[field][k] = value
-        if field == "mu_w":
-            arrays["own_mu"][k] = True
-        return RouteArrays(_array(arrays["L"]), _array(arrays["alpha"]), _array(arrays["mu_w"]), arrays["own_mu"])
-
-    def values(self, every_mu: bool = True) -> dict[str, float]:
-        """The named values, segment by segment (``--json``, the report, a scalar model's inputs): L_i, alpha_i,
-        and mu_wi for every segment (``every_mu``) or only where the segment gives its own."""
-        out: dict[str, float] = {}
-        for k in range(self.n):
-            out[name("L", k)] = float(self.L[k])
-            out[name("alpha", k)] = float(self.alpha[k])
-            if every_mu or self.own_mu[k]:
-                out[name("mu_w", k)] = float(self.mu_w[k])
-        return out

@@ -12,13 +12,15 @@
     drum_margin     = D / (D_ratio_min · d) − 1         drum D >= D_ratio_min · d (d the rope diameter)
 
 for each way of travel w in (up, down).  The no-slip check is the lining effect's ``slip_margin_w``.
-F_S_least_w and F_C_least_w are each rope side's least tension along the route, between the drum and the
-return sheave: at the route's joints and beside the load (:func:`ropemodel.papers.route.least_rope_tension`,
-docs/physics.md §4).  On a gentle slope, in a dip or while a lowering speeds up the tension can be least
-there, far below the forces at the drum.  The tension between two joints lies between theirs, so the least
-tension anywhere in the loop is that of its three places, the drum, along the route and the return sheave,
-and the checks hold each above F_S_min (each place once: a check never repeats another, which would make
-the sizing NLP degenerate).
+F_S_least_w and F_C_least_w are each rope side's least tension along the whole route, from the drum to the
+return sheave, both included: at the drum, the route's joints, beside the load and the return sheave
+(:func:`ropemodel.papers.route.least_rope_tension`, docs/physics.md §4).  On a gentle slope, in a dip or while a
+lowering speeds up the tension can be least inside the route, far below the forces at the drum.  The tension
+between two joints lies between theirs, so these are the least tension anywhere on each side, wherever the
+route is cut.  route_margin holds them above F_S_min; where a side is least at an end it repeats that end's own
+check (slack or taut at the drum, sheave at the return sheave): the sizing NLP then meets the same constraint
+twice, as it meets the drum's checks in every place of the load, and keeps one of them in its active set
+(:func:`optimisation.activeset.regular_subset`).
 Krauze et al. (2025) give eq. (23) (least stroke ΔF) and the rule D >= 30 d (their
 introduction, "Drum diameter D is selected based on rope diameter d, ensuring
 compliance with minimum conditions D >= 30d"): hence the default D_ratio_min = 30.
@@ -44,9 +46,9 @@ from ropemodel.papers import route as rt
 SRC = "Krauze et al. 2025"
 LEAST = "least tension along the side, docs/physics.md §4 (not in the paper)"
 #: how a least tension is computed where its closed form is too long to show (a route of many segments)
-LEAST_METHOD = ("the least of the side's tension at every joint of the route and on either side of the load "
-                "(between its ends, which have checks of their own), each F_nwl/2 plus the rope's weight and "
-                "resistance summed piece by piece from the return sheave (docs/physics.md §4)")
+LEAST_METHOD = ("the least of the side's tension at the drum, at every joint of the route, on either side of the "
+                "load and at the return sheave, each F_nwl/2 plus the rope's weight and resistance summed piece by "
+                "piece from the return sheave (docs/physics.md §4)")
 LEAST_SENSE = ("least",)
 LEAST_FORCES = ("F_S_least_up", "F_S_least_down", "F_C_least_up", "F_C_least_down")
 
@@ -106,11 +108,11 @@ class DesignChecks(Submodel):
         Q("D_ratio_min", "1", "least drum-to-rope diameter ratio D/d", default=30.0, symbol="(D/d)_min",
           **dom.domain(1.0, 1e4, "at least 1 (a drum around its rope); rules ask 18 to 120"),
           equation=f"{SRC}, introduction: D >= 30 d"),
-        *per_direction("F_S_least", "N", "least tension of the unwinding rope along the route (at its joints, "
-                       "between the drum and the return sheave)", "kN", symbol="F_S,least", equation=LEAST,
+        *per_direction("F_S_least", "N", "least tension of the unwinding rope along the route, drum and return "
+                       "sheave included (at its ends and joints)", "kN", symbol="F_S,least", equation=LEAST,
                        worst=LEAST_SENSE),
-        *per_direction("F_C_least", "N", "least tension of the winding rope along the route (at its joints and "
-                       "beside the load, between the drum and the return sheave)", "kN", symbol="F_C,least",
+        *per_direction("F_C_least", "N", "least tension of the winding rope along the route, drum and return "
+                       "sheave included (at its ends, joints and beside the load)", "kN", symbol="F_C,least",
                        equation=LEAST, worst=LEAST_SENSE),
         *per_direction("safety_margin", "1", "margin of rope safety F_min/(n_rope F_C) - 1 (>= 0 passes)",
                        symbol="m_safety", equation="rope safety check, F_min / F_C ≥ n_rope (not in the paper)",

@@ -115,9 +115,18 @@ def _rise(v, prefix: str, way: str, s: float, a):
     return c["A"] + s * (c["mo"] + v["mu_pl"] * c["cp"]) + s * (a / G_N) * c["X"]
 
 
-def least_winding(v, way: str, s: float, a, F_end, q_l, load):
-    """The winding side's least tension between its ends [N] (:func:`ropemodel.papers.route.least_rope_tension`
-    with the load's pull J = ``load``), from the route numbers: docs/physics.md §4."""
+def _drum_rises(v, s: float, a) -> tuple:
+    """The winding and the unwinding rope's rises from the return sheave to the drum, G_0 and H_0 [m]."""
+    L_u, mu_pl = v["route_L_u"], v["mu_pl"]
+    G_0 = v["route_sin"] + s * (v["route_mo"] + mu_pl * v["route_cp"]) + s * (a / G_N) * L_u
+    H_0 = v["route_sin"] - s * mu_pl * v["route_cos"] - s * (a / G_N) * L_u
+    return G_0, H_0
+
+
+def least_winding(v, way: str, s: float, a, F_end, q_l, load, between: bool = False):
+    """The winding side's least tension [N] over the whole side, drum and return sheave included
+    (:func:`ropemodel.papers.route.least_rope_tension` with the load's pull J = ``load``); ``between``: between
+    its ends only.  From the route numbers: docs/physics.md §4."""
     x = fmin(v["x_m"], v["route_L_u"])
     loaded = F_end + q_l * _rise(v, "P", way, s, a) + load
     free = F_end + q_l * _rise(v, "Q", way, s, a)
@@ -127,13 +136,20 @@ def least_winding(v, way: str, s: float, a, F_end, q_l, load):
                    + s * (a / G_N) * (v["route_L_u"] - x))
     beside = F_end + q_l * beside_rise
     sides = fmin(if_else(x > 0.0, beside + load, beside), if_else(x < v["route_L_u"], beside, beside + load))
-    return fmin(joints, sides)
+    inside = if_else(v["route_before"] + v["route_beyond"] > 0.0, fmin(joints, sides), sides)   # one segment: none
+    if between:
+        return inside
+    return fmin(inside, F_end + fmin(q_l * _drum_rises(v, s, a)[0] + load, 0.0))
 
 
-def least_unwinding(v, way: str, s: float, a, F_end, q_l):
-    """The unwinding side's least tension between its ends [N]: F_end + q_l (A − s μ_pl C − s (a/g) X)."""
-    return F_end + q_l * (v[f"route_S_A_{way}"] - s * v["mu_pl"] * v[f"route_S_C_{way}"]
-                          - s * (a / G_N) * v[f"route_S_X_{way}"])
+def least_unwinding(v, way: str, s: float, a, F_end, q_l, between: bool = False):
+    """The unwinding side's least tension [N] over the whole side: F_end + q_l min(H_0, A − s μ_pl C − s (a/g) X,
+    0) (its drum, its least inner joint, the return sheave); ``between``: its least inner joint only."""
+    inside = F_end + q_l * (v[f"route_S_A_{way}"] - s * v["mu_pl"] * v[f"route_S_C_{way}"]
+                            - s * (a / G_N) * v[f"route_S_X_{way}"])
+    if between:
+        return inside
+    return fmin(inside, F_end + fmin(q_l * _drum_rises(v, s, a)[1], 0.0))
 
 
 def derive(values: Mapping, acceleration, point_A: bool) -> dict:

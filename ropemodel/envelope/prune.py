@@ -7,13 +7,15 @@ place enters the winch's equations in two ways only (docs/physics.md §4, "Where
 * the forces at the drum, the powers and every margin made of them depend on the place only through the
   load's pull J_p = G_m (sin α_j + s (μ_pm cos α_j + a/g)) on its segment j, and each grows with J_p: their
   worst is at the place of the largest or the least J_p, per direction s and acceleration a;
-* the least tension of the winding rope along the route (:func:`ropemodel.papers.route.least_rope_tension`)
-  with the load at the end x_p of its segment is F_nwl/2 + min(J_p + q_l A_p, q_l B_p), with G_k = Σ_{i>k}
+* the least tension of the winding rope between its ends
+  (:func:`ropemodel.papers.route.least_rope_tension`, ``between=True``) with the load at the end x_p of its
+  segment is F_nwl/2 + min(J_p + q_l A_p, q_l B_p), with G_k = Σ_{i>k}
   L_i g_i the rise of the unloaded side from the return sheave to joint k (g_i :func:`rope_gradient`),
-  A_p = min_{1<=k<=p} G_k and B_p = min_{p<=k<n} G_k (the route's tables,
-  :func:`ropemodel.papers.route_tables.tables`: G_k, and A_p their running minimum P_p).  B_p is least at the
+  A_p = min_{1<=k<=p} G_k and B_p = min_{p<=k<n} G_k (G_k from the route's sums,
+  :func:`ropemodel.papers.route_numbers.rises`, and A_p their running minimum).  B_p is least at the
   drive (p = 0) whatever q_l; the least of J_p + q_l A_p over p, for any q_l > 0, is at a vertex of the lower
   convex hull of the points (A_p, J_p) between the least A and the least J (a supporting line of slope −q_l).
+  The least over the whole side adds the drum's force (the case above) and F_nwl/2 (the same at every place).
 
 The places kept (for every direction and manoeuvre of the cases) are these, and the route's two ends.  None
 of them depends on q_l or F_nwl, so the pruned list holds for every rope and pretension a sizing tries; it
@@ -29,8 +31,8 @@ import numpy as np
 
 from ropemodel.effects.route_arrays import RouteArrays
 from ropemodel.envelope.cases import LoadCase
+from ropemodel.papers import route_numbers as rn
 from ropemodel.papers.route import G_N
-from ropemodel.papers.route_tables import WAYS, tables
 
 #: below this many places, every place is kept (nothing to gain)
 MIN_PLACES = 8
@@ -44,12 +46,13 @@ def governing_places(params, accelerations, weights=(0.0, np.inf)) -> set[int]:
     n = segments.n
     seg = np.concatenate([[0], np.arange(n)])          # the load's segment at each place (0-based)
     keep = {0, n}
+    sums = rn.route_sums(segments.L, segments.alpha, segments.mu_w, segments.own_mu)
     for a in accelerations:
-        route = tables(segments.L, segments.alpha, segments.mu_w, params["mu_pl"], a)
-        for way, s in WAYS:
-            J = params["G_m"] * (route["sin"] + s * (params["mu_pm"] * route["cos"] + a / G_N))[seg]
+        for _, s in rn.WAYS:
+            J = params["G_m"] * (sums["sin"] + s * (params["mu_pm"] * sums["cos"] + a / G_N))[seg]
             keep |= {int(np.argmax(J)), int(np.argmin(J))}
-            A = np.concatenate([[np.inf], route[f"P_{way}"]])  # A_0 = ∞: no loaded term at the drive
+            G = rn.rises(sums, s, a, params["mu_pl"])[0]
+            A = np.concatenate([[np.inf], np.minimum.accumulate(G[1:])])  # A_0 = ∞: no loaded term at the drive
             keep |= _hull_toward_least(A, J, *weights)
     return keep
 

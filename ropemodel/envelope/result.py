@@ -80,9 +80,12 @@ class EnvelopeResult(Result):
     def critical(self) -> tuple[LoadCase, str]:
         """The one case a sheet of equations is written at, and why: an inverse question's governing case, else
         where the winding rope pulls hardest hauling up (F_C_up: the rope's safety, the stroke and the drive's
-        largest power govern there on a route), else where the first output with a worst governs."""
+        largest power govern there on a route), else where the first output with a worst governs, else (no output
+        depends on the case) the first case."""
         if self.governing is not None:
             return self.governing, f"where {', '.join(self.given)} governs"
+        if not self.envelope.extremes:
+            return self.envelope.cases[0], "every output is the same in every case"
         name = "F_C_up" if "F_C_up" in self.envelope.extremes else next(iter(self.envelope.extremes))
         return self.envelope.worst(name).case, f"where {name} is worst"
 

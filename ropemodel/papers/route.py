@@ -263,23 +263,24 @@ def rope_tension(x, F_end, q_l, lengths, gradients, x_m=None, load=0.0):
     return total if x_m is None else total + if_else(x < x_m, load, 0.0)
 
 
-def least_rope_tension(F_end, q_l, lengths, gradients, x_m=None, load=0.0):
-    """The least tension [N] of a rope side along the route, between its ends: at the route's joints and beside
-    the load (docs/physics.md §4).  Its ends have their own values, the drum's force (eq. (12)-(13)) and the
-    return sheave's F_end = F_nwl/2, so that a check of each of the three places never repeats another.
+def least_rope_tension(F_end, q_l, lengths, gradients, x_m=None, load=0.0, between=False):
+    """The least tension [N] of a rope side along the whole route, from the drum to the return sheave, both
+    included (docs/physics.md §4); ``between=True``: between its ends only, at the route's joints and beside the
+    load (what the route's own check holds: the drum's force, eq. (12)-(13), and the return sheave's F_end =
+    F_nwl/2 have checks of their own).
 
-    The tension (:func:`rope_tension`) is linear on each segment, so the side's least value is at the drum,
-    at a joint x_k (where the gradient changes from falling to rising toward the drive), beside the load, or
-    at the return sheave.  Between the ends::
+    The tension (:func:`rope_tension`) is linear on each segment and continuous but at the load, so the side's
+    least value is at the drum, at a joint x_k (where the gradient changes from falling to rising toward the
+    drive), beside the load, or at the return sheave::
 
-        min( min_{0 < k < n} (T_k + J [x_k < x_m]),  T(x_m) + J [x_m > 0],  T(x_m) [x_m < L_u] )
+        min( T_0 + J,  min_{0 < k < n} (T_k + J [x_k < x_m]),  T(x_m) + J,  T(x_m),  F_end )
 
-    with T_k the tension at the joints without the load (:func:`tension_at_joints`), T(x_m) + J just before
-    the load (on its drive side; at the drive that is the drum's force) and T(x_m) just beyond it (at the
-    return sheave, F_end).  Which joint it is does not depend on q_l or F_end.  A load beyond the route
-    (x_m > L_u) is at the return sheave.  Arguments as :func:`rope_tension`; ``x_m=None``: a side without a
-    load (the unwinding rope).  A side with neither a joint nor a load between its ends (one segment, the
-    unwinding rope) has nothing between them: its least there is that of its ends.
+    with T_k the tension at the joints without the load (:func:`tension_at_joints`), T_0 + J the drum's force,
+    T(x_m) + J and T(x_m) just before and beyond the load.  Between the ends the first and the last are left
+    out, and so is the load's side at an end.  The whole side's least does not depend on where the route is cut;
+    the least between the ends does, near an end where the side is least (it approaches the end's value).  A
+    load beyond the route is at the return sheave.  Arguments as :func:`rope_tension`; ``x_m=None``: a side
+    without a load.  One segment without a load has nothing between its ends: its least there is its ends'.
 
     Examples
     --------
@@ -293,7 +294,35 @@ def least_rope_tension(F_end, q_l, lengths, gradients, x_m=None, load=0.0):
     [8.8594, 7.9631, 10.0]
     >>> round(least_rope_tension(10e3, 80.0, [300.0, 300.0], g) / 1e3, 4)
     7.9631
+
+    Hauled up a straight 16° incline (Fig. 9), the unwinding rope is least at the return sheave, 10 kN; between
+    its ends, a joint 10 m before the sheave is its least (the route cut there: the closer the cut, the lower):
+
+    >>> g = rope_gradient(math.radians(16.0), 0.05, -1.0)
+    >>> [round(least_rope_tension(10e3, 80.0, [1140.0, 10.0], [g, g], between=b) / 1e3, 4) for b in (False, True)]
+    [10.0, 10.1821]
     """
+    inside = _between(F_end, q_l, lengths, gradients, x_m, load)
+    if between:
+        return inside
+    return fmin(inside, with_ends(F_end, q_l, lengths, gradients, load))
+
+
+def with_ends(F_end, q_l, lengths, gradients, load=0.0):
+    """The lesser of a rope side's tensions at its ends [N]: at the drum F_end + q_l Σ L_i g_i + J (the drum's
+    force, eq. (12)-(13); J = ``load`` the load's pull on the winding side, 0 on the unwinding one) and at the
+    return sheave F_end (docs/physics.md §4)."""
+    if _symbolic(*lengths, gradients):
+        rise = _sum(rv.column(lengths) * rv.column(gradients))
+    else:
+        rise = 0.0
+        for length, gradient in zip(reversed(list(lengths)), reversed(list(gradients))):
+            rise = rise + length * gradient
+    return F_end + fmin(q_l * rise + load, 0.0)
+
+
+def _between(F_end, q_l, lengths, gradients, x_m, load):
+    """:func:`least_rope_tension` between the side's ends."""
     if len(lengths) > 1 and _symbolic(F_end, q_l, x_m, load, *lengths, gradients):
         return rv.least_tension(F_end, q_l, lengths, gradients, x_m, load)
     joints = tension_at_joints(F_end, q_l, lengths, gradients)

@@ -48,6 +48,15 @@ def route_sums(L, alpha, mu, own) -> dict:
             "mo": _suffix(L * mo_i), "cp": _suffix(L * cp_i), "C": _suffix(L * c), "X": _suffix(L)}
 
 
+def rises(sums: dict, s: float, a_h: float, mu_pl: float) -> tuple[np.ndarray, np.ndarray]:
+    """The winding and the unwinding side's rises G_k, H_k [m] at every joint k = 0…n (n + 1 each; 0 at the return
+    sheave), from :func:`route_sums`, for the direction s (+1 hauling up, −1 lowering), a_h [m/s²] and μ_pl [-]:
+    the tension at joint k is F_end + q_l G_k (without the load) and F_end + q_l H_k."""
+    G = sums["A"] + s * (sums["mo"] + mu_pl * sums["cp"]) + s * (a_h / G_N) * sums["X"]
+    H = sums["A"] - s * mu_pl * sums["C"] - s * (a_h / G_N) * sums["X"]
+    return G, H
+
+
 def _running_arg(v: np.ndarray) -> np.ndarray:
     """For each k, an index i <= k with v_i = min(v_0 … v_k) (numpy, len(v) >= 1)."""
     least = np.minimum.accumulate(v)
@@ -79,8 +88,7 @@ def places(sums: dict, x_m, a_h: float, mu_pl: float) -> dict:
     lo, hi = np.maximum(j - 1, 0), np.minimum(j, max(n - 2, 0))
     k = np.arange(n + 1)
     for way, s in WAYS:
-        G = sums["A"] + s * (sums["mo"] + mu_pl * sums["cp"]) + s * (a_h / G_N) * sums["X"]
-        H = sums["A"] - s * mu_pl * sums["C"] - s * (a_h / G_N) * sums["X"]
+        G, H = rises(sums, s, a_h, mu_pl)
         at_P = k[1:][_running_arg(G[1:])][lo]          # G_1 … G_{max(j, 1)}
         if n > 1:                                        # G_{j+1} … G_{n−1}, from the return sheave's end
             inner = k[1:n]

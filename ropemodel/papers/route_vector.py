@@ -71,10 +71,10 @@ def rise_at(x, lengths, gradients):
 
 
 def least_tension(F_end, q_l, lengths, gradients, x_m, load):
-    """:func:`ropemodel.papers.route.least_rope_tension` (two segments or more) as vector operations, for q_l >= 0
-    (a rope's weight): the least over the joints is F_end + q_l min_k G_k (:func:`rises`), and on the loaded side
-    the least of F_end + q_l P + J and
-    F_end + q_l Q, with P, Q the least G_k of the joints before and beyond the load.  Rounding is monotone, so
+    """:func:`ropemodel.papers.route.least_rope_tension` between the side's ends (two segments or more) as vector
+    operations, for q_l >= 0 (a rope's weight): the least over the joints is F_end + q_l min_k G_k
+    (:func:`rises`), and on the loaded side the least of F_end + q_l P + J and F_end + q_l Q, with P, Q
+    the least G_k of the joints before and beyond the load.  Rounding is monotone, so
     each equals the least of the terms of the loop to the last bit; the rope's weight and the pretension enter
     in a few operations whatever the number of joints (the route's minima fold into numbers where its values are
     known, as in sizing)."""
