@@ -175,7 +175,7 @@ def independent(scene, command: str, name: str) -> str | None:
     if (name == "a_e" and command in ("run", "solve", "sensitivity") and "t_ramp" in v and "v_pj" in v
             and max(1.5 * v.get("a_e", 0.0), 0.05) < v["v_pj"] / v["t_ramp"]):
         return "an emergency stop gentler than the ramps' stop"
-    if name == "x_m" and _least_at_the_sheave_anywhere(scene):
+    if name == "x_m" and command in ("run", "solve", "sensitivity", "size") and _least_at_the_sheave_anywhere(scene):
         return "on one straight incline the rope is least at the return sheave wherever the load is"
     if name == "a_brake_max" and v[name] == math.inf and scene.model == "koepe":
         r = rm.run(scene)
@@ -203,10 +203,11 @@ def independent(scene, command: str, name: str) -> str | None:
 
 
 def _least_at_the_sheave_anywhere(scene) -> bool:
-    """On one straight incline with one resistance coefficient the load's place enters only the least tension of
-    the winding rope (docs/physics.md §4): T(x) = F_nwl/2 + q_l g (L_u − x) + J [x < x_m].  Where the rope rises
-    toward the drum (g >= 0) and the load pulls toward it (J >= 0) in each direction and manoeuvre, T is least at
-    the return sheave, F_nwl/2, wherever the load is."""
+    """In the static model on one straight incline with one resistance coefficient the load's place enters only
+    the least tension of the winding rope (docs/physics.md §4): T(x) = F_nwl/2 + q_l g (L_u − x) + J [x < x_m].
+    Where the rope rises toward the drum (g >= 0) and the load pulls toward it (J >= 0) in each direction and
+    manoeuvre, T is least at the return sheave, F_nwl/2, wherever the load is (a transient splits the elastic
+    rope at the load: there it matters)."""
     from ropemodel.envelope.cases import load_cases, with_ramps
 
     v, e = scene.parameters, scene.effects
