@@ -1,8 +1,9 @@
 """What the dynamic sizing's re-solves read of its NLP, against the full computations they replaced (kept here as the
 truth): the Jacobian's rows of the blocks holding the active checks (:meth:`DynamicSizingProblem.jacobian_rows`)
-equal the rows of the whole Jacobian; the smooth mode built with the rope's quantities kept across the drive's
-phases equals the one built publishing them anew, bit for bit; the active sets the
-warm re-solve tries (:func:`optimisation.dynamic.warm._orders`) move a check's row to the case that violates it."""
+equal the rows of the whole Jacobian, and their checks (:meth:`~DynamicSizingProblem.g_rows`) those of the whole
+g; the smooth mode built with the rope's quantities kept across the drive's phases equals the one built publishing
+them anew, bit for bit; the active sets the warm re-solve tries (:func:`optimisation.dynamic.warm._orders`) move a
+check's row to the case that violates it."""
 
 from __future__ import annotations
 
@@ -35,6 +36,8 @@ def test_the_rows_of_the_blocks_asked_equal_the_whole_jacobians(problem):
     assert np.isnan(J[n_static:first_case]).all()       # the first case's block: not asked, not computed
     for rows in (slice(0, n_static), slice(first_case, None)):
         np.testing.assert_allclose(J[rows], J_full[rows], rtol=1e-12, atol=1e-12 * np.abs(J_full).max())
+    g_some = problem.g_rows(xs, p, [last])                # a Newton step's residual: the same integrations
+    assert np.isnan(g_some[:first_case]).all() and np.array_equal(g_some[first_case:], g_full.ravel()[first_case:])
     # the kept evaluation completes itself when a row it lacks is asked
     jacobian_at(problem, xs, p, [last])
     _, J_all = jacobian_at(problem, xs, p, [0, n_static])

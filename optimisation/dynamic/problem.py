@@ -163,20 +163,35 @@ class DynamicSizingProblem(SizingProblem):
         on the three-segment route at 32 elements a span, two of the six cases hold them."""
         g = np.asarray(self.g_function(xs, p), float).ravel()
         J = np.full((len(g), self.xs.numel()), np.nan)
+        for b, lo, hi in self._holding(rows):
+            J[lo:hi] = np.asarray(self._block_function(b, True)(xs, p), float)
+        return g, J
+
+    def g_rows(self, xs, p, rows) -> np.ndarray:
+        """g at scaled ``xs`` and ``p`` in the blocks holding ``rows`` (the same numbers as :attr:`g_function`'s: the
+        same integrations), the other rows NaN: what a Newton step on ``rows`` reads (the warm re-solves')."""
+        g = np.full(self.g.numel(), np.nan)
+        for b, lo, hi in self._holding(rows):
+            g[lo:hi] = np.asarray(self._block_function(b, False)(xs, p), float).ravel()
+        return g
+
+    def _holding(self, rows):
+        """(block, its first row, the row after its last) of each block of g holding one of ``rows``."""
         lo = 0
         for b, block in enumerate(self._blocks):
             hi = lo + block.numel()
             if any(lo <= r < hi for r in rows):
-                J[lo:hi] = np.asarray(self._block_jacobian(b)(xs, p), float)
+                yield b, lo, hi
             lo = hi
-        return g, J
 
-    def _block_jacobian(self, b: int) -> ca.Function:
-        """(x, p) → ∂(block ``b`` of g)/∂x (built once per block)."""
-        made = self.__dict__.setdefault("_block_jacobians", {})
-        if b not in made:
-            made[b] = ca.Function(f"jac_block_{b}", [self.xs, self.p], [ca.jacobian(self._blocks[b], self.xs)])
-        return made[b]
+    def _block_function(self, b: int, jacobian: bool) -> ca.Function:
+        """(x, p) → block ``b`` of g, or (``jacobian``) its ∂/∂x; built once per block."""
+        made = self.__dict__.setdefault("_block_functions", {})
+        if (b, jacobian) not in made:
+            block = self._blocks[b]
+            made[b, jacobian] = ca.Function(f"block_{b}", [self.xs, self.p],
+                                            [ca.jacobian(block, self.xs) if jacobian else block])
+        return made[b, jacobian]
 
     def backoff(self, check: str, case: int) -> float:
         """The back-off of ``check`` (a name of the machine's ``CHECKS``) in case ``case`` (index into
