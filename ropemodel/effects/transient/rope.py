@@ -145,9 +145,14 @@ class Rope(TransientSubmodel):
         return out + sum(0.5 * el.k * ei ** 2 for el, ei in zip(ch.elements, v["strain"]))
 
     def dissipation(self, v, mode):
-        ch = self.chain
-        damping = sum(el.c * ed ** 2 for el, ed in zip(ch.elements, v["strain_rate"]))
-        return damping + sum(ch.resistance[i] * v["th"][i] * v["v"][i] for i in range(ch.n))
+        """The power the rope dissipates: like its quantities (:meth:`publish`), the same in every phase, made once."""
+        kept = getattr(self, "_dissipated", None)
+        if kept is None or kept[0] is not v["strain_rate"]:
+            ch = self.chain
+            damping = sum(el.c * ed ** 2 for el, ed in zip(ch.elements, v["strain_rate"]))
+            kept = self._dissipated = (v["strain_rate"], damping + sum(ch.resistance[i] * v["th"][i] * v["v"][i]
+                                                                       for i in range(ch.n)))
+        return kept[1]
 
     def outputs(self, v, mode):
         return {"v_load [m/s]": v["v_load"], "T_sheave [N]": v["T_sheave"], "T_min [N]": v["T_min"]}
