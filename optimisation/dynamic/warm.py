@@ -104,7 +104,8 @@ def _rows_residual(problem, rows):
 
 
 def newton(jac, residual, x, p, rows, fixed, lbx, start=None):
-    """Newton on g[rows] = 0 with x[fixed] = lbx[fixed]: the point, or None (singular, not converging).
+    """Newton on g[rows] = 0 with x[fixed] = lbx[fixed]: the point, or None (singular, not converging).  ``jac``:
+    (x, p, rows) → (g, ∂g/∂x, ...), ``residual``: (x, p) → g (of both, the rows ``rows`` are read).
 
     Chord steps: the Jacobian of the first point is kept while each step at least halves the last, and taken
     again where one does not; g alone is evaluated between (through the integrators a tenth of the cost of g
