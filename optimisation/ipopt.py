@@ -141,7 +141,7 @@ def _active_set(problem, sol, lbx, ubx, p):
     if len(active) > 1:
         from optimisation.activeset import regular_subset
 
-        J = jacobian_at(problem, sol.xs, p)[1]
+        J = jacobian_at(problem, sol.xs, p, active)[1]
         active = list(regular_subset(active, sol.active_bounds, J, sol.lam_g, len(sol.xs))[0])
     sol.active = [problem.constraints[i] for i in active]
 
@@ -150,17 +150,28 @@ def _active_set(problem, sol, lbx, ubx, p):
 KEPT = 4
 
 
-def jacobian_at(problem, xs, p) -> tuple[np.ndarray, np.ndarray]:
+def jacobian_at(problem, xs, p, rows=None) -> tuple[np.ndarray, np.ndarray]:
     """(g, ∂g/∂x) of ``problem`` at scaled ``xs`` and parameters ``p`` (numpy, read-only).  The last
     :data:`KEPT` evaluations are kept: the active set, the polish, the lexicographic test and the warm
     re-solves (:mod:`optimisation.dynamic.warm`) ask the same point in turn, and through the dynamic NLP's
-    integrators each evaluation integrates every case with its sensitivities."""
+    integrators each evaluation integrates every case with its sensitivities.
+
+    ``rows``: the callers read these rows of ∂g/∂x only; a problem with ``jacobian_rows`` (the dynamic NLP)
+    then differentiates only the blocks holding them (its static checks, each case's transient) and leaves the
+    other rows NaN, so that a row nobody computed can never pass for a derivative."""
     key = (np.asarray(xs, float).tobytes(), np.asarray(p, float).tobytes())
     kept = problem.__dict__.setdefault("_jac_kept", {})
-    if key not in kept:
-        g, J = (np.asarray(a, float) for a in _jac_at(problem, p)[0](xs, p))
+    hit = kept.get(key)
+    if hit is None or np.isnan(hit[1] if rows is None else hit[1][list(rows)]).any():
+        if rows is not None and hasattr(problem, "jacobian_rows"):
+            g, J = problem.jacobian_rows(xs, p, rows)
+            if hit is not None:
+                J = np.where(np.isnan(J), hit[1], J)
+        else:
+            g, J = (np.asarray(a, float) for a in _jac_at(problem, p)[0](xs, p))
         g = g.ravel()
         g.flags.writeable = J.flags.writeable = False
+        kept.pop(key, None)
         kept[key] = (g, J)
         while len(kept) > KEPT:
             kept.pop(next(iter(kept)))
@@ -202,7 +213,7 @@ def _polish(problem, sol, p, lbx, ubx):
     if len(idx) + len(fixed) != 3:
         return
     x, last = sol.xs.copy(), np.inf
-    g, J = jacobian_at(problem, x, p)
+    g, J = jacobian_at(problem, x, p, idx)
     A = np.vstack([J[idx, :], np.eye(3)[fixed, :]]) if fixed else J[idx, :]
     if np.linalg.cond(A) > 1e12:
         return
@@ -237,9 +248,9 @@ def lexicographic_ok(problem, sol, p) -> bool:
     so the weighted optimum respects the lexicographic order.
     """
     _, grad_f0 = _jac_at(problem, p)
-    J = jacobian_at(problem, sol.xs, p)[1]
-    gf = np.asarray(grad_f0(sol.xs, p)).ravel()
     idx = [problem.constraints.index(c) for c in sol.active]
+    J = jacobian_at(problem, sol.xs, p, idx)[1]
+    gf = np.asarray(grad_f0(sol.xs, p)).ravel()
     normals = [J[i, :] for i in idx]
     for i, side in sol.active_bounds:
         e = np.zeros(3)

@@ -40,7 +40,7 @@ IPOPT re-solves, and whether both ways returned the same catalogue design.
 
     python studies/dynamic_sizing_speed.py [--fast | --route]
 
-``--route``: the three-segment route alone, one round, without the IPOPT re-solves' sizing (about 3.5 CPU minutes).
+``--route``: the three-segment route alone, one round, without the IPOPT re-solves' sizing (about 1.7 CPU minutes).
 """
 
 from __future__ import annotations

@@ -9,9 +9,12 @@ What it shows, and what is asserted:
   "Speed"; 7.5x against the simulator on QR).  The returned (catalogue) design is verified by the simulator in
   every case within reach of a limit and at each manoeuvre's least place (on the shipped scene 5 of 12 cases), the
   others by the NLP's integration;
-  and on the three-segment route, one round (``--route``): 16.9x and 16.3x in two runs against the simulator
-  on sparse LU (8.3x median of three against it on QR, 18.0x before that): the route's test fails until the
-  route's sizing meets the goal.  The "no design" goal (30x) is met and asserted by
+  and on the three-segment route, one round (``--route``): 7.18x, the median of three runs against the simulator
+  on sparse LU (83.9 CPU-s against 11.7; the others 7.07x and 7.36x; a loaded 2-core machine, the peer's own time
+  8.7-12.0 CPU-s in that session's runs); run at the same time as the previous code, 7.45x (89.1 CPU-s against
+  12.0) against its 14.68x (148.9 against 10.1), the same design (16.3x-16.9x a session before; 8.3x against
+  the simulator on QR, 18.0x before that).  The shipped scene at the same code: 6.21x (22.0 CPU-s against 3.22,
+  median of three rounds).  The "no design" goal (30x) is met and asserted by
   ``tests/test_dynamic_no_design_speed.py`` (median of three rounds);
 * the re-solves of the dynamic NLP by Newton on the previous optimum's active set
   (:mod:`optimisation.dynamic.warm`) make dynamic sizing cheaper than the same sizing with every re-solve by
@@ -22,7 +25,7 @@ What it shows, and what is asserted:
   nothing is no ratio).
 
 All exhaustive (CONTRIBUTING, test tiers): the shipped scene alone (``fast``) is three rounds of two dynamic
-sizings, about 5 CPU minutes; the route alone about 4; the full study (the route once more, with its IPOPT
+sizings, about 5 CPU minutes; the route alone about 2; the full study (the route once more, with its IPOPT
 re-solves' sizing, and the "no design" answer) more than 15."""
 
 from __future__ import annotations

@@ -44,6 +44,14 @@ MU_INIT = 1e-5
 #: (the test scene with a 2 s ramp); a start that reaches the limit hands over to the next start and then to
 #: the least-violation problem (:mod:`optimisation.dynamic.diagnose`)
 MAX_ITER = 250
+#: consecutive iterations at IPOPT's acceptable level (``acceptable_tol`` 1e-8, the NLP error with the
+#: complementarity) that end a solve of the dynamic NLP (IPOPT's default 15): its checks through the integrators have
+#: a noise floor near 1e-9, so IPOPT reaches the acceptable level but not its ``tol`` of 1e-10, and spent the
+#: iterations after it at the floor until a line search failed; the polish (Newton on the active set,
+#: :mod:`optimisation.ipopt`) then takes the vertex exactly.  Measured on the three-segment route's first solve: 21
+#: iterations ending 1.2e-8 outside a check (not polished), 10.8 CPU-s; with 2, 17 iterations, 7.8 CPU-s, polished,
+#: the same active set
+ACCEPTABLE_ITER = 2
 #: parameters that stay numbers in the transient: its duration (the grid) and where the load is
 FIXED = ("t_end",)
 
@@ -128,9 +136,13 @@ class DynamicSizingProblem(SizingProblem):
     def _add_paths(self) -> None:
         x_si = self.xs * ca.DM(self.x_scale)
         a = self.values(x_si, self.p)
-        g, names, scale, margins, offsets = [], [], [], [], []
+        g: list = []
+        scale: list = []
+        names, margins, offsets = [], [], []
         unit_scale = {"N": self.F_ref, "m": 1.0}
+        self._blocks = [self.g_static]
         for j, (path, grid) in enumerate(zip(self.paths, self.grids)):
+            first = len(g), len(scale)
             _, o, _ = path.samples(self.pp_of(path, x_si, self.p), grid, f"m{j}")
             times = np.concatenate(path.times(self.pp0(path), grid))
             for check in path.checks:
@@ -144,11 +156,50 @@ class DynamicSizingProblem(SizingProblem):
                 scale += [unit_scale[check.unit]] * (rows * len(times))
                 offsets += [self.backoff(check.name, self.selected[j])] * (rows * len(times))
                 self.units.update({n: check.unit for n in names[len(names) - rows * len(times):]})
+            self._blocks.append(ca.vertcat(*g[first[0]:]) / ca.DM(scale[first[1]:]) - ca.DM(offsets[first[1]:]))
         self.dynamic_constraints = names
         self.constraints = self.static_constraints + names
         self.g = ca.vertcat(self.g, ca.vertcat(*g) / ca.DM(scale) - ca.DM(offsets))
         self.g_scale = np.concatenate([self.g_scale, scale])
         self._margin_exprs = self._margin_exprs + margins
+
+    def jacobian_rows(self, xs, p, rows) -> tuple[np.ndarray, np.ndarray]:
+        """(g, ∂g/∂x) at scaled ``xs`` and ``p`` with only the blocks of g holding ``rows`` differentiated (the static
+        checks, or one case's checks through its manoeuvre: their transient integrated with its sensitivities),
+        the other rows of ∂g/∂x NaN; g whole, integrated without sensitivities.  The warm re-solves' Newton steps
+        and KKT tests, the active set, the polish and the lexicographic test read the active rows alone: measured
+        on the three-segment route at 32 elements a span, two of the six cases hold them."""
+        g = np.asarray(self.g_function(xs, p), float).ravel()
+        J = np.full((len(g), self.xs.numel()), np.nan)
+        for b, lo, hi in self._holding(rows):
+            J[lo:hi] = np.asarray(self._block_function(b, True)(xs, p), float)
+        return g, J
+
+    def g_rows(self, xs, p, rows) -> np.ndarray:
+        """g at scaled ``xs`` and ``p`` in the blocks holding ``rows`` (the same numbers as :attr:`g_function`'s: the
+        same integrations), the other rows NaN: what a Newton step on ``rows`` reads (the warm re-solves')."""
+        g = np.full(self.g.numel(), np.nan)
+        for b, lo, hi in self._holding(rows):
+            g[lo:hi] = np.asarray(self._block_function(b, False)(xs, p), float).ravel()
+        return g
+
+    def _holding(self, rows):
+        """(block, its first row, the row after its last) of each block of g holding one of ``rows``."""
+        lo = 0
+        for b, block in enumerate(self._blocks):
+            hi = lo + block.numel()
+            if any(lo <= r < hi for r in rows):
+                yield b, lo, hi
+            lo = hi
+
+    def _block_function(self, b: int, jacobian: bool) -> ca.Function:
+        """(x, p) → block ``b`` of g, or (``jacobian``) its ∂/∂x; built once per block."""
+        made = self.__dict__.setdefault("_block_functions", {})
+        if (b, jacobian) not in made:
+            block = self._blocks[b]
+            made[b, jacobian] = ca.Function(f"block_{b}", [self.xs, self.p],
+                                            [ca.jacobian(block, self.xs) if jacobian else block])
+        return made[b, jacobian]
 
     def backoff(self, check: str, case: int) -> float:
         """The back-off of ``check`` (a name of the machine's ``CHECKS``) in case ``case`` (index into
@@ -172,20 +223,21 @@ class DynamicSizingProblem(SizingProblem):
 
     @cached_property
     def ipopt_options(self) -> dict:
-        """IPOPT settings of this NLP (:func:`optimisation.ipopt.solver` adds them): the first barrier
-        parameter :data:`MU_INIT`, and the Hessian of the Lagrangian of the objective and the static checks
-        only (exact, closed form).  The transient's own second derivatives are left out: through the
-        integrator they cost 20-80 Jacobians each (forward-over-adjoint 19 s, forward-over-forward 5.4 s
-        against 0.28 s for the Jacobian, measured on the Fig. 9 scene), and at the usual optimum, a vertex
-        of three active checks, the Newton step is fixed by the active constraints' Jacobian alone, so
-        IPOPT converges as fast without them (measured: 15 iterations).  The optimum satisfies the KKT
-        conditions with the exact first derivatives."""
+        """IPOPT settings of this NLP (:func:`optimisation.ipopt.solver` adds them): the first barrier parameter
+        :data:`MU_INIT`, the acceptable stop :data:`ACCEPTABLE_ITER`, and the Hessian of the Lagrangian of the
+        objective and the static checks only (exact, closed form).  The transient's own second derivatives are left
+        out: through the integrator they cost 20-80 Jacobians each (forward-over-adjoint 19 s, forward-over-forward
+        5.4 s against 0.28 s for the Jacobian, measured on the Fig. 9 scene), and at the usual optimum, a vertex of
+        three active checks, the Newton step is fixed by the active constraints' Jacobian alone, so IPOPT converges
+        as fast without them (measured: 15 iterations).  The optimum satisfies the KKT conditions with the exact
+        first derivatives."""
         lam_f, lam_g = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", self.g.numel())
         n = self.g_static.numel()
         lagrangian = lam_f * self.f + ca.dot(lam_g[:n], self.g_static)
         hess = ca.Function("hess_lag", [self.xs, self.p, lam_f, lam_g], [ca.triu(ca.hessian(lagrangian, self.xs)[0])],
                            ["x", "p", "lam_f", "lam_g"], ["hess"])
-        return {"hess_lag": hess, "ipopt.mu_init": MU_INIT, "ipopt.max_iter": MAX_ITER}
+        return {"hess_lag": hess, "ipopt.mu_init": MU_INIT, "ipopt.max_iter": MAX_ITER,
+                "ipopt.acceptable_iter": ACCEPTABLE_ITER}
 
     def relinearised(self, xs, p=None) -> DynamicSizingProblem | None:
         """This problem with its manoeuvres' smooth modes built again at the design ``xs`` (scaled) and the

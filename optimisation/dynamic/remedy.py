@@ -115,7 +115,7 @@ def newton_remedy(problem, name: str, sense: str, least, checks, bounds, box, ve
     z0 = np.concatenate([least, [problem.p0[i] / scale]])
     m = len(z0) - len(fixed)
 
-    def jac(z, _p):
+    def jac(z, _p, _rows=None):
         g, J = jacobian(z)
         return np.asarray(g).ravel(), np.asarray(J)
 

@@ -113,7 +113,7 @@ def _functions(system, phase, p, suffix: str):
     """(f, out) of the smooth mode in ``phase`` as Functions of (x, t, p)."""
     mode = system.smooth_mode()
     v = system.variables(phase, mode)       # published once: element by element of the rope (16 % of a build)
-    ode, switches, outputs, _ = system.assemble(phase, mode, v)
+    ode, switches, outputs, _ = system.assemble(phase, mode, v, energy=False)     # no check reads the energy
     tensions = v.get("T", [])
     x, t = system.x, system.t
     raw = {s.name: s.g for s in switches if s.name in SWITCHES}

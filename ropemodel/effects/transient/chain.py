@@ -127,6 +127,7 @@ def build_elastic(values: dict, route: Route, L_u: float, x_m: float, segments: 
     for p, (name, s_a, s_b) in enumerate(parts):
         step = (s_b - s_a) / segments
         k = EA / abs(step)
+        c = tau * k
         for j in range(segments):
             b = 0 if (p == len(parts) - 1 and j == segments - 1) else nodes.new()
             share = _take_up(cur, b, sheave, load_at_sheave)
@@ -137,7 +138,7 @@ def build_elastic(values: dict, route: Route, L_u: float, x_m: float, segments: 
                 f = 0.5 if share == 0.0 else (0.0 if node == sheave else 1.0)    # sheave's loads: far node
                 fm = 0.5 if share < 1.0 else (0.0 if node == sheave else 1.0)
                 nodes.add(node, "S" if name == "S" else "C", fm * m, f * w, f * r)
-            elements.append(Element(cur, b, k, tau * k, share))
+            elements.append(Element(cur, b, k, c, share))
             cur = b
         if name == "C2":
             load = cur

@@ -18,7 +18,7 @@ geometry (L_u, L_ul, and the places asked about) are numbers.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, NamedTuple, Protocol
 
 from ropemodel.effects.transient.base import G_N
@@ -95,18 +95,30 @@ class Segments:
     lengths: list
     inclinations: list
     mus: list
+    #: (side, the parts of each segment a stretch covers) → its loads: the stretches of one span are equal
+    _made: dict = field(default_factory=dict, repr=False, compare=False)
 
     def _parts(self, s0: float, s1: float):
         start = 0.0
-        for length, alpha, mu in zip(self.lengths, self.inclinations, self.mus):
+        for i, (length, alpha, mu) in enumerate(zip(self.lengths, self.inclinations, self.mus)):
             part = max(0.0, min(start + length, s1) - max(start, s0))
             if part > 0.0:
-                yield part, alpha, mu
+                yield i, part, alpha, mu
             start += length
 
     def rope(self, side: str, s0: float, s1: float) -> Loads:
+        """The loads of the rope on [s0, s1] (``side`` "winding" or "unwinding"); the same parts of the same
+        segments give the same loads, made once (a span's elements are equal stretches, each one made element by
+        element in symbols for the dynamic sizing)."""
+        parts = list(self._parts(s0, s1))
+        key = (side, tuple((i, part) for i, part, _, _ in parts))
+        if key not in self._made:
+            self._made[key] = self._rope(side, parts)
+        return self._made[key]
+
+    def _rope(self, side: str, parts) -> Loads:
         v, mass, weight, resistance = self.values, 0.0, 0.0, 0.0
-        for part, alpha, mu in self._parts(s0, s1):
+        for _, part, alpha, mu in parts:
             coefficient = v["mu_pl"] if side == "unwinding" else mu
             mass = mass + v["q_l"] * part / G_N
             weight = weight + kr.rope_weight_along_incline(v["q_l"], part, alpha)          # eq. (2), (6) per segment
