@@ -33,7 +33,6 @@ from optimisation.problem import SizingProblem
 from ropemodel.papers import en12385 as ropes
 
 
-
 @contextlib.contextmanager
 def _quiet():
     """Silence bonmin's node log, which it writes to the C-level stdout whatever its log options say."""

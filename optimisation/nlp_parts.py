@@ -107,4 +107,3 @@ def check_work(scene, where: list, spanned: int) -> None:
                      f"sizing on a route of {segments} segments checks every check at {len(where)} load cases{kept}, "
                      f"each through the {segments} segments: an NLP of {len(where)} x {segments}",
                      "join neighbouring segments of nearly the same inclination")
-

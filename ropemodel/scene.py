@@ -62,7 +62,6 @@ class SceneWarning(UserWarning):
     """Valid but worth a look: an unused parameter, a value outside the range usual for the field."""
 
 
-
 @dataclass(frozen=True, repr=False)
 class Scene(SceneViews):
     """A validated scene.  ``parameters`` are SI floats; ``effects`` have defaults filled in.

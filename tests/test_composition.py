@@ -263,7 +263,6 @@ def test_the_least_winding_tension_near_the_return_sheave_is_found(tmp_path):
     assert envelope["F_C_least_up"] == pytest.approx(truth["winding_up"], rel=1e-9)
 
 
-
 def _dense_least(q_l: float, F_end: float) -> dict:
     """The least tension of each side of the six-segment route (:func:`generated`: μ_pl = 0.05 on every
     segment, G_m = 250 kN, μ_pm = 0.05, steady and the ramps' ±0.5 m/s²) over the whole side, drum to return

@@ -86,4 +86,3 @@ def test_the_worst_peaks_are_the_simulated_cases():
     assert m["peaks"] == {"F": 2.0, "x_m_F": 0.0} and [p["judged_by"] for p in m["positions"]] == [SIMULATED,
                                                                                                    INTEGRATED]
     assert pytest.approx(m["x_m"]) == 0.0
-

@@ -161,4 +161,3 @@ def _kkt(J, rows, fixed, bounds, lbx, ubx, sense) -> bool:
     checks, nu = lam[:len(rows)], lam[len(rows):]
     signs = [0.0 if lbx[j] == ubx[j] else 1.0 if bounds[j] == lbx[j] else -1.0 for j in fixed]
     return bool(np.all(checks >= -LAM_TOL) and all(s * v >= -LAM_TOL for s, v in zip(signs, nu)))
-

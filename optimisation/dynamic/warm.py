@@ -229,4 +229,3 @@ def _kkt(jac, new, x0, p, rows, fixed, lbx, ubx, start=None):
     lam_x = np.zeros(len(x))
     lam_x[fixed] = -bounds
     return x, g, lam_g, lam_x, float(np.asarray(f).ravel()[0])
-

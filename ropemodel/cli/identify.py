@@ -46,4 +46,3 @@ def main(args) -> int:
         for m in res.messages:
             print(f"warning: {m}")
     return 0
-

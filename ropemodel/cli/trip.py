@@ -37,4 +37,3 @@ def main(args) -> int:
             raise InputError(f"{out}: nothing to write")
     print(result.to_json() if args.json else result.report())
     return 0
-

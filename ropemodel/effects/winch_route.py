@@ -121,8 +121,6 @@ class StraightRoute(Submodel):
         return out
 
 
-
-
 #: "L_1", "L_2", …: the segments' length names, made once (a route of 10 000 segments is read many times)
 _LENGTH_NAMES: list[str] = []
 

@@ -266,4 +266,3 @@ def wrap_angles(alpha_0, delta, R):
     """
     d = delta / R
     return alpha_0 + d, alpha_0 - d
-

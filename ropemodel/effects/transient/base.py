@@ -307,4 +307,3 @@ def gathered_parameters(model: str = MODEL) -> list[str]:
 def event_table(events, names) -> list[dict]:
     """``[{"t": ..., "event": ...}]`` of the events called one of ``names``."""
     return [{"t": float(ev.t), "event": ev.name} for ev in events if ev.name in names]
-

@@ -210,4 +210,3 @@ class KoepeSizing(Declaration):
         chosen = {x.name: "the sizing chooses it (a value given only starts the search)" for x in VARIABLES}
         chosen["n_head"] = f"the sizing enumerates it over {COUNTS[0]} to {COUNTS[-1]}"
         return scene.built.inputs_of(), chosen
-

@@ -227,4 +227,3 @@ def rounded_up(problem, xs) -> np.ndarray:
         if min(problem.margins(trial).values()) >= 0.0:
             return trial
     return x
-
