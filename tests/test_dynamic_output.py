@@ -94,6 +94,18 @@ def test_every_check_has_words():
             "stroke_margin", "drum_margin"} == set(STATIC_WORDS)
 
 
+def test_a_tie_with_the_route_check_shows_the_narrower_check():
+    """The route's check holds each side's least tension over the whole side, its ends included (docs/physics.md
+    §4): where that least is at the return sheave it equals the sheave's check to the last bit, and the short
+    table names the sheave (where it is), not "the rope on the route"; a strictly lower route check still
+    shows."""
+    tie = {"route_margin_up @ x_m = 1150 m": 31.25e3, "sheave_margin": 31.25e3, "slack_margin_up": 40e3}
+    (row,) = WORDS.static_rows(tie)
+    assert row.check == STATIC_WORDS["sheave_margin"].text and set(row.names) == set(tie)
+    (row,) = WORDS.static_rows({**tie, "route_margin_up @ x_m = 1150 m": 31.0e3})
+    assert row.check == STATIC_WORDS["route_margin"].text and row.where == "upward travel, x_m = 1150 m"
+
+
 def test_the_text_shows_no_internal_name(design, static_names):
     text = design_text(design)
     assert INTERNAL.search(text) is None, INTERNAL.search(text)

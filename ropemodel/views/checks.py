@@ -28,12 +28,15 @@ from typing import Any, NamedTuple
 
 class Words(NamedTuple):
     """A check in words: ``text`` (what it compares, with its rule's symbols), ``group`` (checks of one group
-    share a row in the short table: the least margin of them shows) and ``kind`` (the margin's form:
-    ``"ratio"`` a fraction shown in %, ``"force"`` in kN, ``"length"`` in mm)."""
+    share a row in the short table: the least margin of them shows), ``kind`` (the margin's form:
+    ``"ratio"`` a fraction shown in %, ``"force"`` in kN, ``"length"`` in mm) and ``broad`` (a check whose
+    places include its group's other checks' places, so that it ties with one of them where the least is
+    there: in a tie the narrower check's words show, which say where)."""
 
     text: str
     group: str
     kind: str
+    broad: bool = False
 
 
 _DIRECTION = {"up": "upward", "down": "downward"}
@@ -78,16 +81,17 @@ def _quantity(kind: str, si: float) -> str:
     return f"{_number(1e3 * si)} mm" if kind == "length" else f"{_number(1e-3 * si)} kN"
 
 
-def _least(rows: list[tuple[float, str, Row]], merged: bool) -> list[Row]:
-    """The rows of (margin, group, row), or (``merged``) one per group: the least margin of the group (the
-    margins of a group share their form), standing for every name of it."""
+def _least(rows: list[tuple[float, Words, Row]], merged: bool) -> list[Row]:
+    """The rows of (margin, words, row), or (``merged``) one per group: the least margin of the group (the
+    margins of a group share their form; of equal ones a narrower check's, :attr:`Words.broad`), standing for
+    every name of it."""
     if not merged:
         return [r for _, _, r in rows]
-    groups: dict[str, list[tuple[float, Row]]] = {}
-    for margin, group, r in rows:
-        groups.setdefault(group, []).append((margin, r))
-    return [dataclasses.replace(min(members, key=lambda m: m[0])[1], names=tuple(n for _, r in members
-                                                                                  for n in r.names))
+    groups: dict[str, list[tuple[float, Words, Row]]] = {}
+    for margin, words, r in rows:
+        groups.setdefault(words.group, []).append((margin, words, r))
+    return [dataclasses.replace(min(members, key=lambda m: (m[0], m[1].broad))[2],
+                                names=tuple(n for _, _, r in members for n in r.names))
             for members in groups.values()]
 
 
@@ -129,7 +133,7 @@ class Vocabulary:
             limit = _quantity(kind, least["limit"]) if "limit" in least else ""
             row = Row(words.text, value, limit, _margin(words.kind, least["margin"]), f"{least['t']:.4g} s",
                       least["where"], least["margin"] >= -1e-9, (f"{name} @ {manoeuvre['manoeuvre']}",))
-            rows.append((least["margin"], words.group, row))
+            rows.append((least["margin"], words, row))
         return _least(rows, merged)
 
     def static_rows(self, margins: dict, merged: bool = True) -> list[Row]:
@@ -142,7 +146,7 @@ class Vocabulary:
                 raise KeyError(f"{name!r} is not a static check's name")
             words = self.static[m["base"]]
             where = ", ".join(w for w in (f"{_DIRECTION[m['dir']]} travel" if m["dir"] else "", m["place"]) if w)
-            rows.append((margin, words.group, Row(words.text, "", "", _margin(words.kind, margin), "", where,
+            rows.append((margin, words, Row(words.text, "", "", _margin(words.kind, margin), "", where,
                                                   margin >= -1e-9, (name,))))
         return _least(rows, merged)
 

@@ -32,7 +32,7 @@ STATIC_WORDS = {
     "slip_margin": Words("drum grip with n_slip", "grip", "ratio"),
     "slack_margin": Words("unwinding rope F_S >= F_S_min", "taut", "force"),
     "taut_margin": Words("winding rope F_C >= F_S_min", "taut", "force"),
-    "route_margin": Words("rope on the route >= F_S_min", "taut", "force"),
+    "route_margin": Words("rope on the route >= F_S_min", "taut", "force", broad=True),    # the drum, sheave too
     "sheave_margin": Words("return sheave F_nwl/2 >= F_S_min", "taut", "force"),
     "stroke_margin": Words("take-up dF <= stroke", "stroke", "length"),
     "drum_margin": Words("drum D >= D_ratio_min d", "drum", "ratio"),
