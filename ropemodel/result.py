@@ -99,7 +99,7 @@ class Result(ResultViews):
         q = self.model.quantities
         lines = [f"{self.scene.name}  (model {self.model.name}; "
                  + ", ".join(f"{e}={v}" for e, v in self.model.built_effects.items()) + ")"]
-        inputs = [n for n in self.model.parameters if n not in self.find] + self.given
+        inputs = self.shown_inputs()
         single = [o for o in self.outputs if not _DIR.match(o) and o not in self.find]
         w = max(len(n) for n in inputs + self.find + single + [" " * 13]) + 1    # names longer than 13: wider
         lines += ["", "inputs"] + [row(n, q[n], self.values[n], self._mark(n), w) for n in inputs]
@@ -128,6 +128,15 @@ class Result(ResultViews):
     def reads(self) -> set[str]:
         """The parameters the outputs are computed from (through the equations)."""
         return self.model.inputs_of()
+
+    def shown_inputs(self) -> list[str]:
+        """The inputs the text table lists: every parameter but a default none of the outputs is computed from (a
+        transient's own, ``v_eps``, ``rope_damping``, ``m_t``, ``mesh_tol``, ``n_slip_dynamic``, which a
+        ``t_ramp`` brings into a static command with its ramps), then the given outputs.  A value the user gave
+        and the outputs do not read stays, and the command warns of it (:mod:`ropemodel.unread`)."""
+        reads, defaults = self.reads(), self.scene.defaults
+        return [n for n in self.model.parameters if n in self.values and n not in self.find
+                and (n in reads or n not in defaults)] + self.given
 
     def _pairs(self) -> list[str]:
         q = self.model.quantities

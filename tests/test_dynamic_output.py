@@ -279,6 +279,26 @@ def test_a_static_command_lists_no_transient_default(command, capsys):
             re.findall(r"^  (\w+): ", out[out.index("defaults used"):], flags=re.M))
         assert not listed & {"v_eps", "rope_damping", "m_t"}, listed
         assert "D_ratio_min" in listed       # a default a check reads stays
+        if not json_flag:                    # nor in the inputs table (a read default stays there too)
+            shown = set(re.findall(r"^(\w+) ", out[out.index("inputs"):out.index("\n\n", out.index("inputs"))],
+                                   flags=re.M))
+            assert not shown & TRANSIENT_DEFAULTS, shown
+            assert {"D_ratio_min", "t_ramp", "G_m"} <= shown or "G_m" in command, shown
+
+
+#: the transient's own parameters with defaults, which no static output reads
+TRANSIENT_DEFAULTS = {"v_eps", "rope_damping", "m_t", "mesh_tol", "n_slip_dynamic"}
+
+
+def test_a_transient_value_the_user_gives_to_a_static_command_stays_listed(capsys):
+    """Only unread defaults leave the inputs table: a value the user gave and the outputs do not read is listed,
+    and the command warns of it."""
+    assert main(["run", "route_segments", "--set", "rope_damping=0.1s"]) == 0
+    captured = capsys.readouterr()
+    section = captured.out[captured.out.index("inputs"):captured.out.index("\n\n", captured.out.index("inputs"))]
+    shown = set(re.findall(r"^(\w+) ", section, flags=re.M))
+    assert "rope_damping" in shown and not shown & (TRANSIENT_DEFAULTS - {"rope_damping"}), shown
+    assert "rope_damping" in captured.err and "does not change what run computes" in captured.err
 
 
 def test_an_inextensible_rope_lists_no_carriage_mass(tmp_path):

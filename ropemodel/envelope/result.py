@@ -114,8 +114,7 @@ class EnvelopeResult(Result):
         q, env = self.model.quantities, self.envelope
         lines = [f"{self.scene.name}  (model {self.model.name}; "
                  + ", ".join(f"{e}={v}" for e, v in self.model.built_effects.items()) + ")"]
-        inputs = [n for n in self.model.parameters if n in self.values and n not in self.find] + self.given
-        lines += ["", "inputs"] + [row(n, q[n], self.values[n], self._mark(n)) for n in inputs]
+        lines += ["", "inputs"] + [row(n, q[n], self.values[n], self._mark(n)) for n in self.shown_inputs()]
         lines += [f"{n:<14}{OPEN[n]:>14}  {unit_cell(q[n]):<8}the worst case below" for n in self.free]
         if self.find:
             why = ("solved for" if self.governing is None else
