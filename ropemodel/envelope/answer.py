@@ -215,17 +215,16 @@ def _no_solution(forward: Problem, problem: Problem, cases, params, candidates, 
         return f"no {', '.join(problem.find)} gives {head} at its worst over every place and manoeuvre (no case " \
                "has a solution)"
 
-    def label(k: int) -> str:
-        return f"{cases[k].label(params)}: " + ", ".join(f"{f} = {q[f].show(v)}" for f, v in candidates[k].items())
+    def answer(k: int) -> str:
+        return ", ".join(f"{f} = {q[f].show(v)}" for f, v in candidates[k].items())
 
-    shown = ", ".join(label(k) for k in found[:SHOWN]) + (f", and {len(found) - SHOWN} more cases"
-                                                          if len(found) > SHOWN else "")
+    more = f", and {len(found) - SHOWN} more cases" if len(found) > SHOWN else ""
+    shown = ", ".join(f"{cases[k].label(params)}: {answer(k)}" for k in found[:SHOWN]) + more
     why = "at none of them is it the worst)"
     if failed:
         k = next(iter(failed))
-        answer = ", ".join(f"{f} = {q[f].show(v)}" for f, v in candidates[k].items())
         why = (("none of them holds" if len(failed) == len(found) else
                 f"{len(failed)} of them do not hold (at the others it is not the worst)")
-               + f"), e.g. {answer} ({cases[k].label(params)}'s answer): {failed[k]}")
+               + f"), e.g. {answer(k)} ({cases[k].label(params)}'s answer): {failed[k]}")
     return f"no {', '.join(problem.find)} gives {head} at its worst over every place and manoeuvre (solved at " \
            f"each: {shown}; {why}"
